@@ -1,0 +1,144 @@
+// Dense-bed benchmark (issue 3): a settled bed of monodisperse spheres, 2,000 steps from
+// the settled state. Two modes, so that Upgrain and LIGGGHTS start from the same file:
+//   bench_dense_bed settle N bed.data   deposit N spheres, relax them with the benchmark
+//                                        material, write a LAMMPS/LIGGGHTS data file
+//   bench_dense_bed run bed.data [steps] time `steps` steps (default 2000) from the file and
+//                                        print particle-steps/s, contacts per particle and
+//                                        peak memory per particle
+// Benchmark scene: r = 1.5 mm, 2,650 kg/m^3, E = 29 GPa, nu = 0.25, mu = 0.5 (particles
+// and walls), zeta = 0.5, dt = 1e-6 s, gravity on.
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <string>
+
+#include "dem/deposition.h"
+#include "dem/scene/fill.h"
+#include "dem/simulation.h"
+
+using namespace upgrain::dem;
+
+namespace {
+
+SceneConfig benchmark_scene(double side) {
+  SceneConfig s;
+  s.particles.radius = 1.5e-3;
+  s.particles.material = {2650.0, 29e9, 0.25};
+  s.container.lx = s.container.ly = side;
+  s.friction = 0.5;
+  s.damping_ratio = 0.5;
+  s.time_step = 1e-6;
+  s.neighbor_skin = 0.05;  // 0.1 diameters in total, as the LIGGGHTS deck
+  s.effects.energy_tracking = false;
+  return s;
+}
+
+double peak_rss_bytes() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_maxrss) * 1024.0;
+}
+
+int settle(long n, const std::string& path) {
+  const double r = 1.5e-3;
+  // A square box whose bed is about as high as it is wide at solid fraction 0.6.
+  const double side = std::cbrt(n * 4.0 / 3.0 * std::numbers::pi * r * r * r / 0.6);
+  SceneConfig s = benchmark_scene(side);
+  s.particles.count = n;
+  s.fill.bottom_gap = 0.002;
+  s.fill.position_jitter = 0.5;
+  s.effects.energy_tracking = true;
+  // Deposit with a soft material (large stable step), then relax with the real one.
+  s.particles.material.youngs_modulus = 1e8;
+  s.time_step = 8e-6;
+  s.end_time = 1.0;
+  RunControl control;
+  control.rest_ratio = 1e-4;
+  const auto t0 = std::chrono::steady_clock::now();
+  std::fprintf(stderr, "settle: %ld spheres in a %.4f m square box (soft deposition)\n", n, side);
+  Simulation soft(s, fill_container(s));
+  const double pe0 = soft.initial_energy().potential;
+  for (long k = 1; k * s.time_step <= s.end_time; ++k) {
+    soft.step();
+    if (k % 2000 == 0) {
+      const double released = pe0 - soft.energy().potential;
+      if (k * s.time_step > 0.1 && soft.energy().kinetic() < control.rest_ratio * released) break;
+    }
+  }
+  std::fprintf(stderr, "settle: soft bed at rest after %.3f s; relaxing with E = 29 GPa\n", soft.time());
+  SceneConfig stiff = benchmark_scene(side);
+  ParticleStore p = soft.particles();
+  for (auto& v : p.v) v.setZero();
+  for (auto& w : p.omega) w.setZero();
+  Simulation sim(stiff, p);
+  sim.run(20000);
+  std::ofstream out(path);
+  out.precision(17);
+  double top = 0.0;
+  const ParticleStore& q = sim.particles();
+  for (std::size_t i = 0; i < q.size(); ++i) top = std::max(top, q.x[i].z() + q.radius[i]);
+  out << "Upgrain settled bed: r = 1.5 mm, E = 29 GPa (bench/dense_bed.cc)\n\n"
+      << q.size() << " atoms\n1 atom types\n\n"
+      << 0.0 << " " << side << " xlo xhi\n" << 0.0 << " " << side << " ylo yhi\n" << 0.0 << " " << top + 0.02
+      << " zlo zhi\n\nAtoms\n\n";
+  // Sorted by id, so the file does not depend on the internal order.
+  std::vector<std::size_t> order(q.size());
+  for (std::size_t i = 0; i < q.size(); ++i) order[static_cast<std::size_t>(q.id[i])] = i;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const std::size_t i = order[k];
+    out << q.id[i] + 1 << " 1 " << 2 * q.radius[i] << " " << 2650.0 << " " << q.x[i].x() << " " << q.x[i].y()
+        << " " << q.x[i].z() << "\n";
+  }
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::fprintf(stderr, "settle: wrote %s (side %.6f m) in %.0f s\n", path.c_str(), side, secs);
+  return 0;
+}
+
+int run(const std::string& path, long steps) {
+  std::ifstream in(path);
+  if (!in) {
+    std::fprintf(stderr, "cannot open %s\n", path.c_str());
+    return 1;
+  }
+  std::string line;
+  long n = 0;
+  double side = 0.0;
+  while (std::getline(in, line)) {
+    if (line.find("atoms") != std::string::npos) n = std::stol(line);
+    if (line.find("xlo xhi") != std::string::npos) side = std::stod(line.substr(line.find(' ') + 1));
+    if (line.rfind("Atoms", 0) == 0) break;
+  }
+  SceneConfig s = benchmark_scene(side);
+  ParticleStore p;
+  p.reserve(static_cast<std::size_t>(n));
+  long id, type;
+  double d, rho, x, y, z;
+  while (in >> id >> type >> d >> rho >> x >> y >> z)
+    p.add_sphere(id - 1, 0.5 * d, rho, Vec3(x, y, z), Vec3::Zero(), Vec3::Zero());
+  Simulation sim(s, std::move(p));
+  const auto t0 = std::chrono::steady_clock::now();
+  sim.run(steps);
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const auto d2 = sim.diagnostics();
+  std::printf("upgrain particles %ld steps %ld seconds %.4f particle_steps_per_second %.4e "
+              "contacts_per_particle %.3f wall_contacts %ld peak_bytes_per_particle %.0f neighbor_builds %ld\n",
+              n, steps, secs, static_cast<double>(n) * steps / secs, 2.0 * d2.particle_contacts / n,
+              d2.wall_contacts, peak_rss_bytes() / n, d2.neighbor_builds);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string mode = argc > 1 ? argv[1] : "";
+  if (mode == "settle" && argc == 4) return settle(std::atol(argv[2]), argv[3]);
+  if (mode == "run" && argc >= 3) return run(argv[2], argc > 3 ? std::atol(argv[3]) : 2000);
+  std::fprintf(stderr, "usage: bench_dense_bed settle N bed.data | run bed.data [steps]\n");
+  return 2;
+}

@@ -1,0 +1,99 @@
+#include "coupling/parameter_schema.h"
+
+#include <algorithm>
+
+namespace upgrain::coupling {
+
+const std::vector<ParameterSpec>& parameter_schema() {
+  using K = Kind;
+  // The defaults are the built-in default scene: about 2,000 spheres of the paper's size
+  // deposited into a 4.5 cm square box. Young's modulus is lowered from the paper's tens
+  // of GPa to 5 GPa so that the default run takes about a minute (docs/parameters.md).
+  static const std::vector<ParameterSpec> schema = {
+      {"Simulation", "time step", "1e-6", K::real, 1e-12, 1.0, "", "s",
+       "Fixed time step of the velocity Verlet integrator. Refused when above the safe step "
+       "(see Rayleigh fraction, Hertz fraction) unless 'allow unsafe time step' is true."},
+      {"Simulation", "end time", "0.4", K::real, 0.0, 1e6, "", "s", "Simulated time at which the run ends."},
+      {"Simulation", "stop at rest ratio", "1e-6", K::real, 0.0, 1.0, "", "-",
+       "End the run early once the kinetic energy is below this fraction of the potential energy "
+       "released (checked at each time-series row after the first tenth of the run). 0 disables."},
+      {"Simulation", "Rayleigh fraction", "0.2", K::real, 1e-3, 1.0, "", "-",
+       "Safe time step as a fraction of the Rayleigh time of the smallest grain."},
+      {"Simulation", "Hertz fraction", "0.1", K::real, 1e-3, 1.0, "", "-",
+       "Safe time step as a fraction of the shortest Hertz contact duration at the expected impact speed."},
+      {"Simulation", "expected impact speed", "0", K::real, 0.0, 1e4, "", "m/s",
+       "Highest relative impact speed for the Hertz time. 0 = estimate: initial speed plus free fall from the top of the fill."},
+      {"Simulation", "allow unsafe time step", "false", K::boolean, 0, 0, "", "-",
+       "Run even when the time step exceeds the safe step (results may be wrong or unstable)."},
+      {"Simulation", "neighbor skin", "0.2", K::real, 0.01, 5.0, "", "largest diameters",
+       "Verlet list skin; the list is rebuilt when a grain has moved more than half of it."},
+
+      {"Effects", "gravity", "true", K::boolean, 0, 0, "", "-", "Gravity along -z."},
+      {"Effects", "gravity acceleration", "9.81", K::real, 0.0, 1e3, "", "m/s^2", "Magnitude of gravity."},
+      {"Effects", "tangential friction", "true", K::boolean, 0, 0, "", "-",
+       "Mindlin tangential spring with Coulomb friction between particles. Off: frictionless contacts, no history."},
+      {"Effects", "damping", "true", K::boolean, 0, 0, "", "-", "Normal viscous damping c_n = 2 zeta sqrt(m* k_n)."},
+      {"Effects", "wall friction", "true", K::boolean, 0, 0, "", "-",
+       "Mindlin tangential spring with Coulomb friction at walls. Off: frictionless walls."},
+      {"Effects", "rotation", "true", K::boolean, 0, 0, "", "-",
+       "Integrate the angular velocity from contact torques. Off: grains do not rotate."},
+      {"Effects", "energy tracking", "true", K::boolean, 0, 0, "", "-",
+       "Accumulate elastic energy and dissipation per contact for the energy balance."},
+
+      {"Particles", "count", "2000", K::integer, 1, 1e9, "", "-", "Number of spheres."},
+      {"Particles", "radius", "1.5e-3", K::real, 1e-9, 10.0, "", "m",
+       "Radius of monodisperse spheres (used when 'gradation' is empty)."},
+      {"Particles", "gradation", "", K::text, 0, 0, "", "m : -",
+       "Gradation curve as comma-separated 'radius:fraction passing' points by mass, e.g. "
+       "'1.0e-3:0, 1.5e-3:0.4, 2.5e-3:1'. Empty: monodisperse."},
+      {"Particles", "density", "2650", K::real, 1.0, 1e5, "", "kg/m^3", "Grain density (specific gravity 2.65 in the paper)."},
+      {"Particles", "youngs modulus", "5e9", K::real, 1e3, 1e13, "", "Pa", "Young's modulus of the grains and walls."},
+      {"Particles", "poisson ratio", "0.25", K::real, 0.0, 0.49, "", "-", "Poisson's ratio of the grains and walls."},
+
+      {"Contact", "friction coefficient", "0.5", K::real, 0.0, 10.0, "", "-", "Coulomb coefficient between particles."},
+      {"Contact", "damping ratio", "0.5", K::real, 0.0, 10.0, "", "-", "zeta in c_n = 2 zeta sqrt(m* k_n) (paper eq. 21)."},
+
+      {"Container", "length x", "0.045", K::real, 1e-6, 1e4, "", "m", "Inner length of the box along x (walls at x = 0 and x = length x)."},
+      {"Container", "length y", "0.045", K::real, 1e-6, 1e4, "", "m", "Inner length of the box along y."},
+      {"Container", "height", "0.1", K::real, 1e-6, 1e4, "", "m", "Nominal wall height (for output; the walls are unbounded planes)."},
+      {"Container", "floor friction", "0.5", K::real, 0.0, 10.0, "", "-", "Coulomb coefficient particle-floor."},
+      {"Container", "wall x min friction", "0.5", K::real, 0.0, 10.0, "", "-", "Coulomb coefficient at the wall x = 0."},
+      {"Container", "wall x max friction", "0.5", K::real, 0.0, 10.0, "", "-", "Coulomb coefficient at the wall x = length x."},
+      {"Container", "wall y min friction", "0.5", K::real, 0.0, 10.0, "", "-", "Coulomb coefficient at the wall y = 0."},
+      {"Container", "wall y max friction", "0.5", K::real, 0.0, 10.0, "", "-", "Coulomb coefficient at the wall y = length y."},
+
+      {"Fill", "method", "lattice", K::selection, 0, 0, "lattice|random", "-",
+       "Initial placement: a jittered cubic lattice, or random sequential addition."},
+      {"Fill", "bottom gap", "0.01", K::real, 0.0, 1e4, "", "m", "Gap between the floor and the lowest grain surface at the start."},
+      {"Fill", "lattice spacing", "1.1", K::real, 1.0, 10.0, "", "largest diameters", "Lattice pitch."},
+      {"Fill", "position jitter", "0.5", K::real, 0.0, 1.0, "", "-",
+       "Random offset of lattice sites, as a fraction of the free gap between neighbours."},
+      {"Fill", "solid fraction", "0.3", K::real, 0.01, 0.6, "", "-", "Solid fraction of the random fill region."},
+      {"Fill", "initial velocity", "0, 0, 0", K::vector3, -1e4, 1e4, "", "m/s", "Initial velocity of every grain."},
+      {"Fill", "velocity jitter", "0", K::real, 0.0, 1e4, "", "m/s", "Amplitude of a uniform random velocity added to each grain."},
+      {"Fill", "seed", "12345", K::integer, 0, 2147483647, "", "-", "Seed of the random numbers (radii, jitter)."},
+
+      {"Output", "folder", "upgrain-output", K::text, 0, 0, "", "-", "Folder for all results of the run."},
+      {"Output", "overwrite", "false", K::boolean, 0, 0, "", "-",
+       "Allow writing into a folder that already holds results (otherwise the run refuses to start)."},
+      {"Output", "snapshot interval", "0.05", K::real, 0.0, 1e6, "", "s", "Simulated time between HDF5 snapshots; 0 = first and last only."},
+      {"Output", "time series interval", "0.002", K::real, 0.0, 1e6, "", "s", "Simulated time between rows of time_series.csv."},
+  };
+  return schema;
+}
+
+std::vector<std::string> entries_of(const std::string& section) {
+  std::vector<std::string> out;
+  for (const auto& p : parameter_schema())
+    if (p.section == section) out.push_back(p.name);
+  return out;
+}
+
+std::vector<std::string> sections() {
+  std::vector<std::string> out;
+  for (const auto& p : parameter_schema())
+    if (std::find(out.begin(), out.end(), p.section) == out.end()) out.push_back(p.section);
+  return out;
+}
+
+}  // namespace upgrain::coupling

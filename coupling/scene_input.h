@@ -1,0 +1,37 @@
+#pragma once
+// What the driver hands to the DEM engine after reading and validating a scene file.
+#include <iosfwd>
+#include <string>
+
+#include "dem/deposition.h"
+#include "dem/io/run_recorder.h"
+#include "dem/scene/scene_config.h"
+
+namespace upgrain::coupling {
+
+struct SceneInput {
+  std::string source;  // file name, or "built-in default scene"
+  dem::SceneConfig scene;
+  dem::io::OutputOptions output;
+  dem::RunControl control;
+  bool overwrite = false;
+};
+
+// Reads a .prm file: syntax and entry names first (prm_syntax.h), values by deal.II's
+// ParameterHandler, then the checks across parameters (validate_scene). Throws
+// upgrain::Error naming the file, line or parameter.
+SceneInput read_scene_file(const std::string& filename);
+
+// The built-in default scene: every parameter at its default.
+SceneInput default_scene();
+
+// Checks that involve several parameters or the file system: gradation curve, the fill
+// fits the container, the time step is safe, the output folder holds no earlier results.
+// Nothing is written.
+void validate_scene(const SceneInput& input);
+
+// The annotated default parameter file, and its Markdown form for docs/parameters.md.
+void print_default_parameters(std::ostream& out);
+void print_parameters_markdown(std::ostream& out);
+
+}  // namespace upgrain::coupling

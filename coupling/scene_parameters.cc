@@ -1,0 +1,231 @@
+// The only translation unit of the driver that includes deal.II: the ParameterHandler
+// declarations and the extraction of values into plain structs.
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/patterns.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "coupling/parameter_schema.h"
+#include "coupling/prm_syntax.h"
+#include "coupling/scene_input.h"
+#include "dem/core/error.h"
+
+namespace upgrain::coupling {
+
+namespace {
+
+using dealii::ParameterHandler;
+namespace Patterns = dealii::Patterns;
+
+std::string documentation(const ParameterSpec& p) {
+  return p.doc + " [unit: " + p.unit + "]";
+}
+
+void declare(ParameterHandler& prm) {
+  for (const std::string& section : sections()) {
+    prm.enter_subsection(section);
+    for (const ParameterSpec& p : parameter_schema()) {
+      if (p.section != section) continue;
+      switch (p.kind) {
+        case Kind::real:
+          prm.declare_entry(p.name, p.default_value, Patterns::Double(p.min, p.max), documentation(p));
+          break;
+        case Kind::integer:
+          prm.declare_entry(p.name, p.default_value,
+                            Patterns::Integer(static_cast<int>(p.min), static_cast<int>(p.max)), documentation(p));
+          break;
+        case Kind::boolean:
+          prm.declare_entry(p.name, p.default_value, Patterns::Bool(), documentation(p));
+          break;
+        case Kind::selection:
+          prm.declare_entry(p.name, p.default_value, Patterns::Selection(p.choices), documentation(p));
+          break;
+        case Kind::text:
+          prm.declare_entry(p.name, p.default_value, Patterns::Anything(), documentation(p));
+          break;
+        case Kind::vector3:
+          prm.declare_entry(p.name, p.default_value, Patterns::List(Patterns::Double(p.min, p.max), 3, 3, ","),
+                            documentation(p));
+          break;
+      }
+    }
+    prm.leave_subsection();
+  }
+}
+
+std::vector<dem::GradationPoint> parse_gradation(const std::string& text) {
+  std::vector<dem::GradationPoint> curve;
+  std::istringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    if (item.find_first_not_of(" \t") == std::string::npos) continue;
+    const auto colon = item.find(':');
+    dem::GradationPoint p{};
+    std::istringstream r(colon == std::string::npos ? "" : item.substr(0, colon));
+    std::istringstream f(colon == std::string::npos ? "" : item.substr(colon + 1));
+    std::string rest_r, rest_f;
+    if (colon == std::string::npos || !(r >> p.radius) || (r >> rest_r) || !(f >> p.fraction_passing) ||
+        (f >> rest_f))
+      throw Error("Particles/gradation: cannot read the point '" + item +
+                  "'; write 'radius:fraction passing' pairs separated by commas, e.g. '1e-3:0, 2.5e-3:1'");
+    curve.push_back(p);
+  }
+  return curve;
+}
+
+SceneInput extract(ParameterHandler& prm, const std::string& source) {
+  SceneInput in;
+  in.source = source;
+  dem::SceneConfig& s = in.scene;
+  prm.enter_subsection("Simulation");
+  s.time_step = prm.get_double("time step");
+  s.end_time = prm.get_double("end time");
+  in.control.rest_ratio = prm.get_double("stop at rest ratio");
+  s.time_step_rule.rayleigh_fraction = prm.get_double("Rayleigh fraction");
+  s.time_step_rule.hertz_fraction = prm.get_double("Hertz fraction");
+  s.time_step_rule.impact_speed = prm.get_double("expected impact speed");
+  s.time_step_rule.allow_unsafe = prm.get_bool("allow unsafe time step");
+  s.neighbor_skin = prm.get_double("neighbor skin");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Effects");
+  s.effects.gravity = prm.get_bool("gravity");
+  s.gravity = prm.get_double("gravity acceleration");
+  s.effects.friction = prm.get_bool("tangential friction");
+  s.effects.damping = prm.get_bool("damping");
+  s.effects.wall_friction = prm.get_bool("wall friction");
+  s.effects.rotation = prm.get_bool("rotation");
+  s.effects.energy_tracking = prm.get_bool("energy tracking");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Particles");
+  s.particles.count = prm.get_integer("count");
+  s.particles.radius = prm.get_double("radius");
+  s.particles.gradation = parse_gradation(prm.get("gradation"));
+  s.particles.material.density = prm.get_double("density");
+  s.particles.material.youngs_modulus = prm.get_double("youngs modulus");
+  s.particles.material.poisson_ratio = prm.get_double("poisson ratio");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Contact");
+  s.friction = prm.get_double("friction coefficient");
+  s.damping_ratio = prm.get_double("damping ratio");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Container");
+  s.container.lx = prm.get_double("length x");
+  s.container.ly = prm.get_double("length y");
+  s.container.height = prm.get_double("height");
+  s.container.friction[0] = prm.get_double("floor friction");
+  s.container.friction[1] = prm.get_double("wall x min friction");
+  s.container.friction[2] = prm.get_double("wall x max friction");
+  s.container.friction[3] = prm.get_double("wall y min friction");
+  s.container.friction[4] = prm.get_double("wall y max friction");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Fill");
+  s.fill.method = prm.get("method") == "random" ? dem::FillMethod::random : dem::FillMethod::lattice;
+  s.fill.bottom_gap = prm.get_double("bottom gap");
+  s.fill.lattice_spacing = prm.get_double("lattice spacing");
+  s.fill.position_jitter = prm.get_double("position jitter");
+  s.fill.solid_fraction = prm.get_double("solid fraction");
+  {
+    const auto v = Patterns::Tools::Convert<std::vector<double>>::to_value(prm.get("initial velocity"),
+                                                                            Patterns::List(Patterns::Double(), 3, 3, ","));
+    s.fill.velocity = dem::Vec3(v[0], v[1], v[2]);
+  }
+  s.fill.velocity_jitter = prm.get_double("velocity jitter");
+  s.fill.seed = static_cast<std::uint64_t>(prm.get_integer("seed"));
+  prm.leave_subsection();
+
+  prm.enter_subsection("Output");
+  in.output.folder = prm.get("folder");
+  in.overwrite = prm.get_bool("overwrite");
+  in.output.snapshot_interval = prm.get_double("snapshot interval");
+  in.output.series_interval = prm.get_double("time series interval");
+  prm.leave_subsection();
+  return in;
+}
+
+}  // namespace
+
+SceneInput read_scene_file(const std::string& filename) {
+  std::ifstream file(filename);
+  if (!file) throw Error(filename + ": cannot open the parameter file");
+  std::stringstream text;
+  text << file.rdbuf();
+  check_prm_syntax(text.str(), filename);
+
+  ParameterHandler prm;
+  declare(prm);
+  try {
+    prm.parse_input(filename, "", false, true);
+  } catch (const dealii::ExceptionBase& e) {
+    std::ostringstream info;
+    e.print_info(info);
+    // deal.II spreads its message over indented lines: make it one line.
+    std::string msg;
+    for (char c : info.str()) {
+      const bool blank = c == ' ' || c == '\n' || c == '\t';
+      if (blank && (msg.empty() || msg.back() == ' ')) continue;
+      msg += blank ? ' ' : c;
+    }
+    while (!msg.empty() && msg.back() == ' ') msg.pop_back();
+    if (msg.empty()) msg = filename + ": cannot be read";
+    throw Error(msg);
+  }
+  SceneInput in;
+  try {
+    in = extract(prm, filename);
+  } catch (const Error& e) {
+    throw Error(filename + ": " + e.what());
+  }
+  validate_scene(in);
+  return in;
+}
+
+SceneInput default_scene() {
+  ParameterHandler prm;
+  declare(prm);
+  SceneInput in = extract(prm, "built-in default scene");
+  validate_scene(in);
+  return in;
+}
+
+void print_default_parameters(std::ostream& out) {
+  ParameterHandler prm;
+  declare(prm);
+  out << "# Upgrain scene parameters with their defaults (the built-in default scene).\n"
+      << "# Units are given in brackets in each entry's documentation. SI units throughout.\n";
+  prm.print_parameters(out, ParameterHandler::OutputStyle::PRM);
+}
+
+void print_parameters_markdown(std::ostream& out) {
+  out << "# Scene parameters\n\n"
+      << "Generated by `upgrain --print-parameters-markdown` from the one table that also "
+         "declares them (`coupling/parameter_schema.cc`); do not edit by hand.\n\n"
+      << "A scene file is a deal.II parameter file: `subsection <Name>`, `set <entry> = <value>`, "
+         "`end`; `#` starts a comment. Unknown entries, values out of range and malformed lines "
+         "stop the run before anything is written, with the file and line.\n";
+  for (const std::string& section : sections()) {
+    out << "\n## " << section << "\n\n| entry | default | allowed | unit | meaning |\n|---|---|---|---|---|\n";
+    for (const ParameterSpec& p : parameter_schema()) {
+      if (p.section != section) continue;
+      std::string allowed;
+      std::ostringstream r;
+      switch (p.kind) {
+        case Kind::real: r << "real in [" << p.min << ", " << p.max << "]"; break;
+        case Kind::integer: r << "integer in [" << p.min << ", " << p.max << "]"; break;
+        case Kind::boolean: r << "true or false"; break;
+        case Kind::selection: r << p.choices; break;
+        case Kind::text: r << "text"; break;
+        case Kind::vector3: r << "three reals in [" << p.min << ", " << p.max << "]"; break;
+      }
+      out << "| `" << p.name << "` | `" << p.default_value << "` | " << r.str() << " | " << p.unit << " | "
+          << p.doc << " |\n";
+    }
+  }
+}
+
+}  // namespace upgrain::coupling

@@ -1,0 +1,61 @@
+#include <filesystem>
+#include <sstream>
+
+#include "coupling/scene_input.h"
+#include "dem/core/error.h"
+#include "dem/scene/fill.h"
+#include "dem/scene/gradation.h"
+#include "dem/time_step.h"
+
+namespace upgrain::coupling {
+
+void validate_scene(const SceneInput& in) {
+  const dem::SceneConfig& s = in.scene;
+  const std::string where = in.source + ": ";
+  try {
+    if (!s.particles.gradation.empty()) dem::validate_gradation(s.particles.gradation);
+  } catch (const Error& e) {
+    throw Error(where + "Particles/gradation: " + e.what());
+  }
+  const double r_max = s.particles.gradation.empty() ? s.particles.radius : s.particles.gradation.back().radius;
+  if (2.0 * r_max >= std::min(s.container.lx, s.container.ly)) {
+    std::ostringstream m;
+    m << where << "the largest grain (diameter " << 2 * r_max << " m, Particles/radius or gradation) "
+      << "does not fit between the walls (Container/length x = " << s.container.lx
+      << " m, length y = " << s.container.ly << " m)";
+    throw Error(m.str());
+  }
+  try {
+    (void)dem::plan_fill(s);
+  } catch (const Error& e) {
+    throw Error(where + e.what());
+  }
+  const dem::TimeStepEstimate ts = dem::estimate_time_step(s);
+  if (s.time_step > ts.safe_step && !s.time_step_rule.allow_unsafe) {
+    std::ostringstream m;
+    m.precision(4);
+    m << where << "Simulation/time step = " << s.time_step << " s exceeds the safe step " << ts.safe_step
+      << " s (" << ts.limiting << "-limited: " << s.time_step_rule.rayleigh_fraction << " x Rayleigh time "
+      << ts.rayleigh_time << " s, " << s.time_step_rule.hertz_fraction << " x Hertz contact time "
+      << ts.hertz_time << " s at " << ts.impact_speed
+      << " m/s); lower the time step or set 'allow unsafe time step = true'";
+    throw Error(m.str());
+  }
+  if (s.end_time < s.time_step) {
+    std::ostringstream m;
+    m << where << "Simulation/end time = " << s.end_time << " s is shorter than one time step";
+    throw Error(m.str());
+  }
+  namespace fs = std::filesystem;
+  const fs::path& folder = in.output.folder;
+  std::error_code ec;
+  if (fs::exists(folder, ec)) {
+    if (!fs::is_directory(folder, ec))
+      throw Error(where + "Output/folder = '" + folder.string() + "' exists and is not a folder");
+    if (!fs::is_empty(folder, ec) && !in.overwrite)
+      throw Error(where + "Output/folder = '" + folder.string() +
+                  "' already holds results; choose another folder or set 'Output/overwrite = true'");
+  }
+}
+
+}  // namespace upgrain::coupling

@@ -1,0 +1,158 @@
+#include "dem/contact/force_kernel.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace upgrain::dem {
+
+namespace {
+
+template <class E>
+void compute_forces(ForceContext& ctx) {
+  ParticleStore& p = *ctx.particles;
+  const std::size_t n = p.size();
+  const std::vector<int>& off = ctx.neighbors->offsets();
+  const std::vector<int>& nbr = ctx.neighbors->partners();
+  std::vector<TangentialSpring>& springs = ctx.neighbors->springs();
+  const ContactMaterial& mat = ctx.material;
+  constexpr bool kTangential = E::friction;
+
+  constexpr bool kDampingWork = E::damping && E::energy;
+  for (std::size_t i = 0; i < n; ++i) {
+    p.force[i].setZero();
+    if constexpr (E::rotation) p.torque[i].setZero();
+  }
+  if constexpr (kDampingWork) ctx.damping_force.assign(n, Vec3::Zero());
+  ContactEnergy energy;
+  long contacts = 0;
+  double max_ratio = 0.0;
+  TangentialSpring dummy_spring;
+
+  ContactParameters cp{mat.e_star_pp, mat.g_star_pp, 0.0, 0.0, mat.friction_pp, mat.damping_ratio, ctx.dt};
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 xi = p.x[i];
+    const double ri = p.radius[i];
+    const double mi = p.mass[i];
+    Vec3 fi = Vec3::Zero();
+    Vec3 ti = Vec3::Zero();
+    for (int k = off[i]; k < off[i + 1]; ++k) {
+      const int j = nbr[k];
+      const Vec3 d = p.x[j] - xi;
+      const double rsum = ri + p.radius[j];
+      const double dist2 = d.squaredNorm();
+      if (dist2 >= rsum * rsum) {
+        if constexpr (kTangential) springs[k] = TangentialSpring{};
+        continue;
+      }
+      const double dist = std::sqrt(dist2);
+      const double delta = rsum - dist;
+      ContactKinematics kin;
+      kin.normal = d / dist;
+      kin.overlap = delta;
+      kin.arm_i = ri - 0.5 * delta;
+      kin.arm_j = p.radius[j] - 0.5 * delta;
+      kin.v_i = p.v[i];
+      kin.v_j = p.v[j];
+      if constexpr (E::rotation) {
+        kin.omega_i = p.omega[i];
+        kin.omega_j = p.omega[j];
+      }
+      cp.r_star = ri * p.radius[j] / rsum;
+      cp.m_star = mi * p.mass[j] / (mi + p.mass[j]);
+      TangentialSpring& spring = kTangential ? springs[k] : dummy_spring;
+      const ContactForce cf =
+          contact_response<kTangential, E::damping, E::rotation, E::energy>(cp, kin, spring, energy);
+      fi += cf.on_i;
+      p.force[j] -= cf.on_i;
+      if constexpr (kDampingWork) {
+        ctx.damping_force[i] -= cf.damping * kin.normal;
+        ctx.damping_force[j] += cf.damping * kin.normal;
+      }
+      if constexpr (E::rotation) {
+        const Vec3 arm_x_f = kin.normal.cross(cf.on_i);
+        ti += kin.arm_i * arm_x_f;
+        p.torque[j] += kin.arm_j * arm_x_f;
+      }
+      ++contacts;
+      max_ratio = std::max(max_ratio, delta / std::min(ri, p.radius[j]));
+    }
+    p.force[i] += fi;
+    if constexpr (E::rotation) p.torque[i] += ti;
+  }
+
+  // Particle-wall contacts: the wall is a rigid plane of the particles' own material, so
+  // R* = r and m* = m. The contact point lies on the plane, at arm r - delta.
+  const std::vector<PlaneWall>& walls = *ctx.walls;
+  const std::size_t nw = walls.size();
+  ctx.wall_force.assign(nw, Vec3::Zero());
+  long wall_contacts = 0;
+  constexpr bool kWallTangential = E::wall_friction;
+  std::vector<TangentialSpring>& wall_springs = *ctx.wall_springs;
+  ContactParameters wp{mat.e_star_pw, mat.g_star_pw, 0.0, 0.0, 0.0, mat.damping_ratio, ctx.dt};
+  for (std::size_t w = 0; w < nw; ++w) {
+    const PlaneWall& wall = walls[w];
+    wp.friction = wall.friction;
+    Vec3 wall_total = Vec3::Zero();
+    for (std::size_t i = 0; i < n; ++i) {
+      const double gap = wall.distance(p.x[i]);
+      const double ri = p.radius[i];
+      TangentialSpring& spring = kWallTangential ? wall_springs[i * nw + w] : dummy_spring;
+      if (gap >= ri) {
+        if constexpr (kWallTangential) spring = TangentialSpring{};
+        continue;
+      }
+      ContactKinematics kin;
+      kin.normal = -wall.normal;
+      kin.overlap = ri - gap;
+      kin.arm_i = gap;
+      kin.arm_j = 0.0;
+      kin.v_i = p.v[i];
+      kin.v_j = Vec3::Zero();
+      if constexpr (E::rotation) {
+        kin.omega_i = p.omega[i];
+        kin.omega_j = Vec3::Zero();
+      }
+      wp.r_star = ri;
+      wp.m_star = p.mass[i];
+      const ContactForce cf = contact_response<kWallTangential, E::damping, E::rotation, E::energy>(
+          wp, kin, spring, energy);
+      p.force[i] += cf.on_i;
+      wall_total -= cf.on_i;
+      if constexpr (kDampingWork) ctx.damping_force[i] -= cf.damping * kin.normal;
+      if constexpr (E::rotation) p.torque[i] += gap * kin.normal.cross(cf.on_i);
+      ++wall_contacts;
+      max_ratio = std::max(max_ratio, kin.overlap / ri);
+    }
+    ctx.wall_force[w] = wall_total;
+  }
+
+  ctx.energy = energy;
+  ctx.particle_contacts = contacts;
+  ctx.wall_contacts = wall_contacts;
+  ctx.max_overlap_ratio = max_ratio;
+}
+
+template <bool F, bool D, bool W, bool R>
+ForceKernel pick_energy(bool energy) {
+  return energy ? &compute_forces<Effects<F, D, W, R, true>> : &compute_forces<Effects<F, D, W, R, false>>;
+}
+template <bool F, bool D, bool W>
+ForceKernel pick_rotation(const EffectSet& e) {
+  return e.rotation ? pick_energy<F, D, W, true>(e.energy_tracking) : pick_energy<F, D, W, false>(e.energy_tracking);
+}
+template <bool F, bool D>
+ForceKernel pick_wall(const EffectSet& e) {
+  return e.wall_friction ? pick_rotation<F, D, true>(e) : pick_rotation<F, D, false>(e);
+}
+template <bool F>
+ForceKernel pick_damping(const EffectSet& e) {
+  return e.damping ? pick_wall<F, true>(e) : pick_wall<F, false>(e);
+}
+
+}  // namespace
+
+ForceKernel select_force_kernel(const EffectSet& e) {
+  return e.friction ? pick_damping<true>(e) : pick_damping<false>(e);
+}
+
+}  // namespace upgrain::dem

@@ -1,0 +1,39 @@
+#pragma once
+// The force loop over particle pairs and particle-wall contacts. It is written once as a
+// template on the effect set; select_force_kernel() turns the scene's run-time choices
+// into one instantiation, chosen once per run.
+#include <vector>
+
+#include "dem/boundary/plane_wall.h"
+#include "dem/contact/contact_response.h"
+#include "dem/contact/effects.h"
+#include "dem/core/material.h"
+#include "dem/core/particle_store.h"
+#include "dem/neighbor/verlet_list.h"
+
+namespace upgrain::dem {
+
+struct ForceContext {
+  ParticleStore* particles = nullptr;
+  VerletList* neighbors = nullptr;
+  const std::vector<PlaneWall>* walls = nullptr;
+  std::vector<TangentialSpring>* wall_springs = nullptr;  // walls->size() slots per particle
+  ContactMaterial material;
+  double dt = 0.0;
+
+  // Results of one evaluation.
+  ContactEnergy energy;          // elastic: current; dissipated: this step's increment
+  long particle_contacts = 0;
+  long wall_contacts = 0;
+  double max_overlap_ratio = 0.0;  // max of delta / min(r_i, r_j)
+  std::vector<Vec3> wall_force;    // total force exerted by particles on each wall
+  // Viscous part of the contact force on each particle (energy tracking with damping),
+  // for the second half of the damping work (docs/integrator.md).
+  std::vector<Vec3> damping_force;
+};
+
+using ForceKernel = void (*)(ForceContext&);
+
+ForceKernel select_force_kernel(const EffectSet& effects);
+
+}  // namespace upgrain::dem

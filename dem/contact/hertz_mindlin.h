@@ -1,0 +1,46 @@
+#pragma once
+// Scalar kernels of the Hertz-Mindlin contact law. Each is a plain function of a few
+// numbers so tests can call it directly. Equations: docs/contact-law.md.
+#include <cmath>
+
+namespace upgrain::dem::hertz {
+
+// Hertz normal force F = 4/3 E* sqrt(R*) delta^(3/2)  (Johnson 1985, eq. 4.23).
+inline double normal_force(double e_star, double r_star, double delta) {
+  return 4.0 / 3.0 * e_star * std::sqrt(r_star) * delta * std::sqrt(delta);
+}
+
+// Tangent normal stiffness k_n = dF/d(delta) = 2 E* sqrt(R* delta) = 2 E* a.
+inline double normal_stiffness(double e_star, double r_star, double delta) {
+  return 2.0 * e_star * std::sqrt(r_star * delta);
+}
+
+// Elastic energy stored in the normal spring, the integral of F: 8/15 E* sqrt(R*) delta^(5/2).
+inline double normal_energy(double e_star, double r_star, double delta) {
+  return 8.0 / 15.0 * e_star * std::sqrt(r_star) * delta * delta * std::sqrt(delta);
+}
+
+// Mindlin no-slip tangential stiffness k_t = 8 G* a, a = sqrt(R* delta)
+// (Mindlin 1949; Di Renzo and Di Maio 2004, eq. 8).
+inline double tangential_stiffness(double g_star, double r_star, double delta) {
+  return 8.0 * g_star * std::sqrt(r_star * delta);
+}
+
+// Normal viscous damping coefficient c_n = 2 zeta sqrt(m* k_n) (paper brief eq. 21-22),
+// with m* = m1 m2 / (m1 + m2) and k_n the tangent Hertz stiffness above.
+inline double damping_coefficient(double zeta, double m_star, double k_n) {
+  return 2.0 * zeta * std::sqrt(m_star * k_n);
+}
+
+// Duration of an undamped Hertz impact at relative normal speed v
+// (Johnson 1985, eq. 11.24): t = 2.868 (m*^2 / (R* E*^2 v))^(1/5).
+inline double contact_duration(double e_star, double r_star, double m_star, double v) {
+  return 2.8683 * std::pow(m_star * m_star / (r_star * e_star * e_star * v), 0.2);
+}
+
+// Static overlap of a Hertz contact carrying the force F: inverse of normal_force.
+inline double overlap_for_force(double e_star, double r_star, double force) {
+  return std::pow(3.0 * force / (4.0 * e_star * std::sqrt(r_star)), 2.0 / 3.0);
+}
+
+}  // namespace upgrain::dem::hertz

@@ -1,0 +1,111 @@
+#include "dem/deposition.h"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "dem/scene/fill.h"
+
+namespace upgrain::dem {
+
+namespace {
+std::string num(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+}  // namespace
+
+DepositionResult run_deposition(const SceneConfig& scene, const RunControl& control,
+                                const std::optional<io::OutputOptions>& output,
+                                const std::function<void(const Progress&)>& on_progress) {
+  using Clock = std::chrono::steady_clock;
+  Simulation sim(scene, fill_container(scene));
+  const long total = static_cast<long>(std::llround(scene.end_time / scene.time_step));
+  auto every = [&](double interval) {
+    return interval > 0.0 ? std::max(1L, static_cast<long>(std::llround(interval / scene.time_step))) : total;
+  };
+  const long series_every = every(output ? output->series_interval : 0.002);
+  const long snapshot_every = every(output ? output->snapshot_interval : 0.0);
+
+  std::optional<io::RunRecorder> recorder;
+  if (output) {
+    recorder.emplace(*output);
+    recorder->record_series(sim);
+    recorder->write_snapshot(sim);
+  }
+
+  DepositionResult r;
+  const auto t0 = Clock::now();
+  auto last_report = t0;
+  const double pe0 = sim.initial_energy().potential;
+  for (long s = 1; s <= total; ++s) {
+    sim.step();
+    const bool series_now = (s % series_every == 0) || s == total;
+    if (series_now) {
+      if (recorder) recorder->record_series(sim);
+      const double released = pe0 - sim.energy().potential;
+      if (control.rest_ratio > 0.0 && s > total / 10 && released > 0.0 &&
+          sim.energy().kinetic() < control.rest_ratio * released) {
+        r.stopped_at_rest = true;
+      }
+    }
+    if (recorder && ((s % snapshot_every == 0) || s == total || r.stopped_at_rest)) {
+      sim.check_finite();
+      if (!series_now) recorder->record_series(sim);
+      recorder->write_snapshot(sim);
+    }
+    if (on_progress) {
+      const auto now = Clock::now();
+      if (std::chrono::duration<double>(now - last_report).count() >= 1.0 || s == total || r.stopped_at_rest) {
+        const double elapsed = std::chrono::duration<double>(now - t0).count();
+        const double rate = s / std::max(elapsed, 1e-9);
+        on_progress({s, total, rate, (total - s) / rate});
+        last_report = now;
+      }
+    }
+    if (r.stopped_at_rest) break;
+  }
+  sim.check_finite();
+  r.wall_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  r.steps = sim.step_count();
+  r.simulated_time = sim.time();
+  r.particle_steps_per_second =
+      static_cast<double>(r.steps) * static_cast<double>(sim.particles().size()) / std::max(r.wall_seconds, 1e-9);
+  r.energy = sim.energy();
+  r.energy_balance_error = sim.energy_balance_error();
+  const double released = pe0 - r.energy.potential;
+  r.kinetic_to_released = released > 0.0 ? r.energy.kinetic() / released : INFINITY;
+  r.diagnostics = sim.diagnostics();
+  r.bed = measure_bed(sim.particles(), scene.container);
+
+  if (recorder) {
+    recorder->flush();
+    const auto n = static_cast<double>(sim.particles().size());
+    recorder->write_summary({
+        {"particles", num(n)},
+        {"steps", num(static_cast<double>(r.steps))},
+        {"simulated_time_s", num(r.simulated_time)},
+        {"wall_time_s", num(r.wall_seconds)},
+        {"particle_steps_per_second", num(r.particle_steps_per_second)},
+        {"stopped_at_rest", r.stopped_at_rest ? "true" : "false"},
+        {"kinetic_energy_J", num(r.energy.kinetic())},
+        {"potential_energy_released_J", num(released)},
+        {"kinetic_to_released", num(r.kinetic_to_released)},
+        {"energy_balance_error", num(r.energy_balance_error)},
+        {"dissipated_damping_J", num(r.energy.dissipated_damping)},
+        {"dissipated_friction_J", num(r.energy.dissipated_friction)},
+        {"tangential_stiffness_change_J", num(r.energy.tangential_stiffness_change)},
+        {"contacts_per_particle", num(2.0 * static_cast<double>(r.diagnostics.particle_contacts) / n)},
+        {"wall_contacts", num(static_cast<double>(r.diagnostics.wall_contacts))},
+        {"max_overlap_ratio", num(r.diagnostics.max_overlap_ratio)},
+        {"bed_surface_height_m", num(r.bed.surface_height)},
+        {"bed_solid_fraction", num(r.bed.solid_fraction)},
+        {"particles_outside_container", num(static_cast<double>(r.bed.particles_outside))},
+    });
+  }
+  return r;
+}
+
+}  // namespace upgrain::dem

@@ -1,0 +1,43 @@
+#pragma once
+// A whole deposition run: fill, integrate to the end time (or until the bed is at rest),
+// record, summarise. Used by the driver and by the regression tests.
+#include <functional>
+#include <optional>
+
+#include "dem/analysis/bed_state.h"
+#include "dem/io/run_recorder.h"
+#include "dem/simulation.h"
+
+namespace upgrain::dem {
+
+struct RunControl {
+  // Stop early once kinetic energy < rest_ratio * (potential energy released), checked at
+  // each time-series row after the first tenth of the run; 0 disables.
+  double rest_ratio = 0.0;
+};
+
+struct Progress {
+  long step;
+  long total_steps;
+  double steps_per_second;
+  double eta_seconds;
+};
+
+struct DepositionResult {
+  long steps = 0;
+  double simulated_time = 0.0;
+  double wall_seconds = 0.0;
+  double particle_steps_per_second = 0.0;
+  EnergyBalance energy;
+  double energy_balance_error = 0.0;
+  double kinetic_to_released = 0.0;  // kinetic energy / potential energy released
+  StepDiagnostics diagnostics;
+  BedState bed;
+  bool stopped_at_rest = false;
+};
+
+DepositionResult run_deposition(const SceneConfig& scene, const RunControl& control,
+                                const std::optional<io::OutputOptions>& output,
+                                const std::function<void(const Progress&)>& on_progress = {});
+
+}  // namespace upgrain::dem

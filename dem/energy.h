@@ -1,0 +1,27 @@
+#pragma once
+// Energy accounting of a run (docs/integrator.md): kinetic, potential and elastic
+// energies of the current state plus the energy dissipated so far by normal damping and
+// by Coulomb slip. Their sum is conserved by the physics; its drift is the balance error.
+
+namespace upgrain::dem {
+
+struct EnergyBalance {
+  double kinetic_translational = 0.0;
+  double kinetic_rotational = 0.0;
+  double potential = 0.0;            // m g z, relative to the floor
+  double elastic_normal = 0.0;
+  double elastic_tangential = 0.0;
+  double dissipated_damping = 0.0;   // cumulative since the start
+  double dissipated_friction = 0.0;  // cumulative since the start
+  // Cumulative energy created (> 0) in the tangential springs by their stiffness following
+  // the overlap (contact/contact_response.h); it enters the balance with a minus sign.
+  double tangential_stiffness_change = 0.0;
+
+  [[nodiscard]] double kinetic() const { return kinetic_translational + kinetic_rotational; }
+  [[nodiscard]] double total() const {
+    return kinetic() + potential + elastic_normal + elastic_tangential + dissipated_damping +
+           dissipated_friction - tangential_stiffness_change;
+  }
+};
+
+}  // namespace upgrain::dem

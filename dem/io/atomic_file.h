@@ -1,0 +1,31 @@
+#pragma once
+// Files appear under their final name only when complete: they are written under a
+// temporary name in the same folder and renamed (POSIX rename is atomic within a file
+// system). A crash or an error leaves no half-written file under the final name.
+#include <filesystem>
+#include <string>
+
+namespace upgrain::dem::io {
+
+class AtomicFile {
+ public:
+  explicit AtomicFile(std::filesystem::path final_path);
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+
+  [[nodiscard]] const std::filesystem::path& temporary_path() const { return tmp_; }
+  [[nodiscard]] const std::filesystem::path& final_path() const { return final_; }
+  // Renames the temporary file to its final name.
+  void commit();
+
+ private:
+  std::filesystem::path final_;
+  std::filesystem::path tmp_;
+  bool committed_ = false;
+};
+
+// Writes `text` to `path` atomically.
+void write_text_atomically(const std::filesystem::path& path, const std::string& text);
+
+}  // namespace upgrain::dem::io

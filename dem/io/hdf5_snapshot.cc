@@ -1,0 +1,156 @@
+#include "dem/io/hdf5_snapshot.h"
+
+#include <hdf5.h>
+
+#include <algorithm>
+#include <numeric>
+#include <sstream>
+
+#include "dem/core/error.h"
+#include "dem/io/atomic_file.h"
+
+namespace upgrain::dem::io {
+
+namespace {
+
+// Closes an HDF5 handle when it goes out of scope.
+class Handle {
+ public:
+  Handle(hid_t h, herr_t (*close)(hid_t), const std::string& what) : h_(h), close_(close) {
+    if (h_ < 0) throw Error("HDF5: cannot " + what);
+  }
+  ~Handle() { close_(h_); }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  operator hid_t() const { return h_; }  // NOLINT(google-explicit-constructor)
+
+ private:
+  hid_t h_;
+  herr_t (*close_)(hid_t);
+};
+
+void write_dataset(hid_t group, const char* name, hid_t mem_type, hid_t file_type,
+                   const void* data, hsize_t rows, hsize_t cols) {
+  const hsize_t dims[2] = {rows, cols};
+  Handle space(H5Screate_simple(cols == 1 ? 1 : 2, dims, nullptr), H5Sclose, "create a dataspace");
+  Handle set(H5Dcreate2(group, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+             H5Dclose, std::string("create dataset ") + name);
+  if (rows > 0 && H5Dwrite(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
+    throw Error(std::string("HDF5: cannot write dataset ") + name);
+}
+
+void write_attribute(hid_t obj, const char* name, double value) {
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose, "create a dataspace");
+  Handle attr(H5Acreate2(obj, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+              std::string("create attribute ") + name);
+  H5Awrite(attr, H5T_NATIVE_DOUBLE, &value);
+}
+
+void write_attribute(hid_t obj, const char* name, const std::string& value) {
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "copy a string type");
+  H5Tset_size(type, std::max<std::size_t>(value.size(), 1));
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose, "create a dataspace");
+  Handle attr(H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+              std::string("create attribute ") + name);
+  H5Awrite(attr, type, value.c_str());
+}
+
+std::vector<double> flatten(const std::vector<Vec3>& v, const std::vector<std::size_t>& order) {
+  std::vector<double> out(3 * order.size());
+  for (std::size_t k = 0; k < order.size(); ++k)
+    for (int d = 0; d < 3; ++d) out[3 * k + d] = v[order[k]][d];
+  return out;
+}
+
+}  // namespace
+
+void write_snapshot(const std::filesystem::path& path, const ParticleStore& p,
+                    const std::vector<PlaneWall>& walls, const std::vector<Vec3>& wall_force,
+                    double time, long step) {
+  const std::size_t n = p.size();
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return p.id[a] < p.id[b]; });
+
+  AtomicFile target(path);
+  {
+    Handle file(H5Fcreate(target.temporary_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
+                H5Fclose, "create " + target.temporary_path().string());
+    write_attribute(file, "time", time);
+    write_attribute(file, "step", static_cast<double>(step));
+    write_attribute(file, "units", "SI: m, s, kg, N");
+    write_attribute(file, "frame", "right-handed, z up, gravity along -z");
+
+    Handle parts(H5Gcreate2(file, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+                 "create group particles");
+    std::vector<std::int64_t> ids(n);
+    std::vector<double> radius(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      ids[k] = p.id[order[k]];
+      radius[k] = p.radius[order[k]];
+    }
+    write_dataset(parts, "id", H5T_NATIVE_INT64, H5T_STD_I64LE, ids.data(), n, 1);
+    write_dataset(parts, "radius", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, radius.data(), n, 1);
+    const struct {
+      const char* name;
+      const std::vector<Vec3>* data;
+    } vectors[] = {{"position", &p.x}, {"velocity", &p.v}, {"angular_velocity", &p.omega}, {"force", &p.force}};
+    for (const auto& f : vectors) {
+      const std::vector<double> flat = flatten(*f.data, order);
+      write_dataset(parts, f.name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, flat.data(), n, 3);
+    }
+
+    Handle wg(H5Gcreate2(file, "walls", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+              "create group walls");
+    const std::size_t nw = walls.size();
+    std::vector<double> point(3 * nw), normal(3 * nw), force(3 * nw, 0.0), friction(nw);
+    std::string names;
+    for (std::size_t w = 0; w < nw; ++w) {
+      for (int d = 0; d < 3; ++d) {
+        point[3 * w + d] = walls[w].point[d];
+        normal[3 * w + d] = walls[w].normal[d];
+        if (w < wall_force.size()) force[3 * w + d] = wall_force[w][d];
+      }
+      friction[w] = walls[w].friction;
+      names += (w ? "," : "") + walls[w].name;
+    }
+    write_attribute(wg, "names", names);
+    write_dataset(wg, "point", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, point.data(), nw, 3);
+    write_dataset(wg, "normal", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, normal.data(), nw, 3);
+    write_dataset(wg, "friction", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, friction.data(), nw, 1);
+    write_dataset(wg, "force", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, force.data(), nw, 3);
+  }
+  target.commit();
+}
+
+void write_xdmf(const std::filesystem::path& path, const std::vector<SnapshotInfo>& snaps) {
+  std::ostringstream x;
+  x.precision(17);
+  x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
+    << "  <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (const SnapshotInfo& s : snaps) {
+    const std::string h5 = s.file + ":/particles/";
+    auto item = [&](const char* name, int cols) {
+      std::ostringstream i;
+      i << "<DataItem Dimensions=\"" << s.count;
+      if (cols > 1) i << " " << cols;
+      i << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5 << name << "</DataItem>";
+      return i.str();
+    };
+    x << "   <Grid Name=\"step_" << s.step << "\" GridType=\"Uniform\">\n"
+      << "    <Time Value=\"" << s.time << "\"/>\n"
+      << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << s.count << "\"/>\n"
+      << "    <Geometry GeometryType=\"XYZ\">" << item("position", 3) << "</Geometry>\n"
+      << "    <Attribute Name=\"id\" AttributeType=\"Scalar\" Center=\"Node\"><DataItem Dimensions=\""
+      << s.count << "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">" << h5 << "id</DataItem></Attribute>\n"
+      << "    <Attribute Name=\"radius\" AttributeType=\"Scalar\" Center=\"Node\">" << item("radius", 1) << "</Attribute>\n"
+      << "    <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">" << item("velocity", 3) << "</Attribute>\n"
+      << "    <Attribute Name=\"angular_velocity\" AttributeType=\"Vector\" Center=\"Node\">" << item("angular_velocity", 3) << "</Attribute>\n"
+      << "    <Attribute Name=\"force\" AttributeType=\"Vector\" Center=\"Node\">" << item("force", 3) << "</Attribute>\n"
+      << "   </Grid>\n";
+  }
+  x << "  </Grid>\n </Domain>\n</Xdmf>\n";
+  write_text_atomically(path, x.str());
+}
+
+}  // namespace upgrain::dem::io

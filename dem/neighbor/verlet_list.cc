@@ -1,0 +1,127 @@
+#include "dem/neighbor/verlet_list.h"
+
+#include <algorithm>
+#include <unordered_map>
+
+namespace upgrain::dem {
+
+namespace {
+
+struct PairKey {
+  GlobalId lo, hi;
+  bool operator==(const PairKey& o) const { return lo == o.lo && hi == o.hi; }
+};
+
+struct PairKeyHash {
+  std::size_t operator()(const PairKey& k) const {
+    // splitmix64 finaliser over both ids
+    auto mix = [](std::uint64_t z) {
+      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+      z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+      return z ^ (z >> 31);
+    };
+    return static_cast<std::size_t>(mix(static_cast<std::uint64_t>(k.lo) * 0x9e3779b97f4a7c15ULL ^
+                                        mix(static_cast<std::uint64_t>(k.hi))));
+  }
+};
+
+}  // namespace
+
+VerletList::VerletList(double max_radius, double skin, bool with_history)
+    : cell_size_(2.0 * max_radius + skin), skin_(skin), with_history_(with_history) {}
+
+bool VerletList::needs_rebuild(const ParticleStore& p) const {
+  if (x_at_build_.size() != p.size()) return true;
+  const double limit2 = 0.25 * skin_ * skin_;
+  const std::size_t n = p.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if ((p.x[i] - x_at_build_[i]).squaredNorm() > limit2) return true;
+  }
+  return false;
+}
+
+void VerletList::rebuild(ParticleStore& p, std::vector<TangentialSpring>* extra, int extra_stride) {
+  const int n = static_cast<int>(p.size());
+
+  // 1. Springs of active contacts, keyed by the pair of global ids and oriented as the
+  //    force on the particle with the smaller id.
+  std::unordered_map<PairKey, TangentialSpring, PairKeyHash> history;
+  if (with_history_ && !partners_.empty()) {
+    history.reserve(partners_.size() / 2 + 16);
+    const int n_old = static_cast<int>(offsets_.size()) - 1;
+    for (int i = 0; i < n_old; ++i) {
+      for (int k = offsets_[i]; k < offsets_[i + 1]; ++k) {
+        const TangentialSpring& s = springs_[k];
+        if (s.stiffness == 0.0) continue;  // not in contact
+        const GlobalId a = p.id[i];
+        const GlobalId b = p.id[partners_[k]];
+        if (a < b) history.emplace(PairKey{a, b}, s);
+        else history.emplace(PairKey{b, a}, TangentialSpring{-s.force, s.stiffness});
+      }
+    }
+  }
+
+  // 2. Sort particles by cell for memory locality.
+  Vec3 lo = Vec3::Constant(0.0), hi = Vec3::Constant(0.0);
+  if (n > 0) {
+    lo = hi = p.x[0];
+    for (int i = 1; i < n; ++i) {
+      lo = lo.cwiseMin(p.x[i]);
+      hi = hi.cwiseMax(p.x[i]);
+    }
+  }
+  grid_ = CellGrid(lo, hi, cell_size_, 4L * n + 64);
+  grid_.bin(p.x);
+  const std::vector<int>& perm = grid_.order();
+  p.permute(perm);
+  if (extra != nullptr && extra_stride > 0) {
+    std::vector<TangentialSpring> tmp(extra->size());
+    for (int k = 0; k < n; ++k)
+      for (int s = 0; s < extra_stride; ++s)
+        tmp[static_cast<std::size_t>(k) * extra_stride + s] =
+            (*extra)[static_cast<std::size_t>(perm[k]) * extra_stride + s];
+    extra->swap(tmp);
+  }
+  const std::vector<int>& start = grid_.cell_start();
+  const auto& dims = grid_.dims();
+
+  // 3. Half list from the 27-cell stencil.
+  offsets_.assign(static_cast<std::size_t>(n) + 1, 0);
+  partners_.clear();
+  for (int i = 0; i < n; ++i) {
+    offsets_[i] = static_cast<int>(partners_.size());
+    const Vec3 xi = p.x[i];
+    const double ri = p.radius[i] + skin_;
+    const auto c = grid_.cell_coords(xi);
+    for (int z = std::max(c[2] - 1, 0); z <= std::min(c[2] + 1, dims[2] - 1); ++z)
+      for (int y = std::max(c[1] - 1, 0); y <= std::min(c[1] + 1, dims[1] - 1); ++y)
+        for (int x = std::max(c[0] - 1, 0); x <= std::min(c[0] + 1, dims[0] - 1); ++x) {
+          const int cell = grid_.flat(x, y, z);
+          for (int j = std::max(start[cell], i + 1); j < start[cell + 1]; ++j) {
+            const double cut = ri + p.radius[j];
+            if ((p.x[j] - xi).squaredNorm() < cut * cut) partners_.push_back(j);
+          }
+        }
+  }
+  offsets_[n] = static_cast<int>(partners_.size());
+  // Partners in increasing local index: a deterministic order of force accumulation.
+  for (int i = 0; i < n; ++i) std::sort(partners_.begin() + offsets_[i], partners_.begin() + offsets_[i + 1]);
+
+  // 4. Carry the springs over.
+  springs_.assign(with_history_ ? partners_.size() : 0, TangentialSpring{});
+  if (with_history_ && !history.empty()) {
+    for (int i = 0; i < n; ++i) {
+      for (int k = offsets_[i]; k < offsets_[i + 1]; ++k) {
+        const GlobalId a = p.id[i];
+        const GlobalId b = p.id[partners_[k]];
+        const auto it = history.find(a < b ? PairKey{a, b} : PairKey{b, a});
+        if (it != history.end())
+          springs_[k] = a < b ? it->second : TangentialSpring{-it->second.force, it->second.stiffness};
+      }
+    }
+  }
+  x_at_build_ = p.x;
+  ++builds_;
+}
+
+}  // namespace upgrain::dem

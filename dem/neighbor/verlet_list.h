@@ -1,0 +1,52 @@
+#pragma once
+// Verlet neighbour list with a skin (Verlet 1967; Allen and Tildesley 2017, sec. 5.3):
+// a half list of pairs closer than r_i + r_j + skin, rebuilt from link cells when the
+// largest displacement since the last build exceeds half the skin.
+//
+// The list also carries each pair's tangential spring. Between rebuilds the spring is
+// addressed by the pair's slot (no lookups per contact); at a rebuild the springs of
+// active contacts are carried over by the pair of global ids, so history survives
+// reordering and, later, migration between ranks.
+#include <vector>
+
+#include "dem/contact/contact_response.h"
+#include "dem/core/particle_store.h"
+#include "dem/core/types.h"
+#include "dem/neighbor/cell_grid.h"
+
+namespace upgrain::dem {
+
+class VerletList {
+ public:
+  // The link cells span the particles' bounding box at each rebuild, so their memory is
+  // proportional to the particle count whatever the domain.
+  VerletList(double max_radius, double skin, bool with_history);
+
+  // True when some particle moved more than skin/2 since the last build.
+  [[nodiscard]] bool needs_rebuild(const ParticleStore& p) const;
+
+  // Sorts the particles by cell (for memory locality), then rebuilds the pair list and
+  // carries the springs over. Reorders `p` and any per-particle arrays in `extra`.
+  void rebuild(ParticleStore& p, std::vector<TangentialSpring>* per_particle_extra, int extra_stride);
+
+  [[nodiscard]] const std::vector<int>& offsets() const { return offsets_; }
+  [[nodiscard]] const std::vector<int>& partners() const { return partners_; }
+  [[nodiscard]] std::vector<TangentialSpring>& springs() { return springs_; }
+  [[nodiscard]] const std::vector<TangentialSpring>& springs() const { return springs_; }
+  [[nodiscard]] long builds() const { return builds_; }
+  [[nodiscard]] double skin() const { return skin_; }
+  [[nodiscard]] std::size_t num_pairs() const { return partners_.size(); }
+
+ private:
+  CellGrid grid_;
+  double cell_size_;
+  double skin_;
+  bool with_history_;
+  long builds_ = 0;
+  std::vector<int> offsets_;   // CSR: pairs of i are partners_[offsets_[i] .. offsets_[i+1])
+  std::vector<int> partners_;  // j > i in the current local order
+  std::vector<TangentialSpring> springs_;  // tangential spring per pair slot
+  std::vector<Vec3> x_at_build_;
+};
+
+}  // namespace upgrain::dem

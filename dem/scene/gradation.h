@@ -1,0 +1,21 @@
+#pragma once
+// Sampling grain radii from a gradation curve (mass fraction passing vs radius), the way
+// soil mechanics states a grain-size distribution (ASTM D6913).
+#include <random>
+#include <vector>
+
+#include "dem/scene/scene_config.h"
+
+namespace upgrain::dem {
+
+// Throws upgrain::Error when the curve is not a valid distribution function.
+void validate_gradation(const std::vector<GradationPoint>& curve);
+
+// Draws `count` radii whose mass distribution follows the curve: the mass fraction
+// passing is linear in radius between the points. A radius drawn from the mass
+// distribution is accepted with probability (r_min / r)^3, which turns mass weights into
+// number weights (the number density is the mass density divided by r^3).
+std::vector<double> sample_radii(const std::vector<GradationPoint>& curve, long count,
+                                 std::mt19937_64& rng);
+
+}  // namespace upgrain::dem

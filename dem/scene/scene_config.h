@@ -1,0 +1,63 @@
+#pragma once
+// A complete, validated description of a deposition scene, as plain data. The driver
+// (coupling/) fills it from a parameter file; tests fill it directly.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "dem/boundary/plane_wall.h"
+#include "dem/contact/effects.h"
+#include "dem/core/material.h"
+#include "dem/core/types.h"
+
+namespace upgrain::dem {
+
+// One point of a gradation curve: the mass fraction of grains with radius <= radius.
+struct GradationPoint {
+  double radius;            // m
+  double fraction_passing;  // 0..1, non-decreasing, last point 1
+};
+
+struct ParticleSpec {
+  long count = 2000;
+  // Empty gradation: monodisperse spheres of `radius`.
+  double radius = 1.5e-3;
+  std::vector<GradationPoint> gradation;
+  Material material;
+};
+
+enum class FillMethod { lattice, random };
+
+struct FillSpec {
+  FillMethod method = FillMethod::lattice;
+  double bottom_gap = 0.02;        // m, floor to the lowest particle surface
+  double lattice_spacing = 1.1;    // lattice pitch in max diameters (lattice fill)
+  double position_jitter = 0.1;    // random offset as a fraction of the free gap (lattice)
+  double solid_fraction = 0.3;     // target solid fraction of the random fill region
+  Vec3 velocity = Vec3::Zero();    // initial velocity of every particle (m/s)
+  double velocity_jitter = 0.0;    // uniform random component of each velocity (m/s)
+  std::uint64_t seed = 12345;
+};
+
+struct TimeStepRule {
+  double rayleigh_fraction = 0.2;  // dt <= rayleigh_fraction * T_Rayleigh
+  double hertz_fraction = 0.1;     // dt <= hertz_fraction * t_Hertz(v_impact)
+  double impact_speed = 0.0;       // m/s; 0 = estimate from the drop height and velocities
+  bool allow_unsafe = false;       // explicit override of the refusal
+};
+
+struct SceneConfig {
+  ParticleSpec particles;
+  BoxContainer container;
+  FillSpec fill;
+  EffectSet effects;
+  double friction = 0.5;       // particle-particle Coulomb coefficient
+  double damping_ratio = 0.5;  // zeta, brief eq. (21)
+  double gravity = 9.81;       // m/s^2 along -z, when effects.gravity
+  double time_step = 5e-6;     // s
+  double end_time = 0.5;       // s
+  double neighbor_skin = 0.2;  // Verlet skin in units of the largest diameter
+  TimeStepRule time_step_rule;
+};
+
+}  // namespace upgrain::dem

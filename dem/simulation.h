@@ -1,0 +1,79 @@
+#pragma once
+// The step loop of a serial DEM run: velocity Verlet for translation and rotation
+// (docs/integrator.md) around one force evaluation per step.
+#include <vector>
+
+#include "dem/boundary/plane_wall.h"
+#include "dem/contact/force_kernel.h"
+#include "dem/core/particle_store.h"
+#include "dem/energy.h"
+#include "dem/neighbor/verlet_list.h"
+#include "dem/scene/scene_config.h"
+
+namespace upgrain::dem {
+
+struct StepDiagnostics {
+  long particle_contacts = 0;
+  long wall_contacts = 0;
+  double max_overlap_ratio = 0.0;
+  long neighbor_builds = 0;
+};
+
+class Simulation {
+ public:
+  // Takes the scene and the initial particles; evaluates the initial forces.
+  Simulation(const SceneConfig& scene, ParticleStore particles);
+  // A container of any planar walls (tests: inclines, no walls).
+  Simulation(const SceneConfig& scene, ParticleStore particles, std::vector<PlaneWall> walls);
+
+  void step();
+  void run(long steps);
+
+  [[nodiscard]] const ParticleStore& particles() const { return p_; }
+  [[nodiscard]] ParticleStore& particles() { return p_; }
+  [[nodiscard]] const std::vector<PlaneWall>& walls() const { return walls_; }
+  [[nodiscard]] const std::vector<Vec3>& wall_forces() const { return ctx_.wall_force; }
+  [[nodiscard]] const SceneConfig& scene() const { return scene_; }
+  [[nodiscard]] double time() const { return time_; }
+  [[nodiscard]] long step_count() const { return step_; }
+  [[nodiscard]] double time_step() const { return dt_; }
+  [[nodiscard]] Vec3 gravity() const { return g_; }
+  // Any direction of gravity (tests: an incline is a tilted gravity over a flat floor).
+  // Resets the energy reference, since the potential energy is -m g.x.
+  void set_gravity(const Vec3& g);
+
+  [[nodiscard]] EnergyBalance energy() const;
+  // (E_total(t) - E_total(0)) / (initial kinetic energy + |potential energy released|).
+  [[nodiscard]] double energy_balance_error() const;
+  [[nodiscard]] const EnergyBalance& initial_energy() const { return e0_; }
+  [[nodiscard]] StepDiagnostics diagnostics() const;
+
+  // Throws upgrain::Error naming the particle when a position or velocity is not finite.
+  void check_finite() const;
+
+ private:
+  void evaluate_forces();
+
+  SceneConfig scene_;
+  ParticleStore p_;
+  std::vector<PlaneWall> walls_;
+  std::vector<TangentialSpring> wall_springs_;
+  VerletList neighbors_;
+  ForceKernel kernel_;
+  ForceContext ctx_;
+  Vec3 g_;
+  double dt_;
+  bool rotation_;
+  double time_ = 0.0;
+  long step_ = 0;
+  double dissipated_damping_ = 0.0;
+  double dissipated_friction_ = 0.0;
+  double stiffness_change_ = 0.0;
+  EnergyBalance e0_;
+};
+
+// Largest overlap (as a fraction of the smaller radius) tolerated before the run stops:
+// beyond it the contact law is far outside its validity and the step is too large.
+inline constexpr double kRunawayOverlapRatio = 0.25;
+
+}  // namespace upgrain::dem

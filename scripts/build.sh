@@ -1,0 +1,11 @@
+#!/usr/bin/env bash
+# Configures and builds one build folder. Usage: scripts/build.sh <folder> [cmake options]
+# Re-running it only rebuilds what changed (ninja, ccache).
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="$1"; shift
+export CCACHE_NOHASHDIR=1
+if [ ! -f "$build/build.ninja" ]; then
+  cmake -S "$here" -B "$build" -G Ninja "$@"
+fi
+cmake --build "$build" -j"${UPGRAIN_JOBS:-2}"

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# README command 2 (and what CI runs): install the packages, build, and run the whole
+# test suite through CTest: a Release build with warnings as errors runs every test, an
+# AddressSanitizer+UBSan build runs the unit tests. A second run rebuilds only what changed.
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+"$here/scripts/install-deps.sh"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+jobs="${UPGRAIN_JOBS:-2}"
+
+"$here/scripts/build.sh" "$here/build-ci" -DCMAKE_BUILD_TYPE=Release -DUPGRAIN_WERROR=ON
+(cd "$here/build-ci" && ctest --output-on-failure -j"$jobs")
+
+# Sanitizers: the engine and its unit tests only (deal.II parts are left out to keep
+# the build short; the driver's bad-input cases run in the Release build above).
+"$here/scripts/build.sh" "$here/build-asan" -DCMAKE_BUILD_TYPE=Debug -DUPGRAIN_WERROR=ON \
+  -DUPGRAIN_SANITIZE=ON -DUPGRAIN_WITH_DEALII=OFF -DUPGRAIN_BUILD_BENCH=OFF
+(cd "$here/build-asan" && ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 \
+  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ctest --output-on-failure -j"$jobs" -L unit)

@@ -1,0 +1,8 @@
+execute_process(COMMAND ${UPGRAIN} --print-parameters-markdown OUTPUT_VARIABLE generated RESULT_VARIABLE code)
+if(NOT code EQUAL 0)
+  message(FATAL_ERROR "upgrain --print-parameters-markdown failed")
+endif()
+file(READ ${DOC} stored)
+if(NOT generated STREQUAL stored)
+  message(FATAL_ERROR "${DOC} is out of date: regenerate it with 'upgrain --print-parameters-markdown > docs/parameters.md'")
+endif()
