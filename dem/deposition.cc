@@ -45,11 +45,8 @@ DepositionResult run_deposition(const SceneConfig& scene, const RunControl& cont
     const bool series_now = (s % series_every == 0) || s == total;
     if (series_now) {
       if (recorder) recorder->record_series(sim);
-      const double released = pe0 - sim.energy().potential;
-      if (control.rest_ratio > 0.0 && s > total / 10 && released > 0.0 &&
-          sim.energy().kinetic() < control.rest_ratio * released) {
+      if (control.rest_ratio > 0.0 && s > total / 10 && sim.kinetic_to_released() < control.rest_ratio)
         r.stopped_at_rest = true;
-      }
     }
     if (recorder && ((s % snapshot_every == 0) || s == total || r.stopped_at_rest)) {
       sim.check_finite();
@@ -58,7 +55,8 @@ DepositionResult run_deposition(const SceneConfig& scene, const RunControl& cont
     }
     if (on_progress) {
       const auto now = Clock::now();
-      if (std::chrono::duration<double>(now - last_report).count() >= 1.0 || s == total || r.stopped_at_rest) {
+      if (std::chrono::duration<double>(now - last_report).count() >= 1.0 || s == total ||
+          r.stopped_at_rest) {
         const double elapsed = std::chrono::duration<double>(now - t0).count();
         const double rate = s / std::max(elapsed, 1e-9);
         on_progress({s, total, rate, (total - s) / rate});
@@ -71,12 +69,12 @@ DepositionResult run_deposition(const SceneConfig& scene, const RunControl& cont
   r.wall_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   r.steps = sim.step_count();
   r.simulated_time = sim.time();
-  r.particle_steps_per_second =
-      static_cast<double>(r.steps) * static_cast<double>(sim.particles().size()) / std::max(r.wall_seconds, 1e-9);
+  r.particle_steps_per_second = static_cast<double>(r.steps) * static_cast<double>(sim.particles().size()) /
+                                std::max(r.wall_seconds, 1e-9);
   r.energy = sim.energy();
   r.energy_balance_error = sim.energy_balance_error();
   const double released = pe0 - r.energy.potential;
-  r.kinetic_to_released = released > 0.0 ? r.energy.kinetic() / released : INFINITY;
+  r.kinetic_to_released = sim.kinetic_to_released();
   r.diagnostics = sim.diagnostics();
   r.bed = measure_bed(sim.particles(), scene.container);
 

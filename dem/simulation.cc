@@ -1,6 +1,7 @@
 #include "dem/simulation.h"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "dem/core/error.h"
@@ -10,8 +11,7 @@ namespace upgrain::dem {
 Simulation::Simulation(const SceneConfig& scene, ParticleStore particles)
     : Simulation(scene, std::move(particles), make_open_box(scene.container)) {}
 
-Simulation::Simulation(const SceneConfig& scene, ParticleStore particles,
-                       std::vector<PlaneWall> walls)
+Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, std::vector<PlaneWall> walls)
     : scene_(scene),
       p_(std::move(particles)),
       walls_(std::move(walls)),
@@ -45,8 +45,8 @@ void Simulation::evaluate_forces() {
   if (ctx_.max_overlap_ratio > kRunawayOverlapRatio) {
     std::ostringstream m;
     m << "runaway overlap at step " << step_ << " (t = " << time_ << " s): an overlap reached "
-      << ctx_.max_overlap_ratio << " of a radius (limit " << kRunawayOverlapRatio
-      << "); the time step " << dt_ << " s is too large for this scene or a particle was placed inside another";
+      << ctx_.max_overlap_ratio << " of a radius (limit " << kRunawayOverlapRatio << "); the time step "
+      << dt_ << " s is too large for this scene or a particle was placed inside another";
     throw Error(m.str());
   }
 }
@@ -71,7 +71,8 @@ void Simulation::step() {
   }
   if (neighbors_.needs_rebuild(p_)) {
     check_finite();
-    neighbors_.rebuild(p_, &wall_springs_, scene_.effects.wall_friction ? static_cast<int>(walls_.size()) : 0);
+    neighbors_.rebuild(p_, &wall_springs_,
+                       scene_.effects.wall_friction ? static_cast<int>(walls_.size()) : 0);
   }
   evaluate_forces();
   // Second half kick with the new forces.
@@ -109,9 +110,15 @@ EnergyBalance Simulation::energy() const {
 
 double Simulation::energy_balance_error() const {
   const EnergyBalance e = energy();
-  const double reference = e0_.kinetic() + std::abs(e0_.potential - e.potential) +
-                           e0_.elastic_normal + e0_.elastic_tangential;
+  const double reference =
+      e0_.kinetic() + std::abs(e0_.potential - e.potential) + e0_.elastic_normal + e0_.elastic_tangential;
   return reference > 0.0 ? (e.total() - e0_.total()) / reference : 0.0;
+}
+
+double Simulation::kinetic_to_released() const {
+  const EnergyBalance e = energy();
+  const double released = e0_.potential - e.potential;
+  return released > 0.0 ? e.kinetic() / released : std::numeric_limits<double>::infinity();
 }
 
 StepDiagnostics Simulation::diagnostics() const {

@@ -46,6 +46,9 @@ class Simulation {
   // (E_total(t) - E_total(0)) / (initial kinetic energy + |potential energy released|).
   [[nodiscard]] double energy_balance_error() const;
   [[nodiscard]] const EnergyBalance& initial_energy() const { return e0_; }
+  // Kinetic energy over the potential energy released since the start: the measure of a
+  // bed at rest. Infinity while no potential energy has been released.
+  [[nodiscard]] double kinetic_to_released() const;
   [[nodiscard]] StepDiagnostics diagnostics() const;
 
   // Throws upgrain::Error naming the particle when a position or velocity is not finite.
