@@ -17,6 +17,7 @@ Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, std::v
       walls_(std::move(walls)),
       neighbors_(std::max(p_.max_radius(), 1e-12), scene.neighbor_skin * 2.0 * p_.max_radius(),
                  scene.effects.friction),
+      wall_neighbors_(scene.neighbor_skin * 2.0 * p_.max_radius(), scene.effects.wall_friction),
       kernel_(select_force_kernel(scene.effects)),
       g_(scene.effects.gravity ? Vec3(0, 0, -scene.gravity) : Vec3::Zero()),
       dt_(scene.time_step),
@@ -24,17 +25,21 @@ Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, std::v
   if (!scene.effects.wall_friction) {
     for (auto& w : walls_) w.friction = 0.0;
   }
-  wall_springs_.assign(scene.effects.wall_friction ? p_.size() * walls_.size() : 0, TangentialSpring{});
   ctx_.particles = &p_;
   ctx_.neighbors = &neighbors_;
   ctx_.walls = &walls_;
-  ctx_.wall_springs = &wall_springs_;
+  ctx_.wall_neighbors = &wall_neighbors_;
   ctx_.material = ContactMaterial::from(scene.particles.material, scene.friction, scene.damping_ratio);
   ctx_.dt = dt_;
-  check_finite();
-  neighbors_.rebuild(p_, &wall_springs_, scene.effects.wall_friction ? static_cast<int>(walls_.size()) : 0);
+  rebuild_neighbors();
   evaluate_forces();
   e0_ = energy();
+}
+
+void Simulation::rebuild_neighbors() {
+  check_finite();
+  neighbors_.rebuild(p_);
+  wall_neighbors_.rebuild(p_, walls_);
 }
 
 void Simulation::evaluate_forces() {
@@ -54,10 +59,15 @@ void Simulation::evaluate_forces() {
 void Simulation::step() {
   const std::size_t n = p_.size();
   const double half = 0.5 * dt_;
-  // Velocity Verlet, first half kick and drift (Allen and Tildesley 2017, eq. 3.19).
+  // Velocity Verlet, first half kick and drift (Allen and Tildesley 2017, eq. 3.19), with
+  // the Verlet list's displacement check in the same pass.
+  const std::vector<Vec3>& x_built = neighbors_.positions_at_build();
+  const double limit2 = neighbors_.rebuild_displacement2();
+  bool rebuild = x_built.size() != n;
   for (std::size_t i = 0; i < n; ++i) {
     p_.v[i] += half * (p_.force[i] * p_.inv_mass[i] + g_);
     p_.x[i] += dt_ * p_.v[i];
+    rebuild = rebuild || (p_.x[i] - x_built[i]).squaredNorm() > limit2;
   }
   if (rotation_) {
     for (std::size_t i = 0; i < n; ++i) p_.omega[i] += half * p_.inv_inertia[i] * p_.torque[i];
@@ -69,11 +79,7 @@ void Simulation::step() {
     for (std::size_t i = 0; i < n; ++i) work += ctx_.damping_force[i].dot(p_.v[i]);
     dissipated_damping_ -= half * work;
   }
-  if (neighbors_.needs_rebuild(p_)) {
-    check_finite();
-    neighbors_.rebuild(p_, &wall_springs_,
-                       scene_.effects.wall_friction ? static_cast<int>(walls_.size()) : 0);
-  }
+  if (rebuild) rebuild_neighbors();
   evaluate_forces();
   // Second half kick with the new forces.
   for (std::size_t i = 0; i < n; ++i) p_.v[i] += half * (p_.force[i] * p_.inv_mass[i] + g_);

@@ -56,12 +56,13 @@ class Simulation {
 
  private:
   void evaluate_forces();
+  void rebuild_neighbors();
 
   SceneConfig scene_;
   ParticleStore p_;
   std::vector<PlaneWall> walls_;
-  std::vector<TangentialSpring> wall_springs_;
   VerletList neighbors_;
+  WallNeighborList wall_neighbors_;
   ForceKernel kernel_;
   ForceContext ctx_;
   Vec3 g_;

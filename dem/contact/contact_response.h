@@ -21,10 +21,10 @@ struct ContactParameters {
 };
 
 struct ContactKinematics {
-  Vec3 normal;      // unit normal, from body i towards body j
-  double overlap;   // delta > 0
-  double arm_i;     // distance from centroid i to the contact point along +normal
-  double arm_j;     // distance from centroid j to the contact point along -normal
+  Vec3 normal;     // unit normal, from body i towards body j
+  double overlap;  // delta > 0
+  double arm_i;    // distance from centroid i to the contact point along +normal
+  double arm_j;    // distance from centroid j to the contact point along -normal
   Vec3 v_i, v_j, omega_i, omega_j;
 };
 
@@ -47,16 +47,19 @@ struct ContactEnergy {
 };
 
 struct ContactForce {
-  Vec3 on_i;          // force on body i; body j receives -on_i
-  double normal;      // magnitude of the (repulsive) normal force, >= 0
-  double damping;     // its viscous part (normal minus elastic), along -normal on i
+  Vec3 on_i;       // force on body i; body j receives -on_i
+  double normal;   // magnitude of the (repulsive) normal force, >= 0
+  double damping;  // its viscous part (normal minus elastic), along -normal on i
 };
 
 // spring: the tangential force of this contact on i, carried from the previous step
 // (incremental Mindlin spring). Updated in place.
+// Always inlined into the force loop: as a call, the kinematics are copied through memory
+// per contact (measured with callgrind: about a fifth of the loop's instructions).
 template <bool Tangential, bool Damping, bool Rotation, bool Energy>
-inline ContactForce contact_response(const ContactParameters& p, const ContactKinematics& k,
-                                     TangentialSpring& spring, ContactEnergy& energy) {
+[[gnu::always_inline]] inline ContactForce contact_response(const ContactParameters& p,
+                                                            const ContactKinematics& k,
+                                                            TangentialSpring& spring, ContactEnergy& energy) {
   const Vec3& n = k.normal;
   const double delta = k.overlap;
   const double sqrt_rd = std::sqrt(p.r_star * delta);

@@ -41,13 +41,16 @@ void compute_forces(ForceContext& ctx) {
       const double rsum = ri + p.radius[j];
       const double dist2 = d.squaredNorm();
       if (dist2 >= rsum * rsum) {
-        if constexpr (kTangential) springs[k] = TangentialSpring{};
+        if constexpr (kTangential) {
+          // Most pairs in the list are not touching: write only when a contact just ended.
+          if (springs[k].stiffness != 0.0) springs[k] = TangentialSpring{};
+        }
         continue;
       }
       const double dist = std::sqrt(dist2);
       const double delta = rsum - dist;
       ContactKinematics kin;
-      kin.normal = d / dist;
+      kin.normal = d * (1.0 / dist);
       kin.overlap = delta;
       kin.arm_i = ri - 0.5 * delta;
       kin.arm_j = p.radius[j] - 0.5 * delta;
@@ -74,7 +77,8 @@ void compute_forces(ForceContext& ctx) {
         p.torque[j] += kin.arm_j * arm_x_f;
       }
       ++contacts;
-      max_ratio = std::max(max_ratio, delta / std::min(ri, p.radius[j]));
+      const double r_min = std::min(ri, p.radius[j]);
+      if (delta > max_ratio * r_min) max_ratio = delta / r_min;  // divides only on a new maximum
     }
     p.force[i] += fi;
     if constexpr (E::rotation) p.torque[i] += ti;
@@ -87,18 +91,23 @@ void compute_forces(ForceContext& ctx) {
   ctx.wall_force.assign(nw, Vec3::Zero());
   long wall_contacts = 0;
   constexpr bool kWallTangential = E::wall_friction;
-  std::vector<TangentialSpring>& wall_springs = *ctx.wall_springs;
+  std::vector<WallNeighborList::Entries>& wall_lists = ctx.wall_neighbors->walls();
   ContactParameters wp{mat.e_star_pw, mat.g_star_pw, 0.0, 0.0, 0.0, mat.damping_ratio, ctx.dt};
   for (std::size_t w = 0; w < nw; ++w) {
     const PlaneWall& wall = walls[w];
+    WallNeighborList::Entries& near = wall_lists[w];
     wp.friction = wall.friction;
     Vec3 wall_total = Vec3::Zero();
-    for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t m = near.particle.size();
+    for (std::size_t k = 0; k < m; ++k) {
+      const int i = near.particle[k];
       const double gap = wall.distance(p.x[i]);
       const double ri = p.radius[i];
-      TangentialSpring& spring = kWallTangential ? wall_springs[i * nw + w] : dummy_spring;
+      TangentialSpring& spring = kWallTangential ? near.spring[k] : dummy_spring;
       if (gap >= ri) {
-        if constexpr (kWallTangential) spring = TangentialSpring{};
+        if constexpr (kWallTangential) {
+          if (spring.stiffness != 0.0) spring = TangentialSpring{};
+        }
         continue;
       }
       ContactKinematics kin;
@@ -114,8 +123,8 @@ void compute_forces(ForceContext& ctx) {
       }
       wp.r_star = ri;
       wp.m_star = p.mass[i];
-      const ContactForce cf = contact_response<kWallTangential, E::damping, E::rotation, E::energy>(
-          wp, kin, spring, energy);
+      const ContactForce cf =
+          contact_response<kWallTangential, E::damping, E::rotation, E::energy>(wp, kin, spring, energy);
       p.force[i] += cf.on_i;
       wall_total -= cf.on_i;
       if constexpr (kDampingWork) ctx.damping_force[i] -= cf.damping * kin.normal;
@@ -138,7 +147,8 @@ ForceKernel pick_energy(bool energy) {
 }
 template <bool F, bool D, bool W>
 ForceKernel pick_rotation(const EffectSet& e) {
-  return e.rotation ? pick_energy<F, D, W, true>(e.energy_tracking) : pick_energy<F, D, W, false>(e.energy_tracking);
+  return e.rotation ? pick_energy<F, D, W, true>(e.energy_tracking)
+                    : pick_energy<F, D, W, false>(e.energy_tracking);
 }
 template <bool F, bool D>
 ForceKernel pick_wall(const EffectSet& e) {

@@ -10,6 +10,7 @@
 #include "dem/core/material.h"
 #include "dem/core/particle_store.h"
 #include "dem/neighbor/verlet_list.h"
+#include "dem/neighbor/wall_list.h"
 
 namespace upgrain::dem {
 
@@ -17,7 +18,7 @@ struct ForceContext {
   ParticleStore* particles = nullptr;
   VerletList* neighbors = nullptr;
   const std::vector<PlaneWall>* walls = nullptr;
-  std::vector<TangentialSpring>* wall_springs = nullptr;  // walls->size() slots per particle
+  WallNeighborList* wall_neighbors = nullptr;
   ContactMaterial material;
   double dt = 0.0;
 

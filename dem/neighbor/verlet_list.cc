@@ -32,7 +32,7 @@ VerletList::VerletList(double max_radius, double skin, bool with_history)
 
 bool VerletList::needs_rebuild(const ParticleStore& p) const {
   if (x_at_build_.size() != p.size()) return true;
-  const double limit2 = 0.25 * skin_ * skin_;
+  const double limit2 = rebuild_displacement2();
   const std::size_t n = p.size();
   for (std::size_t i = 0; i < n; ++i) {
     if ((p.x[i] - x_at_build_[i]).squaredNorm() > limit2) return true;
@@ -40,7 +40,7 @@ bool VerletList::needs_rebuild(const ParticleStore& p) const {
   return false;
 }
 
-void VerletList::rebuild(ParticleStore& p, std::vector<TangentialSpring>* extra, int extra_stride) {
+void VerletList::rebuild(ParticleStore& p) {
   const int n = static_cast<int>(p.size());
 
   // 1. Springs of active contacts, keyed by the pair of global ids and oriented as the
@@ -55,8 +55,10 @@ void VerletList::rebuild(ParticleStore& p, std::vector<TangentialSpring>* extra,
         if (s.stiffness == 0.0) continue;  // not in contact
         const GlobalId a = p.id[i];
         const GlobalId b = p.id[partners_[k]];
-        if (a < b) history.emplace(PairKey{a, b}, s);
-        else history.emplace(PairKey{b, a}, TangentialSpring{-s.force, s.stiffness});
+        if (a < b)
+          history.emplace(PairKey{a, b}, s);
+        else
+          history.emplace(PairKey{b, a}, TangentialSpring{-s.force, s.stiffness});
       }
     }
   }
@@ -74,14 +76,6 @@ void VerletList::rebuild(ParticleStore& p, std::vector<TangentialSpring>* extra,
   grid_.bin(p.x);
   const std::vector<int>& perm = grid_.order();
   p.permute(perm);
-  if (extra != nullptr && extra_stride > 0) {
-    std::vector<TangentialSpring> tmp(extra->size());
-    for (int k = 0; k < n; ++k)
-      for (int s = 0; s < extra_stride; ++s)
-        tmp[static_cast<std::size_t>(k) * extra_stride + s] =
-            (*extra)[static_cast<std::size_t>(perm[k]) * extra_stride + s];
-    extra->swap(tmp);
-  }
   const std::vector<int>& start = grid_.cell_start();
   const auto& dims = grid_.dims();
 

@@ -26,8 +26,13 @@ class VerletList {
   [[nodiscard]] bool needs_rebuild(const ParticleStore& p) const;
 
   // Sorts the particles by cell (for memory locality), then rebuilds the pair list and
-  // carries the springs over. Reorders `p` and any per-particle arrays in `extra`.
-  void rebuild(ParticleStore& p, std::vector<TangentialSpring>* per_particle_extra, int extra_stride);
+  // carries the springs over. Reorders `p`.
+  void rebuild(ParticleStore& p);
+
+  // Positions at the last build and the squared displacement that triggers a rebuild,
+  // for callers that check displacements inside a loop of their own.
+  [[nodiscard]] const std::vector<Vec3>& positions_at_build() const { return x_at_build_; }
+  [[nodiscard]] double rebuild_displacement2() const { return 0.25 * skin_ * skin_; }
 
   [[nodiscard]] const std::vector<int>& offsets() const { return offsets_; }
   [[nodiscard]] const std::vector<int>& partners() const { return partners_; }
@@ -43,8 +48,8 @@ class VerletList {
   double skin_;
   bool with_history_;
   long builds_ = 0;
-  std::vector<int> offsets_;   // CSR: pairs of i are partners_[offsets_[i] .. offsets_[i+1])
-  std::vector<int> partners_;  // j > i in the current local order
+  std::vector<int> offsets_;               // CSR: pairs of i are partners_[offsets_[i] .. offsets_[i+1])
+  std::vector<int> partners_;              // j > i in the current local order
   std::vector<TangentialSpring> springs_;  // tangential spring per pair slot
   std::vector<Vec3> x_at_build_;
 };

@@ -34,7 +34,7 @@ TEST(VerletList, MatchesBruteForce) {
   const double box = 0.02, skin = 0.4e-3;
   ParticleStore p = random_particles(1500, box, 7);
   VerletList list(p.max_radius(), skin, true);
-  list.rebuild(p, nullptr, 0);
+  list.rebuild(p);
   std::set<std::pair<GlobalId, GlobalId>> brute;
   for (std::size_t i = 0; i < p.size(); ++i)
     for (std::size_t j = i + 1; j < p.size(); ++j) {
@@ -52,7 +52,7 @@ TEST(VerletList, PositionsOutsideTheGridAreStillFound) {
   p.add_sphere(1, 1e-3, 2650, Vec3(0.005, 0.005, 0.5), Vec3::Zero(), Vec3::Zero());
   p.add_sphere(2, 1e-3, 2650, Vec3(0.005, 0.005, 0.5019), Vec3::Zero(), Vec3::Zero());
   VerletList list(1e-3, 1e-4, false);
-  list.rebuild(p, nullptr, 0);
+  list.rebuild(p);
   EXPECT_EQ(list.num_pairs(), 1u);
 }
 
@@ -60,7 +60,7 @@ TEST(VerletList, RebuildCarriesSpringsByGlobalId) {
   const double box = 0.01, skin = 0.3e-3;
   ParticleStore p = random_particles(400, box, 11);
   VerletList list(p.max_radius(), skin, true);
-  list.rebuild(p, nullptr, 0);
+  list.rebuild(p);
   // Give every pair a spring that encodes its ids, oriented as the force on local i.
   std::map<std::pair<GlobalId, GlobalId>, Vec3> expected;  // force on the smaller id
   for (std::size_t i = 0; i + 1 < list.offsets().size(); ++i)
@@ -75,7 +75,7 @@ TEST(VerletList, RebuildCarriesSpringsByGlobalId) {
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> u(-1e-5, 1e-5);
   for (auto& x : p.x) x += Vec3(u(rng), u(rng), u(rng));
-  list.rebuild(p, nullptr, 0);
+  list.rebuild(p);
   int checked = 0;
   for (std::size_t i = 0; i + 1 < list.offsets().size(); ++i)
     for (int k = list.offsets()[i]; k < list.offsets()[i + 1]; ++k) {
@@ -92,7 +92,7 @@ TEST(VerletList, RebuildCarriesSpringsByGlobalId) {
 TEST(VerletList, NeedsRebuildAfterHalfSkin) {
   ParticleStore p = random_particles(10, 0.01, 5);
   VerletList list(p.max_radius(), 1e-4, false);
-  list.rebuild(p, nullptr, 0);
+  list.rebuild(p);
   EXPECT_FALSE(list.needs_rebuild(p));
   p.x[3].x() += 0.49e-4;
   EXPECT_FALSE(list.needs_rebuild(p));

@@ -1,0 +1,30 @@
+#include "dem/neighbor/wall_list.h"
+
+#include <unordered_map>
+
+namespace upgrain::dem {
+
+void WallNeighborList::rebuild(const ParticleStore& p, const std::vector<PlaneWall>& walls) {
+  lists_.resize(walls.size());
+  std::unordered_map<GlobalId, TangentialSpring> active;
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    Entries& e = lists_[w];
+    active.clear();
+    for (std::size_t k = 0; k < e.spring.size(); ++k)
+      if (e.spring[k].stiffness != 0.0) active.emplace(e.id[k], e.spring[k]);
+    e.particle.clear();
+    e.id.clear();
+    e.spring.clear();
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (walls[w].distance(p.x[i]) >= p.radius[i] + skin_) continue;
+      e.particle.push_back(static_cast<int>(i));
+      e.id.push_back(p.id[i]);
+      if (with_history_) {
+        const auto it = active.find(p.id[i]);
+        e.spring.push_back(it == active.end() ? TangentialSpring{} : it->second);
+      }
+    }
+  }
+}
+
+}  // namespace upgrain::dem
