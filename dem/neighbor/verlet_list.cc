@@ -1,28 +1,18 @@
 #include "dem/neighbor/verlet_list.h"
 
 #include <algorithm>
-#include <unordered_map>
 
 namespace upgrain::dem {
 
 namespace {
 
-struct PairKey {
+// A spring carried over a rebuild: the pair of global ids (lo < hi) and the spring
+// oriented as the force on the particle with id lo. A sorted vector holds them: 48 bytes
+// per active contact, less than half a hash map's, and its order does not depend on hashing.
+struct CarriedSpring {
   GlobalId lo, hi;
-  bool operator==(const PairKey& o) const { return lo == o.lo && hi == o.hi; }
-};
-
-struct PairKeyHash {
-  std::size_t operator()(const PairKey& k) const {
-    // splitmix64 finaliser over both ids
-    auto mix = [](std::uint64_t z) {
-      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-      z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-      return z ^ (z >> 31);
-    };
-    return static_cast<std::size_t>(mix(static_cast<std::uint64_t>(k.lo) * 0x9e3779b97f4a7c15ULL ^
-                                        mix(static_cast<std::uint64_t>(k.hi))));
-  }
+  TangentialSpring spring;
+  bool operator<(const CarriedSpring& o) const { return lo < o.lo || (lo == o.lo && hi < o.hi); }
 };
 
 }  // namespace
@@ -45,9 +35,11 @@ void VerletList::rebuild(ParticleStore& p) {
 
   // 1. Springs of active contacts, keyed by the pair of global ids and oriented as the
   //    force on the particle with the smaller id.
-  std::unordered_map<PairKey, TangentialSpring, PairKeyHash> history;
+  std::vector<CarriedSpring> history;
   if (with_history_ && !partners_.empty()) {
-    history.reserve(partners_.size() / 2 + 16);
+    std::size_t active = 0;
+    for (const TangentialSpring& s : springs_) active += s.stiffness != 0.0 ? 1 : 0;
+    history.reserve(active);
     const int n_old = static_cast<int>(offsets_.size()) - 1;
     for (int i = 0; i < n_old; ++i) {
       for (int k = offsets_[i]; k < offsets_[i + 1]; ++k) {
@@ -56,9 +48,9 @@ void VerletList::rebuild(ParticleStore& p) {
         const GlobalId a = p.id[i];
         const GlobalId b = p.id[partners_[k]];
         if (a < b)
-          history.emplace(PairKey{a, b}, s);
+          history.push_back({a, b, s});
         else
-          history.emplace(PairKey{b, a}, TangentialSpring{-s.force, s.stiffness});
+          history.push_back({b, a, TangentialSpring{-s.force, s.stiffness}});
       }
     }
   }
@@ -102,15 +94,17 @@ void VerletList::rebuild(ParticleStore& p) {
   for (int i = 0; i < n; ++i) std::sort(partners_.begin() + offsets_[i], partners_.begin() + offsets_[i + 1]);
 
   // 4. Carry the springs over.
+  std::sort(history.begin(), history.end());
   springs_.assign(with_history_ ? partners_.size() : 0, TangentialSpring{});
   if (with_history_ && !history.empty()) {
     for (int i = 0; i < n; ++i) {
       for (int k = offsets_[i]; k < offsets_[i + 1]; ++k) {
         const GlobalId a = p.id[i];
         const GlobalId b = p.id[partners_[k]];
-        const auto it = history.find(a < b ? PairKey{a, b} : PairKey{b, a});
-        if (it != history.end())
-          springs_[k] = a < b ? it->second : TangentialSpring{-it->second.force, it->second.stiffness};
+        const CarriedSpring key{std::min(a, b), std::max(a, b), {}};
+        const auto it = std::lower_bound(history.begin(), history.end(), key);
+        if (it != history.end() && it->lo == key.lo && it->hi == key.hi)
+          springs_[k] = a < b ? it->spring : TangentialSpring{-it->spring.force, it->spring.stiffness};
       }
     }
   }
