@@ -16,19 +16,37 @@ import re
 import shutil
 import subprocess
 import sys
+import threading
+import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
 def run_measured(cmd, cwd=None):
-    """Runs cmd, returns (stdout, peak RSS in bytes) of that child alone."""
+    """Runs cmd, returns (stdout, peak RSS in bytes) of that program alone.
+
+    The peak is VmHWM of /proc/<pid>/status, polled while the program runs: it belongs to
+    the program's own address space after exec. (The rusage of the child would also count
+    the Python image the child was forked from.)"""
     proc = subprocess.Popen(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    out = proc.stdout.read()
-    _, status, usage = os.wait4(proc.pid, 0)
-    proc.returncode = os.waitstatus_to_exitcode(status)
+    peak = 0
+    chunks = []
+    reader = threading.Thread(target=lambda: chunks.append(proc.stdout.read()))
+    reader.start()
+    while proc.poll() is None:
+        try:
+            with open(f"/proc/{proc.pid}/status") as status:
+                for line in status:
+                    if line.startswith("VmHWM:"):
+                        peak = max(peak, int(line.split()[1]) * 1024)
+        except (FileNotFoundError, ProcessLookupError, ValueError):
+            pass
+        time.sleep(0.02)
+    reader.join()
+    out = "".join(chunks)
     if proc.returncode != 0:
         sys.exit(f"failed ({proc.returncode}): {' '.join(cmd)}\n{out[-3000:]}")
-    return out, usage.ru_maxrss * 1024
+    return out, peak
 
 
 def main():
