@@ -102,9 +102,9 @@ void Simulation::run(long steps) {
 EnergyBalance Simulation::energy() const {
   EnergyBalance e;
   for (std::size_t i = 0; i < p_.size(); ++i) {
-    e.kinetic_translational += 0.5 * p_.mass[i] * p_.v[i].squaredNorm();
+    e.kinetic_translational += 0.5 * p_.mass(i) * p_.v[i].squaredNorm();
     if (rotation_) e.kinetic_rotational += 0.5 * p_.omega[i].squaredNorm() / p_.inv_inertia[i];
-    e.potential -= p_.mass[i] * g_.dot(p_.x[i]);
+    e.potential -= p_.mass(i) * g_.dot(p_.x[i]);
   }
   e.elastic_normal = ctx_.energy.elastic_normal;
   e.elastic_tangential = ctx_.energy.elastic_tangential;

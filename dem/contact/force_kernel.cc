@@ -32,7 +32,7 @@ void compute_forces(ForceContext& ctx) {
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3 xi = p.x[i];
     const double ri = p.radius[i];
-    const double mi = p.mass[i];
+    const double inv_mi = p.inv_mass[i];
     Vec3 fi = Vec3::Zero();
     Vec3 ti = Vec3::Zero();
     for (int k = off[i]; k < off[i + 1]; ++k) {
@@ -61,7 +61,7 @@ void compute_forces(ForceContext& ctx) {
         kin.omega_j = p.omega[j];
       }
       cp.r_star = ri * p.radius[j] / rsum;
-      cp.m_star = mi * p.mass[j] / (mi + p.mass[j]);
+      cp.m_star = 1.0 / (inv_mi + p.inv_mass[j]);  // m_i m_j / (m_i + m_j)
       TangentialSpring& spring = kTangential ? springs[k] : dummy_spring;
       const ContactForce cf =
           contact_response<kTangential, E::damping, E::rotation, E::energy>(cp, kin, spring, energy);
@@ -122,7 +122,7 @@ void compute_forces(ForceContext& ctx) {
         kin.omega_j = Vec3::Zero();
       }
       wp.r_star = ri;
-      wp.m_star = p.mass[i];
+      wp.m_star = p.mass(i);
       const ContactForce cf =
           contact_response<kWallTangential, E::damping, E::rotation, E::energy>(wp, kin, spring, energy);
       p.force[i] += cf.on_i;

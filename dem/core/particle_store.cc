@@ -17,7 +17,6 @@ void apply_permutation(std::vector<T>& a, const std::vector<int>& perm, std::vec
 void ParticleStore::reserve(std::size_t n) {
   id.reserve(n);
   radius.reserve(n);
-  mass.reserve(n);
   inv_mass.reserve(n);
   inv_inertia.reserve(n);
   x.reserve(n);
@@ -27,12 +26,11 @@ void ParticleStore::reserve(std::size_t n) {
   torque.reserve(n);
 }
 
-void ParticleStore::add_sphere(GlobalId gid, double r, double density, const Vec3& pos,
-                               const Vec3& vel, const Vec3& ang_vel) {
+void ParticleStore::add_sphere(GlobalId gid, double r, double density, const Vec3& pos, const Vec3& vel,
+                               const Vec3& ang_vel) {
   const double m = density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
   id.push_back(gid);
   radius.push_back(r);
-  mass.push_back(m);
   inv_mass.push_back(1.0 / m);
   inv_inertia.push_back(1.0 / (0.4 * m * r * r));
   x.push_back(pos);
@@ -48,7 +46,6 @@ void ParticleStore::permute(const std::vector<int>& perm) {
   std::vector<Vec3> s_v;
   apply_permutation(id, perm, s_id);
   apply_permutation(radius, perm, s_d);
-  apply_permutation(mass, perm, s_d);
   apply_permutation(inv_mass, perm, s_d);
   apply_permutation(inv_inertia, perm, s_d);
   apply_permutation(x, perm, s_v);

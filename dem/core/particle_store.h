@@ -11,16 +11,16 @@ namespace upgrain::dem {
 struct ParticleStore {
   std::vector<GlobalId> id;
   std::vector<double> radius;
-  std::vector<double> mass;
-  std::vector<double> inv_mass;
+  std::vector<double> inv_mass;     // 1 / m: the mass itself is not stored (8 B per grain less)
   std::vector<double> inv_inertia;  // sphere: 1 / (2/5 m r^2)
-  std::vector<Vec3> x;               // centroid position (m)
-  std::vector<Vec3> v;               // velocity (m/s)
-  std::vector<Vec3> omega;           // angular velocity (rad/s)
-  std::vector<Vec3> force;           // contact force of the current step (N)
-  std::vector<Vec3> torque;          // contact torque about the centroid (N m)
+  std::vector<Vec3> x;              // centroid position (m)
+  std::vector<Vec3> v;              // velocity (m/s)
+  std::vector<Vec3> omega;          // angular velocity (rad/s)
+  std::vector<Vec3> force;          // contact force of the current step (N)
+  std::vector<Vec3> torque;         // contact torque about the centroid (N m)
 
   [[nodiscard]] std::size_t size() const { return id.size(); }
+  [[nodiscard]] double mass(std::size_t i) const { return 1.0 / inv_mass[i]; }
 
   void reserve(std::size_t n);
   void add_sphere(GlobalId gid, double r, double density, const Vec3& pos, const Vec3& vel,

@@ -90,6 +90,9 @@ void VerletList::rebuild(ParticleStore& p) {
         }
   }
   offsets_[n] = static_cast<int>(partners_.size());
+  // The list's size changes little between builds: drop the slack of the first build's
+  // doubling growth once (measured: part of the peak memory per grain of the benchmark).
+  if (partners_.capacity() > partners_.size() + partners_.size() / 8) partners_.shrink_to_fit();
   // Partners in increasing local index: a deterministic order of force accumulation.
   for (int i = 0; i < n; ++i) std::sort(partners_.begin() + offsets_[i], partners_.begin() + offsets_[i + 1]);
 

@@ -26,7 +26,7 @@ Collision collide(double zeta, double v_rel, int steps_per_contact) {
   ParticleStore p;
   p.add_sphere(0, r, 2650, Vec3(-r - 1e-5, 0, 0), Vec3(0.5 * v_rel, 0, 0), Vec3::Zero());
   p.add_sphere(1, r, 2650, Vec3(r + 1e-5, 0, 0), Vec3(-0.5 * v_rel, 0, 0), Vec3::Zero());
-  const double m = p.mass[0];
+  const double m = p.mass(0);
   const double t_hertz = hertz::contact_duration(cm.e_star_pp, 0.5 * r, 0.5 * m, v_rel);
   s.time_step = t_hertz / steps_per_contact;
   s.effects.damping = zeta > 0.0;
@@ -60,8 +60,7 @@ TEST(HeadOnCollision, DurationMatchesHertzWithinOnePercent) {
     const double r = 5e-3;
     const Material mat{2650.0, 1e8, 0.25};
     const double m = 2650 * 4.0 / 3 * M_PI * r * r * r;
-    const double expected =
-        hertz::contact_duration(effective_youngs_modulus(mat, mat), 0.5 * r, 0.5 * m, v);
+    const double expected = hertz::contact_duration(effective_youngs_modulus(mat, mat), 0.5 * r, 0.5 * m, v);
     const Collision c = collide(0.0, v, 1000);
     EXPECT_NEAR(c.duration, expected, 0.01 * expected) << "impact speed " << v;
   }

@@ -68,7 +68,8 @@ TEST(Incline, BlockSticksBelowFrictionAngle) {
   const Motion m = roll(20.0, 0.5, false);  // tan 20 deg = 0.36 < 0.5
   // The undamped tangential spring oscillates about its loaded length: bounded, tiny.
   EXPECT_LT(m.max_displacement, 1e-3 * kR);
-  std::printf("stick: max displacement %.3e m, fitted acceleration %.3e m/s^2\n", m.max_displacement, m.acceleration);
+  std::printf("stick: max displacement %.3e m, fitted acceleration %.3e m/s^2\n", m.max_displacement,
+              m.acceleration);
 }
 
 TEST(Incline, BlockSlidesAboveFrictionAngle) {

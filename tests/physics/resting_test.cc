@@ -18,7 +18,7 @@ TEST(RestingSphere, StaticOverlapIsHertzForItsWeight) {
     s.container.lx = s.container.ly = 0.1;
     ParticleStore p;
     p.add_sphere(0, r, 2650, Vec3(0.05, 0.05, r + 1e-4), Vec3::Zero(), Vec3::Zero());
-    const double weight = p.mass[0] * 9.81;
+    const double weight = p.mass(0) * 9.81;
     Simulation sim(s, p);
     sim.run(100000);
     const ContactMaterial cm = ContactMaterial::from(s.particles.material, 0.5, 0.7);
