@@ -71,8 +71,8 @@ int run(int argc, char** argv) {
   }
   const dem::TimeStepEstimate ts = dem::estimate_time_step(in.scene);
   std::printf("upgrain: %s\n  %ld spheres, time step %.3g s (safe %.3g s, %s-limited), end time %.3g s\n",
-              in.source.c_str(), in.scene.particles.count, in.scene.time_step, ts.safe_step, ts.limiting.c_str(),
-              in.scene.end_time);
+              in.source.c_str(), in.scene.particles.count, in.scene.time_step, ts.safe_step,
+              ts.limiting.c_str(), in.scene.end_time);
   if (check_only) {
     std::printf("  scene is valid; nothing written (--check)\n");
     return 0;
@@ -89,10 +89,13 @@ int run(int argc, char** argv) {
               r.stopped_at_rest ? ", stopped at rest" : "");
   std::printf("  bed: surface %.4f m, solid fraction %.4f, %.2f contacts per particle, %ld outside\n",
               r.bed.surface_height, r.bed.solid_fraction,
-              2.0 * static_cast<double>(r.diagnostics.particle_contacts) / static_cast<double>(in.scene.particles.count),
+              2.0 * static_cast<double>(r.diagnostics.particle_contacts) /
+                  static_cast<double>(in.scene.particles.count),
               r.bed.particles_outside);
-  std::printf("  energy: kinetic/released %.3e, balance error %.3e\n", r.kinetic_to_released, r.energy_balance_error);
-  std::printf("  results: %s/{summary.json,time_series.csv,particles.xdmf,snapshots/}\n", in.output.folder.c_str());
+  std::printf("  energy: kinetic/released %.3e, balance error %.3e\n", r.kinetic_to_released,
+              r.energy_balance_error);
+  std::printf("  results: %s/{summary.json,time_series.csv,particles.xdmf,snapshots/}\n",
+              in.output.folder.c_str());
   return 0;
 }
 

@@ -15,7 +15,7 @@ struct ParameterSpec {
   std::string name;
   std::string default_value;
   Kind kind;
-  double min = 0.0;     // inclusive bounds for real and integer kinds
+  double min = 0.0;  // inclusive bounds for real and integer kinds
   double max = 0.0;
   std::string choices;  // "a|b" for selection
   std::string unit;     // SI unit, or "-" for dimensionless

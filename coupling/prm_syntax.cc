@@ -72,8 +72,9 @@ void check_prm_syntax(const std::string& text, const std::string& filename) {
     if (keyword == "subsection") {
       const std::string name = normalise(l.substr(keyword.size()));
       if (!stack.empty())
-        fail(filename, start_line, "subsection '" + name + "' inside '" + stack.back() +
-                                       "': Upgrain's parameter files have one level of subsections");
+        fail(filename, start_line,
+             "subsection '" + name + "' inside '" + stack.back() +
+                 "': Upgrain's parameter files have one level of subsections");
       const auto known = sections();
       if (std::find(known.begin(), known.end(), name) == known.end())
         fail(filename, start_line, "unknown subsection '" + name + "'; the subsections are " + join(known));
@@ -89,18 +90,21 @@ void check_prm_syntax(const std::string& text, const std::string& filename) {
       const std::string name = normalise(l.substr(3, eq - 3));
       if (name.empty()) fail(filename, start_line, "malformed line '" + l + "': the entry has no name");
       if (stack.empty())
-        fail(filename, start_line, "entry '" + name + "' outside any subsection; the subsections are " + join(sections()));
+        fail(filename, start_line,
+             "entry '" + name + "' outside any subsection; the subsections are " + join(sections()));
       const auto known = entries_of(stack.back());
       if (std::find(known.begin(), known.end(), name) == known.end())
-        fail(filename, start_line, "unknown entry '" + name + "' in subsection '" + stack.back() +
-                                       "'; its entries are " + join(known));
+        fail(filename, start_line,
+             "unknown entry '" + name + "' in subsection '" + stack.back() + "'; its entries are " +
+                 join(known));
     } else {
       fail(filename, start_line, "malformed line '" + l + "': expected 'subsection', 'set' or 'end'");
     }
   }
   if (!line.empty()) fail(filename, start_line, "the file ends inside a continued line");
   if (!stack.empty())
-    fail(filename, line_no, "subsection '" + stack.back() + "' is not closed by 'end' before the end of the file");
+    fail(filename, line_no,
+         "subsection '" + stack.back() + "' is not closed by 'end' before the end of the file");
 }
 
 }  // namespace upgrain::coupling

@@ -18,9 +18,7 @@ namespace {
 using dealii::ParameterHandler;
 namespace Patterns = dealii::Patterns;
 
-std::string documentation(const ParameterSpec& p) {
-  return p.doc + " [unit: " + p.unit + "]";
-}
+std::string documentation(const ParameterSpec& p) { return p.doc + " [unit: " + p.unit + "]"; }
 
 void declare(ParameterHandler& prm) {
   for (const std::string& section : sections()) {
@@ -33,7 +31,8 @@ void declare(ParameterHandler& prm) {
           break;
         case Kind::integer:
           prm.declare_entry(p.name, p.default_value,
-                            Patterns::Integer(static_cast<int>(p.min), static_cast<int>(p.max)), documentation(p));
+                            Patterns::Integer(static_cast<int>(p.min), static_cast<int>(p.max)),
+                            documentation(p));
           break;
         case Kind::boolean:
           prm.declare_entry(p.name, p.default_value, Patterns::Bool(), documentation(p));
@@ -45,8 +44,8 @@ void declare(ParameterHandler& prm) {
           prm.declare_entry(p.name, p.default_value, Patterns::Anything(), documentation(p));
           break;
         case Kind::vector3:
-          prm.declare_entry(p.name, p.default_value, Patterns::List(Patterns::Double(p.min, p.max), 3, 3, ","),
-                            documentation(p));
+          prm.declare_entry(p.name, p.default_value,
+                            Patterns::List(Patterns::Double(p.min, p.max), 3, 3, ","), documentation(p));
           break;
       }
     }
@@ -131,8 +130,8 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   s.fill.position_jitter = prm.get_double("position jitter");
   s.fill.solid_fraction = prm.get_double("solid fraction");
   {
-    const auto v = Patterns::Tools::Convert<std::vector<double>>::to_value(prm.get("initial velocity"),
-                                                                            Patterns::List(Patterns::Double(), 3, 3, ","));
+    const auto v = Patterns::Tools::Convert<std::vector<double>>::to_value(
+        prm.get("initial velocity"), Patterns::List(Patterns::Double(), 3, 3, ","));
     s.fill.velocity = dem::Vec3(v[0], v[1], v[2]);
   }
   s.fill.velocity_jitter = prm.get_double("velocity jitter");
@@ -209,18 +208,31 @@ void print_parameters_markdown(std::ostream& out) {
          "`end`; `#` starts a comment. Unknown entries, values out of range and malformed lines "
          "stop the run before anything is written, with the file and line.\n";
   for (const std::string& section : sections()) {
-    out << "\n## " << section << "\n\n| entry | default | allowed | unit | meaning |\n|---|---|---|---|---|\n";
+    out << "\n## " << section
+        << "\n\n| entry | default | allowed | unit | meaning |\n|---|---|---|---|---|\n";
     for (const ParameterSpec& p : parameter_schema()) {
       if (p.section != section) continue;
       std::string allowed;
       std::ostringstream r;
       switch (p.kind) {
-        case Kind::real: r << "real in [" << p.min << ", " << p.max << "]"; break;
-        case Kind::integer: r << "integer in [" << p.min << ", " << p.max << "]"; break;
-        case Kind::boolean: r << "true or false"; break;
-        case Kind::selection: r << p.choices; break;
-        case Kind::text: r << "text"; break;
-        case Kind::vector3: r << "three reals in [" << p.min << ", " << p.max << "]"; break;
+        case Kind::real:
+          r << "real in [" << p.min << ", " << p.max << "]";
+          break;
+        case Kind::integer:
+          r << "integer in [" << p.min << ", " << p.max << "]";
+          break;
+        case Kind::boolean:
+          r << "true or false";
+          break;
+        case Kind::selection:
+          r << p.choices;
+          break;
+        case Kind::text:
+          r << "text";
+          break;
+        case Kind::vector3:
+          r << "three reals in [" << p.min << ", " << p.max << "]";
+          break;
       }
       out << "| `" << p.name << "` | `" << p.default_value << "` | " << r.str() << " | " << p.unit << " | "
           << p.doc << " |\n";

@@ -17,7 +17,8 @@ void validate_scene(const SceneInput& in) {
   } catch (const Error& e) {
     throw Error(where + "Particles/gradation: " + e.what());
   }
-  const double r_max = s.particles.gradation.empty() ? s.particles.radius : s.particles.gradation.back().radius;
+  const double r_max =
+      s.particles.gradation.empty() ? s.particles.radius : s.particles.gradation.back().radius;
   if (2.0 * r_max >= std::min(s.container.lx, s.container.ly)) {
     std::ostringstream m;
     m << where << "the largest grain (diameter " << 2 * r_max << " m, Particles/radius or gradation) "

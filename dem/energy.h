@@ -8,7 +8,7 @@ namespace upgrain::dem {
 struct EnergyBalance {
   double kinetic_translational = 0.0;
   double kinetic_rotational = 0.0;
-  double potential = 0.0;            // m g z, relative to the floor
+  double potential = 0.0;  // m g z, relative to the floor
   double elastic_normal = 0.0;
   double elastic_tangential = 0.0;
   double dissipated_damping = 0.0;   // cumulative since the start

@@ -21,11 +21,10 @@ TimeStepEstimate estimate_time_step(const SceneConfig& s) {
   if (!s.particles.gradation.empty()) r_min = s.particles.gradation.front().radius;
   const double nu = m.poisson_ratio;
   TimeStepEstimate e;
-  e.rayleigh_time = std::numbers::pi * r_min * std::sqrt(m.density / m.shear_modulus()) /
-                    (0.1631 * nu + 0.8766);
-  e.impact_speed = s.time_step_rule.impact_speed > 0.0
-                       ? s.time_step_rule.impact_speed
-                       : expected_impact_speed(s, fill_top_height(s));
+  e.rayleigh_time =
+      std::numbers::pi * r_min * std::sqrt(m.density / m.shear_modulus()) / (0.1631 * nu + 0.8766);
+  e.impact_speed = s.time_step_rule.impact_speed > 0.0 ? s.time_step_rule.impact_speed
+                                                       : expected_impact_speed(s, fill_top_height(s));
   const double v = std::max(e.impact_speed, 1e-3);  // a resting bed still has contacts
   const double mass = m.density * 4.0 / 3.0 * std::numbers::pi * r_min * r_min * r_min;
   const ContactMaterial cm = ContactMaterial::from(m, s.friction, s.damping_ratio);

@@ -7,11 +7,11 @@
 namespace upgrain::dem {
 
 struct TimeStepEstimate {
-  double rayleigh_time = 0.0;   // T_R of the smallest grain (s)
-  double hertz_time = 0.0;      // shortest Hertz contact duration at impact_speed (s)
-  double impact_speed = 0.0;    // speed used for hertz_time (m/s)
-  double safe_step = 0.0;       // min(rayleigh_fraction T_R, hertz_fraction t_H)
-  std::string limiting;         // "Rayleigh" or "Hertz"
+  double rayleigh_time = 0.0;  // T_R of the smallest grain (s)
+  double hertz_time = 0.0;     // shortest Hertz contact duration at impact_speed (s)
+  double impact_speed = 0.0;   // speed used for hertz_time (m/s)
+  double safe_step = 0.0;      // min(rayleigh_fraction T_R, hertz_fraction t_H)
+  std::string limiting;        // "Rayleigh" or "Hertz"
 };
 
 // Rayleigh time T_R = pi r sqrt(rho/G) / (0.1631 nu + 0.8766) (Li et al. 2005, Powder

@@ -48,7 +48,8 @@ BedState measure_bed(const ParticleStore& p, const BoxContainer& box, int sample
   for (int a = 0; a < samples; ++a)
     for (int b = 0; b < samples; ++b)
       for (int c = 0; c < samples; ++c) {
-        const Vec3 q(lo[0] + (a + 0.5) / samples * (hi[0] - lo[0]), lo[1] + (b + 0.5) / samples * (hi[1] - lo[1]),
+        const Vec3 q(lo[0] + (a + 0.5) / samples * (hi[0] - lo[0]),
+                     lo[1] + (b + 0.5) / samples * (hi[1] - lo[1]),
                      lo[2] + (c + 0.5) / samples * (hi[2] - lo[2]));
         ++total;
         const auto cc = grid.cell_coords(q);
@@ -59,7 +60,10 @@ BedState measure_bed(const ParticleStore& p, const BoxContainer& box, int sample
               const int cell = grid.flat(x, y, z);
               for (int k = start[cell]; k < start[cell + 1]; ++k) {
                 const int i = order[k];
-                if ((p.x[i] - q).squaredNorm() <= p.radius[i] * p.radius[i]) { hit = true; break; }
+                if ((p.x[i] - q).squaredNorm() <= p.radius[i] * p.radius[i]) {
+                  hit = true;
+                  break;
+                }
               }
             }
         inside += hit ? 1 : 0;

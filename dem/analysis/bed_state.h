@@ -10,7 +10,7 @@ struct BedState {
   double solid_fraction = 0.0;  // in the core region below
   double core_lo[3] = {0, 0, 0};
   double core_hi[3] = {0, 0, 0};
-  long particles_outside = 0;   // centroids outside the container's walls or below the floor
+  long particles_outside = 0;  // centroids outside the container's walls or below the floor
 };
 
 // The surface is the mean over horizontal columns (two largest diameters wide) of the

@@ -10,17 +10,17 @@ namespace upgrain::dem {
 
 struct PlaneWall {
   std::string name;
-  Vec3 point;      // a point on the plane
-  Vec3 normal;     // unit normal pointing into the granular domain
-  double friction; // Coulomb coefficient particle-wall
+  Vec3 point;       // a point on the plane
+  Vec3 normal;      // unit normal pointing into the granular domain
+  double friction;  // Coulomb coefficient particle-wall
 
   // Signed distance of a point from the plane, positive inside the domain.
   [[nodiscard]] double distance(const Vec3& p) const { return (p - point).dot(normal); }
 };
 
 struct BoxContainer {
-  double lx = 0.06;   // inner length along x (m), walls at x = 0 and x = lx
-  double ly = 0.06;   // inner length along y (m)
+  double lx = 0.06;     // inner length along x (m), walls at x = 0 and x = lx
+  double ly = 0.06;     // inner length along y (m)
   double height = 0.1;  // nominal wall height (m); the planes themselves are unbounded
   // floor, x-, x+, y-, y+
   double friction[5] = {0.5, 0.5, 0.5, 0.5, 0.5};

@@ -8,11 +8,11 @@ namespace upgrain::dem {
 
 struct EffectSet {
   bool gravity = true;
-  bool friction = true;        // tangential Mindlin spring + Coulomb between particles
-  bool damping = true;         // normal viscous damping, brief eq. (21)
-  bool wall_friction = true;   // tangential Mindlin spring + Coulomb at walls
-  bool rotation = true;        // integrate angular velocity from contact torques
-  bool energy_tracking = true; // accumulate dissipation and elastic energy per contact
+  bool friction = true;         // tangential Mindlin spring + Coulomb between particles
+  bool damping = true;          // normal viscous damping, brief eq. (21)
+  bool wall_friction = true;    // tangential Mindlin spring + Coulomb at walls
+  bool rotation = true;         // integrate angular velocity from contact torques
+  bool energy_tracking = true;  // accumulate dissipation and elastic energy per contact
 
   // Tangential history is only carried when some tangential force exists.
   [[nodiscard]] bool needs_history() const { return friction || wall_friction; }

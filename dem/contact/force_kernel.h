@@ -23,7 +23,7 @@ struct ForceContext {
   double dt = 0.0;
 
   // Results of one evaluation.
-  ContactEnergy energy;          // elastic: current; dissipated: this step's increment
+  ContactEnergy energy;  // elastic: current; dissipated: this step's increment
   long particle_contacts = 0;
   long wall_contacts = 0;
   double max_overlap_ratio = 0.0;  // max of delta / min(r_i, r_j)

@@ -7,13 +7,11 @@
 namespace upgrain::dem {
 
 struct Material {
-  double density = 2650.0;        // kg/m^3
-  double youngs_modulus = 29e9;   // Pa
-  double poisson_ratio = 0.25;    // -
+  double density = 2650.0;       // kg/m^3
+  double youngs_modulus = 29e9;  // Pa
+  double poisson_ratio = 0.25;   // -
 
-  [[nodiscard]] double shear_modulus() const {
-    return youngs_modulus / (2.0 * (1.0 + poisson_ratio));
-  }
+  [[nodiscard]] double shear_modulus() const { return youngs_modulus / (2.0 * (1.0 + poisson_ratio)); }
 };
 
 // 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2 (Johnson eq. 4.22).
@@ -24,19 +22,18 @@ inline double effective_youngs_modulus(const Material& a, const Material& b) {
 
 // 1/G* = (2-nu1)/G1 + (2-nu2)/G2 (Mindlin 1949; Di Renzo and Di Maio 2004, eq. 9).
 inline double effective_shear_modulus(const Material& a, const Material& b) {
-  return 1.0 / ((2.0 - a.poisson_ratio) / a.shear_modulus() +
-                (2.0 - b.poisson_ratio) / b.shear_modulus());
+  return 1.0 / ((2.0 - a.poisson_ratio) / a.shear_modulus() + (2.0 - b.poisson_ratio) / b.shear_modulus());
 }
 
 // Rigid, frictional walls are modelled with the particles' own material: a plane of
 // the same E and nu (the convention of LIGGGHTS' wall/gran). Documented in
 // docs/contact-law.md.
 struct ContactMaterial {
-  double e_star_pp = 0.0;   // effective Young's modulus particle-particle
-  double g_star_pp = 0.0;   // effective shear modulus particle-particle
-  double e_star_pw = 0.0;   // particle-wall
+  double e_star_pp = 0.0;  // effective Young's modulus particle-particle
+  double g_star_pp = 0.0;  // effective shear modulus particle-particle
+  double e_star_pw = 0.0;  // particle-wall
   double g_star_pw = 0.0;
-  double friction_pp = 0.5; // Coulomb coefficient between particles
+  double friction_pp = 0.5;    // Coulomb coefficient between particles
   double damping_ratio = 0.5;  // zeta in c_n = 2 zeta sqrt(m* k_n), brief eq. (21)
 
   static ContactMaterial from(const Material& m, double friction_pp, double damping_ratio) {

@@ -1,8 +1,8 @@
 #include "dem/io/atomic_file.h"
 
+#include <unistd.h>
 #include <fstream>
 #include <system_error>
-#include <unistd.h>
 
 #include "dem/core/error.h"
 

@@ -29,12 +29,12 @@ class Handle {
   herr_t (*close_)(hid_t);
 };
 
-void write_dataset(hid_t group, const char* name, hid_t mem_type, hid_t file_type,
-                   const void* data, hsize_t rows, hsize_t cols) {
+void write_dataset(hid_t group, const char* name, hid_t mem_type, hid_t file_type, const void* data,
+                   hsize_t rows, hsize_t cols) {
   const hsize_t dims[2] = {rows, cols};
   Handle space(H5Screate_simple(cols == 1 ? 1 : 2, dims, nullptr), H5Sclose, "create a dataspace");
-  Handle set(H5Dcreate2(group, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-             H5Dclose, std::string("create dataset ") + name);
+  Handle set(H5Dcreate2(group, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
+             std::string("create dataset ") + name);
   if (rows > 0 && H5Dwrite(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
     throw Error(std::string("HDF5: cannot write dataset ") + name);
 }
@@ -65,8 +65,8 @@ std::vector<double> flatten(const std::vector<Vec3>& v, const std::vector<std::s
 }  // namespace
 
 void write_snapshot(const std::filesystem::path& path, const ParticleStore& p,
-                    const std::vector<PlaneWall>& walls, const std::vector<Vec3>& wall_force,
-                    double time, long step) {
+                    const std::vector<PlaneWall>& walls, const std::vector<Vec3>& wall_force, double time,
+                    long step) {
   const std::size_t n = p.size();
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), 0);
@@ -74,8 +74,8 @@ void write_snapshot(const std::filesystem::path& path, const ParticleStore& p,
 
   AtomicFile target(path);
   {
-    Handle file(H5Fcreate(target.temporary_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
-                H5Fclose, "create " + target.temporary_path().string());
+    Handle file(H5Fcreate(target.temporary_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
+                "create " + target.temporary_path().string());
     write_attribute(file, "time", time);
     write_attribute(file, "step", static_cast<double>(step));
     write_attribute(file, "units", "SI: m, s, kg, N");
@@ -94,7 +94,8 @@ void write_snapshot(const std::filesystem::path& path, const ParticleStore& p,
     const struct {
       const char* name;
       const std::vector<Vec3>* data;
-    } vectors[] = {{"position", &p.x}, {"velocity", &p.v}, {"angular_velocity", &p.omega}, {"force", &p.force}};
+    } vectors[] = {
+        {"position", &p.x}, {"velocity", &p.v}, {"angular_velocity", &p.omega}, {"force", &p.force}};
     for (const auto& f : vectors) {
       const std::vector<double> flat = flatten(*f.data, order);
       write_dataset(parts, f.name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, flat.data(), n, 3);
@@ -142,11 +143,16 @@ void write_xdmf(const std::filesystem::path& path, const std::vector<SnapshotInf
       << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << s.count << "\"/>\n"
       << "    <Geometry GeometryType=\"XYZ\">" << item("position", 3) << "</Geometry>\n"
       << "    <Attribute Name=\"id\" AttributeType=\"Scalar\" Center=\"Node\"><DataItem Dimensions=\""
-      << s.count << "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">" << h5 << "id</DataItem></Attribute>\n"
-      << "    <Attribute Name=\"radius\" AttributeType=\"Scalar\" Center=\"Node\">" << item("radius", 1) << "</Attribute>\n"
-      << "    <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">" << item("velocity", 3) << "</Attribute>\n"
-      << "    <Attribute Name=\"angular_velocity\" AttributeType=\"Vector\" Center=\"Node\">" << item("angular_velocity", 3) << "</Attribute>\n"
-      << "    <Attribute Name=\"force\" AttributeType=\"Vector\" Center=\"Node\">" << item("force", 3) << "</Attribute>\n"
+      << s.count << "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">" << h5
+      << "id</DataItem></Attribute>\n"
+      << "    <Attribute Name=\"radius\" AttributeType=\"Scalar\" Center=\"Node\">" << item("radius", 1)
+      << "</Attribute>\n"
+      << "    <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">" << item("velocity", 3)
+      << "</Attribute>\n"
+      << "    <Attribute Name=\"angular_velocity\" AttributeType=\"Vector\" Center=\"Node\">"
+      << item("angular_velocity", 3) << "</Attribute>\n"
+      << "    <Attribute Name=\"force\" AttributeType=\"Vector\" Center=\"Node\">" << item("force", 3)
+      << "</Attribute>\n"
       << "   </Grid>\n";
   }
   x << "  </Grid>\n </Domain>\n</Xdmf>\n";

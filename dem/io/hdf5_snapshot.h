@@ -21,8 +21,8 @@ struct SnapshotInfo {
 // (position etc. are N x 3), /walls/{name (attribute list), point, normal, friction,
 // force}; root attributes time (s), step, units, sign_convention.
 void write_snapshot(const std::filesystem::path& path, const ParticleStore& p,
-                    const std::vector<PlaneWall>& walls, const std::vector<Vec3>& wall_force,
-                    double time, long step);
+                    const std::vector<PlaneWall>& walls, const std::vector<Vec3>& wall_force, double time,
+                    long step);
 
 // An XDMF 3 temporal collection over the snapshots, for ParaView (Xdmf3 reader):
 // particles as a polyvertex grid with radius, velocity, angular velocity and force.

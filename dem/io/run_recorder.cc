@@ -14,7 +14,8 @@ constexpr const char* kSeriesHeader =
     "(initial kinetic + elastic energy + |potential energy released|); total = kinetic + potential + "
     "elastic + dissipated - tangential_stiffness_change\n"
     "time,step,kinetic_translational,kinetic_rotational,potential,elastic_normal,"
-    "elastic_tangential,dissipated_damping,dissipated_friction,tangential_stiffness_change,total,balance_error,"
+    "elastic_tangential,dissipated_damping,dissipated_friction,tangential_stiffness_change,total,balance_"
+    "error,"
     "particle_contacts,wall_contacts,max_overlap_ratio,neighbor_builds\n";
 }
 
@@ -30,9 +31,9 @@ void RunRecorder::record_series(const Simulation& sim) {
   char line[512];
   std::snprintf(line, sizeof line,
                 "%.9g,%ld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.6e,%ld,%ld,%.6e,%ld\n",
-                sim.time(), sim.step_count(), e.kinetic_translational, e.kinetic_rotational,
-                e.potential, e.elastic_normal, e.elastic_tangential, e.dissipated_damping,
-                e.dissipated_friction, e.tangential_stiffness_change, e.total(), sim.energy_balance_error(), d.particle_contacts,
+                sim.time(), sim.step_count(), e.kinetic_translational, e.kinetic_rotational, e.potential,
+                e.elastic_normal, e.elastic_tangential, e.dissipated_damping, e.dissipated_friction,
+                e.tangential_stiffness_change, e.total(), sim.energy_balance_error(), d.particle_contacts,
                 d.wall_contacts, d.max_overlap_ratio, d.neighbor_builds);
   rows_.emplace_back(line);
 }
@@ -41,10 +42,10 @@ void RunRecorder::write_snapshot(const Simulation& sim) {
   char name[64];
   std::snprintf(name, sizeof name, "particles_%09ld.h5", sim.step_count());
   const std::filesystem::path rel = std::filesystem::path("snapshots") / name;
-  io::write_snapshot(options_.folder / rel, sim.particles(), sim.walls(), sim.wall_forces(),
-                     sim.time(), sim.step_count());
-  snapshots_.push_back({rel.string(), sim.time(), sim.step_count(),
-                        static_cast<long>(sim.particles().size())});
+  io::write_snapshot(options_.folder / rel, sim.particles(), sim.walls(), sim.wall_forces(), sim.time(),
+                     sim.step_count());
+  snapshots_.push_back(
+      {rel.string(), sim.time(), sim.step_count(), static_cast<long>(sim.particles().size())});
   flush();
 }
 

@@ -80,8 +80,7 @@ ParticleStore fill_container(const SceneConfig& s) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   auto velocity = [&]() {
     Vec3 v = s.fill.velocity;
-    if (s.fill.velocity_jitter > 0.0)
-      v += s.fill.velocity_jitter * Vec3(u(rng), u(rng), u(rng));
+    if (s.fill.velocity_jitter > 0.0) v += s.fill.velocity_jitter * Vec3(u(rng), u(rng), u(rng));
     return v;
   };
 
@@ -130,7 +129,10 @@ ParticleStore fill_container(const SceneConfig& s) {
           for (int xx = std::max(c[0] - 1, 0); free && xx <= std::min(c[0] + 1, dims[0] - 1); ++xx)
             for (int other : cells[grid.flat(xx, y, z)]) {
               const double d = r + radii[other];
-              if ((pos[other] - x).squaredNorm() < d * d) { free = false; break; }
+              if ((pos[other] - x).squaredNorm() < d * d) {
+                free = false;
+                break;
+              }
             }
       if (free) {
         pos[k] = x;

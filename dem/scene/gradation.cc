@@ -27,8 +27,7 @@ void validate_gradation(const std::vector<GradationPoint>& c) {
     throw Error("gradation curve: the last point must have fraction passing 1 (it is the largest radius)");
 }
 
-std::vector<double> sample_radii(const std::vector<GradationPoint>& c, long count,
-                                 std::mt19937_64& rng) {
+std::vector<double> sample_radii(const std::vector<GradationPoint>& c, long count, std::mt19937_64& rng) {
   validate_gradation(c);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   const double r_min = c.front().radius;

@@ -15,7 +15,6 @@ void validate_gradation(const std::vector<GradationPoint>& curve);
 // passing is linear in radius between the points. A radius drawn from the mass
 // distribution is accepted with probability (r_min / r)^3, which turns mass weights into
 // number weights (the number density is the mass density divided by r^3).
-std::vector<double> sample_radii(const std::vector<GradationPoint>& curve, long count,
-                                 std::mt19937_64& rng);
+std::vector<double> sample_radii(const std::vector<GradationPoint>& curve, long count, std::mt19937_64& rng);
 
 }  // namespace upgrain::dem

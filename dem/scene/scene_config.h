@@ -30,12 +30,12 @@ enum class FillMethod { lattice, random };
 
 struct FillSpec {
   FillMethod method = FillMethod::lattice;
-  double bottom_gap = 0.02;        // m, floor to the lowest particle surface
-  double lattice_spacing = 1.1;    // lattice pitch in max diameters (lattice fill)
-  double position_jitter = 0.1;    // random offset as a fraction of the free gap (lattice)
-  double solid_fraction = 0.3;     // target solid fraction of the random fill region
-  Vec3 velocity = Vec3::Zero();    // initial velocity of every particle (m/s)
-  double velocity_jitter = 0.0;    // uniform random component of each velocity (m/s)
+  double bottom_gap = 0.02;      // m, floor to the lowest particle surface
+  double lattice_spacing = 1.1;  // lattice pitch in max diameters (lattice fill)
+  double position_jitter = 0.1;  // random offset as a fraction of the free gap (lattice)
+  double solid_fraction = 0.3;   // target solid fraction of the random fill region
+  Vec3 velocity = Vec3::Zero();  // initial velocity of every particle (m/s)
+  double velocity_jitter = 0.0;  // uniform random component of each velocity (m/s)
   std::uint64_t seed = 12345;
 };
 

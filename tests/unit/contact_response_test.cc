@@ -58,7 +58,8 @@ TEST(ContactResponse, SpringBuildsThenSlidesAtCoulombLimit) {
   ContactEnergy e;
   contact_response<true, false, false, true>(p, kinematics(delta, v), spring, e);
   EXPECT_NEAR(spring.force.x(), -k_t * v.x() * p.dt, 1e-15);  // opposes the sliding
-  for (int s = 0; s < 100000; ++s) contact_response<true, false, false, true>(p, kinematics(delta, v), spring, e);
+  for (int s = 0; s < 100000; ++s)
+    contact_response<true, false, false, true>(p, kinematics(delta, v), spring, e);
   EXPECT_NEAR(spring.force.norm(), p.friction * fn, 1e-12 * fn);
   EXPECT_LT(spring.force.x(), 0.0);
   EXPECT_GT(e.dissipated_friction, 0.0);

@@ -3,9 +3,9 @@
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
 #include "dem/boundary/plane_wall.h"
 #include "dem/io/atomic_file.h"

@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include <random>
 #include <map>
+#include <random>
 #include <set>
 
 using namespace upgrain::dem;
