@@ -18,7 +18,7 @@ Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, std::v
       neighbors_(std::max(p_.max_radius(), 1e-12), scene.neighbor_skin * 2.0 * p_.max_radius(),
                  scene.effects.friction),
       wall_neighbors_(scene.neighbor_skin * 2.0 * p_.max_radius(), scene.effects.wall_friction),
-      kernel_(select_force_kernel(scene.effects)),
+      kernels_(select_force_kernels(scene.effects)),
       g_(scene.effects.gravity ? Vec3(0, 0, -scene.gravity) : Vec3::Zero()),
       dt_(scene.time_step),
       rotation_(scene.effects.rotation && (scene.effects.friction || scene.effects.wall_friction)) {
@@ -43,7 +43,12 @@ void Simulation::rebuild_neighbors() {
 }
 
 void Simulation::evaluate_forces() {
-  kernel_(ctx_);
+  if (record_next_) {
+    kernels_.recording(ctx_);
+    record_next_ = false;
+  } else {
+    kernels_.plain(ctx_);
+  }
   dissipated_damping_ += ctx_.energy.dissipated_damping;
   dissipated_friction_ += ctx_.energy.dissipated_friction;
   stiffness_change_ += ctx_.energy.tangential_stiffness_change;

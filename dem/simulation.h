@@ -27,6 +27,11 @@ class Simulation {
   Simulation(const SceneConfig& scene, ParticleStore particles, std::vector<PlaneWall> walls);
 
   void step();
+
+  // Asks the next force evaluation (the next step()) to record every contact, then
+  // contacts() holds them: the exact forces of that evaluation, for stress output.
+  void request_contacts() { record_next_ = true; }
+  [[nodiscard]] const std::vector<ContactSample>& contacts() const { return ctx_.contacts; }
   void run(long steps);
 
   [[nodiscard]] const ParticleStore& particles() const { return p_; }
@@ -63,7 +68,8 @@ class Simulation {
   std::vector<PlaneWall> walls_;
   VerletList neighbors_;
   WallNeighborList wall_neighbors_;
-  ForceKernel kernel_;
+  ForceKernels kernels_;
+  bool record_next_ = false;
   ForceContext ctx_;
   Vec3 g_;
   double dt_;

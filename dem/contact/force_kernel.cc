@@ -7,7 +7,7 @@ namespace upgrain::dem {
 
 namespace {
 
-template <class E>
+template <class E, bool Record>
 void compute_forces(ForceContext& ctx) {
   ParticleStore& p = *ctx.particles;
   const std::size_t n = p.size();
@@ -23,6 +23,7 @@ void compute_forces(ForceContext& ctx) {
     if constexpr (E::rotation) p.torque[i].setZero();
   }
   if constexpr (kDampingWork) ctx.damping_force.assign(n, Vec3::Zero());
+  if constexpr (Record) ctx.contacts.clear();
   ContactEnergy energy;
   long contacts = 0;
   double max_ratio = 0.0;
@@ -67,6 +68,8 @@ void compute_forces(ForceContext& ctx) {
           contact_response<kTangential, E::damping, E::rotation, E::energy>(cp, kin, spring, energy);
       fi += cf.on_i;
       p.force[j] -= cf.on_i;
+      if constexpr (Record)
+        ctx.contacts.push_back({static_cast<int>(i), j, xi + kin.arm_i * kin.normal, cf.on_i});
       if constexpr (kDampingWork) {
         ctx.damping_force[i] -= cf.damping * kin.normal;
         ctx.damping_force[j] += cf.damping * kin.normal;
@@ -127,6 +130,8 @@ void compute_forces(ForceContext& ctx) {
           contact_response<kWallTangential, E::damping, E::rotation, E::energy>(wp, kin, spring, energy);
       p.force[i] += cf.on_i;
       wall_total -= cf.on_i;
+      if constexpr (Record)
+        ctx.contacts.push_back({i, -static_cast<int>(w) - 1, p.x[i] + gap * kin.normal, cf.on_i});
       if constexpr (kDampingWork) ctx.damping_force[i] -= cf.damping * kin.normal;
       if constexpr (E::rotation) p.torque[i] += gap * kin.normal.cross(cf.on_i);
       ++wall_contacts;
@@ -142,26 +147,29 @@ void compute_forces(ForceContext& ctx) {
 }
 
 template <bool F, bool D, bool W, bool R>
-ForceKernel pick_energy(bool energy) {
-  return energy ? &compute_forces<Effects<F, D, W, R, true>> : &compute_forces<Effects<F, D, W, R, false>>;
+ForceKernels pick_energy(bool energy) {
+  using On = Effects<F, D, W, R, true>;
+  using Off = Effects<F, D, W, R, false>;
+  return energy ? ForceKernels{&compute_forces<On, false>, &compute_forces<On, true>}
+                : ForceKernels{&compute_forces<Off, false>, &compute_forces<Off, true>};
 }
 template <bool F, bool D, bool W>
-ForceKernel pick_rotation(const EffectSet& e) {
+ForceKernels pick_rotation(const EffectSet& e) {
   return e.rotation ? pick_energy<F, D, W, true>(e.energy_tracking)
                     : pick_energy<F, D, W, false>(e.energy_tracking);
 }
 template <bool F, bool D>
-ForceKernel pick_wall(const EffectSet& e) {
+ForceKernels pick_wall(const EffectSet& e) {
   return e.wall_friction ? pick_rotation<F, D, true>(e) : pick_rotation<F, D, false>(e);
 }
 template <bool F>
-ForceKernel pick_damping(const EffectSet& e) {
+ForceKernels pick_damping(const EffectSet& e) {
   return e.damping ? pick_wall<F, true>(e) : pick_wall<F, false>(e);
 }
 
 }  // namespace
 
-ForceKernel select_force_kernel(const EffectSet& e) {
+ForceKernels select_force_kernels(const EffectSet& e) {
   return e.friction ? pick_damping<true>(e) : pick_damping<false>(e);
 }
 

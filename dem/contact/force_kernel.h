@@ -6,6 +6,7 @@
 
 #include "dem/boundary/plane_wall.h"
 #include "dem/contact/contact_response.h"
+#include "dem/contact/contact_sample.h"
 #include "dem/contact/effects.h"
 #include "dem/core/material.h"
 #include "dem/core/particle_store.h"
@@ -31,10 +32,19 @@ struct ForceContext {
   // Viscous part of the contact force on each particle (energy tracking with damping),
   // for the second half of the damping work (docs/integrator.md).
   std::vector<Vec3> damping_force;
+  // Every contact of the evaluation, in the loop's order (recording kernels only).
+  std::vector<ContactSample> contacts;
 };
 
 using ForceKernel = void (*)(ForceContext&);
 
-ForceKernel select_force_kernel(const EffectSet& effects);
+// The same force loop twice: without and with contact recording (for stress output), so
+// the steps between outputs pay nothing for it.
+struct ForceKernels {
+  ForceKernel plain;
+  ForceKernel recording;
+};
+
+ForceKernels select_force_kernels(const EffectSet& effects);
 
 }  // namespace upgrain::dem

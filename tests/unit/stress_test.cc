@@ -1,0 +1,186 @@
+// Grid stress by the static formulas (dem/stress/): the paper's printed asymmetry indices
+// reproduced from its printed tensors within their rounding; sigma = F/A for a loaded
+// simple-cubic packing; the exact skew-torque identity and additivity of Bagi's stress in
+// a dynamic state.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "../common/scenes.h"
+#include "dem/scene/fill.h"
+#include "dem/simulation.h"
+#include "dem/stress/asymmetry.h"
+#include "dem/stress/grid_stress.h"
+
+using namespace upgrain;
+using namespace upgrain::dem;
+
+namespace {
+
+// The range of RAI over tensors that round to the printed three significant digits.
+std::pair<double, double> rai_range(const Mat3& printed) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  double lo = INFINITY, hi = -INFINITY;
+  for (int k = 0; k < 20000; ++k) {
+    Mat3 m = printed;
+    for (int e = 0; e < 9; ++e) {
+      const double v = printed(e / 3, e % 3);
+      const double unit = std::pow(10.0, std::floor(std::log10(std::abs(v))) - 2);  // last printed digit
+      m(e / 3, e % 3) = v + u(rng) * unit;
+    }
+    const double r = 100.0 * relative_asymmetry_index(m);
+    lo = std::min(lo, r);
+    hi = std::max(hi, r);
+  }
+  return {lo, hi};
+}
+
+Mat3 rows(std::initializer_list<double> v) {
+  Mat3 m;
+  auto it = v.begin();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) m(i, j) = *it++;
+  return m;
+}
+
+}  // namespace
+
+TEST(RelativeAsymmetryIndex, ReproducesThePapersPrintedValues) {
+  // Paper Tables 2 and 4: (tensor as printed, RAI printed in %, its last-digit half unit).
+  const struct {
+    const char* name;
+    Mat3 s;
+    double rai, half_unit;
+  } cases[] = {
+      {"Weber, 68 spheres",
+       rows({-6.44E+01, -1.15E+01, -2.72E+00, -8.11E+00, -6.16E+01, -5.34E+00, -1.37E+00, -5.50E+00,
+             -1.09E+02}),
+       15.1, 0.05},
+      {"Weber, 153 spheres",
+       rows(
+           {-8.12E+01, -2.31E-01, 2.55E+00, -1.35E-04, -7.86E+01, -8.39E+00, 2.54E+00, -8.09E+00, -9.68E+01}),
+       2.2, 0.05},
+      {"Weber, 1,536 spheres",
+       rows(
+           {-1.88E+02, -9.42E+00, 4.69E+00, -9.95E+00, -1.90E+02, -1.05E+00, 5.62E+00, -5.35E-01, -2.55E+02}),
+       5.2, 0.05},
+      {"Drescher, 1,536 spheres",
+       rows({-2.09E+02, -9.84E+00, 5.25E+00, -9.84E+00, -2.11E+02, -4.74E-01, 2.19E+02, 2.14E+02, 1.88E+01}),
+       94.7, 0.05},
+      {"Weber, 3,456 spheres",
+       rows(
+           {-2.29E+02, 1.11E+01, -2.17E+00, 1.14E+01, -2.29E+02, -1.89E+00, -2.07E+00, -1.57E+00, -3.56E+02}),
+       1.7, 0.05},
+  };
+  for (const auto& c : cases) {
+    const auto [lo, hi] = rai_range(c.s);
+    EXPECT_GE(c.rai + c.half_unit, lo)
+        << c.name << ": RAI of the printed tensor " << 100 * relative_asymmetry_index(c.s);
+    EXPECT_LE(c.rai - c.half_unit, hi)
+        << c.name << ": RAI of the printed tensor " << 100 * relative_asymmetry_index(c.s);
+  }
+  EXPECT_NEAR(100 * relative_asymmetry_index(cases[0].s), 15.0, 0.1);
+  EXPECT_NEAR(100 * relative_asymmetry_index(cases[3].s), 94.73, 0.01);
+}
+
+TEST(RelativeAsymmetryIndex, SymmetricAndSkewLimits) {
+  Mat3 sym = rows({-3, 1, 2, 1, -4, 0.5, 2, 0.5, -5});
+  EXPECT_EQ(relative_asymmetry_index(sym), 0.0);
+  Mat3 s = sym;
+  s(0, 1) += 0.2;  // skew part 0.1 in (0,1)/(1,0)
+  EXPECT_GT(relative_asymmetry_index(s), 0.0);
+}
+
+TEST(GridStress, SimpleCubicColumnsBetweenPlatesGiveFOverA) {
+  // n x n columns of m spheres squeezed between a floor and a fixed top plate, no
+  // gravity; relaxed to equilibrium, every contact of a column carries the same force F
+  // and Bagi's stress over the box between the plates is sigma_zz = -n^2 F / A exactly.
+  const int n = 3, m = 4;
+  const double r = 5e-3, pitch = 2.2 * r, h = m * 2 * r * 0.995;
+  SceneConfig s = test::bare_scene(2e-6);
+  s.effects.damping = true;
+  s.effects.rotation = true;
+  s.effects.friction = true;
+  s.damping_ratio = 1.0;
+  ParticleStore p;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < m; ++k)
+        p.add_sphere((i * n + j) * m + k, r, 2650,
+                     Vec3((i + 0.5) * pitch, (j + 0.5) * pitch, (k + 0.5) * h / m), Vec3::Zero(),
+                     Vec3::Zero());
+  std::vector<PlaneWall> plates{{"floor", Vec3::Zero(), Vec3(0, 0, 1), 0.5},
+                                {"top", Vec3(0, 0, h), Vec3(0, 0, -1), 0.5}};
+  Simulation sim(s, p, plates);
+  sim.run(40000);
+  sim.request_contacts();
+  sim.step();
+  RegularGrid box;
+  box.hi = Vec3(n * pitch, n * pitch, h);
+  const GridStress g = static_grid_stress(sim.particles(), sim.contacts(), box);
+  const double area = n * pitch * n * pitch;
+  const double floor_force = sim.wall_forces()[0].z();  // force of the grains on the floor (< 0)
+  const Mat3& b = g.bagi[0];
+  EXPECT_NEAR(b(2, 2), floor_force / area, 1e-7 * std::abs(floor_force / area));
+  EXPECT_NEAR(sim.wall_forces()[1].z(), -floor_force, 1e-7 * std::abs(floor_force));
+  for (int a = 0; a < 3; ++a)
+    for (int c = 0; c < 3; ++c)
+      if (a != 2 || c != 2) {
+        EXPECT_NEAR(b(a, c), 0.0, 1e-9 * std::abs(b(2, 2)));
+      }
+  EXPECT_EQ(g.particles[0], n * n * m);
+  EXPECT_EQ(g.internal_contacts[0], n * n * (m - 1));
+  EXPECT_EQ(g.external_contacts[0], 2 * n * n);
+}
+
+TEST(GridStress, BagiSkewEqualsContactTorqueAndIsAdditive) {
+  // A bed in the middle of its deposition: grains colliding, spinning, sliding.
+  SceneConfig s;
+  s.particles.count = 400;
+  s.particles.material = {2650.0, 5e7, 0.25};
+  s.container.lx = s.container.ly = 0.02;
+  s.fill.bottom_gap = 0.002;
+  s.fill.position_jitter = 0.5;
+  s.fill.velocity_jitter = 0.2;
+  s.time_step = 1e-5;
+  Simulation sim(s, fill_container(s));
+  sim.run(6000);
+  sim.request_contacts();
+  sim.step();
+  const ParticleStore& p = sim.particles();
+  double top = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) top = std::max(top, p.x[i].z() + 1e-3);
+  RegularGrid fine;
+  fine.lo = Vec3(0, 0, 0);
+  fine.hi = Vec3(0.02, 0.02, top);
+  fine.n[0] = 2;
+  fine.n[1] = 2;
+  fine.n[2] = 3;
+  RegularGrid whole = fine;
+  whole.n[0] = whole.n[1] = whole.n[2] = 1;
+  const GridStress g = static_grid_stress(p, sim.contacts(), fine);
+  const GridStress all = static_grid_stress(p, sim.contacts(), whole);
+  ASSERT_GT(sim.contacts().size(), 300u);
+
+  std::vector<Vec3> torque(fine.num_cells(), Vec3::Zero());
+  for (std::size_t i = 0; i < p.size(); ++i) torque[fine.cell_of(p.x[i])] += p.torque[i];
+  Mat3 sum = Mat3::Zero();
+  long external = 0;
+  for (int c = 0; c < fine.num_cells(); ++c) {
+    const Mat3 skew = 0.5 * (g.bagi[c] - g.bagi[c].transpose()) * g.cell_volume;
+    // skew_ij = -eps_ijk T_k / 2, i.e. skew(0,1) = -T_z/2, skew(1,2) = -T_x/2, skew(2,0) = -T_y/2.
+    const double scale = g.bagi[c].norm() * g.cell_volume + 1e-300;
+    EXPECT_NEAR(skew(0, 1), -0.5 * torque[c].z(), 1e-12 * scale) << "cell " << c;
+    EXPECT_NEAR(skew(1, 2), -0.5 * torque[c].x(), 1e-12 * scale) << "cell " << c;
+    EXPECT_NEAR(skew(2, 0), -0.5 * torque[c].y(), 1e-12 * scale) << "cell " << c;
+    sum += g.bagi[c] * g.cell_volume;
+    external += g.external_contacts[c];
+  }
+  EXPECT_TRUE((sum - all.bagi[0] * all.cell_volume).norm() <= 1e-12 * sum.norm())
+      << sum << "\n vs \n"
+      << all.bagi[0] * all.cell_volume;
+  EXPECT_GT(external, all.external_contacts[0]);          // contacts across cells count for both cells
+  EXPECT_GT(relative_asymmetry_index(all.bagi[0]), 0.0);  // a dynamic state: not symmetric
+}
