@@ -1,20 +1,20 @@
 #pragma once
-// Average Cauchy stress over the cells of a fixed grid from the recorded contacts, by the
-// static formulas of the paper brief, section 2 (sigma_ij = (1/V) sum f_i l_j; compression
-// negative):
-//   Weber (1):    internal contacts, f on a, l = x_b - x_a (centroid to centroid);
-//   Drescher (2): external contacts, f on the inside particle, l = x^c (absolute point);
-//   Bagi (3):     internal as Weber, plus external contacts with f on the inside particle
-//                 and l = x^c - x_inside (centroid to contact point, walls included).
-// Internal: both centroids in the cell; external: one centroid in it, or a wall contact
-// (brief section 6). Bagi equals the sum over the cell's particles of
-// sum_c f^pc (x^c - x^p), so it is additive over cells and its skew part is
-// -eps_ijk T_k / (2V) with T the total contact torque on the cell's particles.
-// The dynamic formulas (Nicot, De Saxce and the modified forms) come later (issue 7).
+// Average Cauchy stress over the cells of a fixed grid, by all seven formulas of the paper
+// brief, section 2, from the contacts recorded in one force evaluation and the particles'
+// state at that instant. Convention: sigma_ij = (1/V) sum f_i l_j (force index first, so
+// that t_i = sigma_ij n_j), compression negative, V the cell volume. docs/stress.md.
+//
+// Classification (brief section 6): a particle belongs to the cell holding its centroid;
+// a contact is internal to a cell when both centroids are in it, and external to each cell
+// that holds exactly one of them (force on that particle, branch from its centroid to the
+// contact point); wall contacts are external. So a contact is counted once per cell and
+// never missed.
+#include <array>
 #include <vector>
 
 #include "dem/contact/contact_sample.h"
 #include "dem/core/particle_store.h"
+#include "dem/stress/stress_formula.h"
 
 namespace upgrain::dem {
 
@@ -25,19 +25,36 @@ struct RegularGrid {
 
   [[nodiscard]] int num_cells() const { return n[0] * n[1] * n[2]; }
   [[nodiscard]] double cell_volume() const { return (hi - lo).prod() / static_cast<double>(num_cells()); }
-  // Cell of a point (half-open cells), or -1 outside the grid.
+  // Cell of a point (half-open cells), or -1 outside the grid. Index (k ny + j) nx + i.
   [[nodiscard]] int cell_of(const Vec3& x) const;
+  [[nodiscard]] Vec3 cell_centre(int cell) const;
+};
+
+// The state the dynamic formulas need besides positions and contacts.
+struct GrainDynamics {
+  Vec3 gravity = Vec3::Zero();
+  // False when the scene does not integrate rotation: grains then neither spin nor
+  // accelerate in rotation, and the inertial terms are zero.
+  bool rotation = true;
 };
 
 struct GridStress {
-  std::vector<Mat3> weber, drescher, bagi;  // one per cell, V = cell volume
-  std::vector<long> particles;              // centroids in the cell
+  std::array<std::vector<Mat3>, kStressFormulaCount> sigma;  // [formula][cell]
+  std::vector<long> particles;                               // centroids in the cell
   std::vector<long> internal_contacts;
-  std::vector<long> external_contacts;  // wall contacts included
+  std::vector<long> external_contacts;  // particle contacts across the cell's boundary
+  std::vector<long> wall_contacts;
+  // Volume of the grains whose centroids are in the cell over the cell volume (grains
+  // assigned whole by centroid, so it can exceed the true local value at cell faces).
+  std::vector<double> solid_fraction;
   double cell_volume = 0.0;
+
+  [[nodiscard]] const std::vector<Mat3>& operator[](StressFormula f) const {
+    return sigma[static_cast<int>(f)];
+  }
 };
 
-GridStress static_grid_stress(const ParticleStore& p, const std::vector<ContactSample>& contacts,
-                              const RegularGrid& grid);
+GridStress grid_stress(const ParticleStore& p, const std::vector<ContactSample>& contacts,
+                       const RegularGrid& grid, const GrainDynamics& dynamics);
 
 }  // namespace upgrain::dem

@@ -119,10 +119,10 @@ TEST(GridStress, SimpleCubicColumnsBetweenPlatesGiveFOverA) {
   sim.step();
   RegularGrid box;
   box.hi = Vec3(n * pitch, n * pitch, h);
-  const GridStress g = static_grid_stress(sim.particles(), sim.contacts(), box);
+  const GridStress g = grid_stress(sim.particles(), sim.contacts(), box, {sim.gravity(), true});
   const double area = n * pitch * n * pitch;
   const double floor_force = sim.wall_forces()[0].z();  // force of the grains on the floor (< 0)
-  const Mat3& b = g.bagi[0];
+  const Mat3& b = g[StressFormula::bagi][0];
   EXPECT_NEAR(b(2, 2), floor_force / area, 1e-7 * std::abs(floor_force / area));
   EXPECT_NEAR(sim.wall_forces()[1].z(), -floor_force, 1e-7 * std::abs(floor_force));
   for (int a = 0; a < 3; ++a)
@@ -132,7 +132,14 @@ TEST(GridStress, SimpleCubicColumnsBetweenPlatesGiveFOverA) {
       }
   EXPECT_EQ(g.particles[0], n * n * m);
   EXPECT_EQ(g.internal_contacts[0], n * n * (m - 1));
-  EXPECT_EQ(g.external_contacts[0], 2 * n * n);
+  EXPECT_EQ(g.external_contacts[0], 0);
+  EXPECT_EQ(g.wall_contacts[0], 2 * n * n);
+  // At rest the dynamic formulas reduce to Bagi's: the inertial terms vanish and De
+  // Saxce's body term balances the contact forces.
+  for (StressFormula f :
+       {StressFormula::modified_nicot, StressFormula::modified_de_saxce, StressFormula::de_saxce}) {
+    EXPECT_LE((g[f][0] - b).norm(), 1e-9 * b.norm()) << name_of(f) << "\n" << g[f][0];
+  }
 }
 
 TEST(GridStress, BagiSkewEqualsContactTorqueAndIsAdditive) {
@@ -160,8 +167,8 @@ TEST(GridStress, BagiSkewEqualsContactTorqueAndIsAdditive) {
   fine.n[2] = 3;
   RegularGrid whole = fine;
   whole.n[0] = whole.n[1] = whole.n[2] = 1;
-  const GridStress g = static_grid_stress(p, sim.contacts(), fine);
-  const GridStress all = static_grid_stress(p, sim.contacts(), whole);
+  const GridStress g = grid_stress(p, sim.contacts(), fine, {sim.gravity(), true});
+  const GridStress all = grid_stress(p, sim.contacts(), whole, {sim.gravity(), true});
   ASSERT_GT(sim.contacts().size(), 300u);
 
   std::vector<Vec3> torque(fine.num_cells(), Vec3::Zero());
@@ -169,18 +176,64 @@ TEST(GridStress, BagiSkewEqualsContactTorqueAndIsAdditive) {
   Mat3 sum = Mat3::Zero();
   long external = 0;
   for (int c = 0; c < fine.num_cells(); ++c) {
-    const Mat3 skew = 0.5 * (g.bagi[c] - g.bagi[c].transpose()) * g.cell_volume;
+    const Mat3 skew =
+        0.5 * (g[StressFormula::bagi][c] - g[StressFormula::bagi][c].transpose()) * g.cell_volume;
     // skew_ij = -eps_ijk T_k / 2, i.e. skew(0,1) = -T_z/2, skew(1,2) = -T_x/2, skew(2,0) = -T_y/2.
-    const double scale = g.bagi[c].norm() * g.cell_volume + 1e-300;
+    const double scale = g[StressFormula::bagi][c].norm() * g.cell_volume + 1e-300;
     EXPECT_NEAR(skew(0, 1), -0.5 * torque[c].z(), 1e-12 * scale) << "cell " << c;
     EXPECT_NEAR(skew(1, 2), -0.5 * torque[c].x(), 1e-12 * scale) << "cell " << c;
     EXPECT_NEAR(skew(2, 0), -0.5 * torque[c].y(), 1e-12 * scale) << "cell " << c;
-    sum += g.bagi[c] * g.cell_volume;
+    sum += g[StressFormula::bagi][c] * g.cell_volume;
     external += g.external_contacts[c];
   }
-  EXPECT_TRUE((sum - all.bagi[0] * all.cell_volume).norm() <= 1e-12 * sum.norm())
+  EXPECT_TRUE((sum - all[StressFormula::bagi][0] * all.cell_volume).norm() <= 1e-12 * sum.norm())
       << sum << "\n vs \n"
-      << all.bagi[0] * all.cell_volume;
-  EXPECT_GT(external, all.external_contacts[0]);          // contacts across cells count for both cells
-  EXPECT_GT(relative_asymmetry_index(all.bagi[0]), 0.0);  // a dynamic state: not symmetric
+      << all[StressFormula::bagi][0] * all.cell_volume;
+  EXPECT_GT(external, all.external_contacts[0]);  // contacts across cells count for both cells
+  EXPECT_GT(relative_asymmetry_index(all[StressFormula::bagi][0]), 0.0);  // a dynamic state: not symmetric
+
+  // The modified forms carry the grains' rotational inertia, whose skew part is the same
+  // torque (Euler's equations): they are symmetric in any state. De Saxce's form (4),
+  // built from absolute positions, the body force and the accelerations, equals (7).
+  for (int c = 0; c < fine.num_cells(); ++c) {
+    const Mat3& mn = g[StressFormula::modified_nicot][c];
+    const Mat3& bagi = g[StressFormula::bagi][c];
+    const double scale = bagi.norm();
+    EXPECT_LE((mn - mn.transpose()).norm(), 1e-12 * scale) << "cell " << c;
+    EXPECT_GT((bagi - bagi.transpose()).norm(), 1e-6 * scale) << "cell " << c;  // the test has teeth
+    EXPECT_LE((g[StressFormula::de_saxce][c] - g[StressFormula::modified_de_saxce][c]).norm(), 1e-12 * scale)
+        << "cell " << c;
+    EXPECT_EQ(g[StressFormula::modified_de_saxce][c], mn);
+    // Nicot (5) removes the same inertial terms from Weber's internal sum.
+    EXPECT_LE(((g[StressFormula::nicot][c] - g[StressFormula::weber][c]) - (mn - bagi)).norm(),
+              1e-12 * scale);
+  }
+}
+
+TEST(GridStress, LoneSpinningSphereGivesTheRigidBodyHoopStress) {
+  // No contacts: the only stress in the grain is what holds it together against the
+  // centripetal acceleration, V sigma = -integral rho a (x) y dV = (m r^2 / 5)(|w|^2 1 - w w^T).
+  SceneConfig s = test::bare_scene(1e-5);
+  s.effects.rotation = true;
+  s.effects.friction = true;
+  ParticleStore p;
+  const double r = 5e-3;
+  const Vec3 w(30.0, -20.0, 100.0);
+  p.add_sphere(0, r, 2650, Vec3(1.7, -0.4, 2.0), Vec3(0.1, 0, 0), w);
+  Simulation sim(s, p, {});
+  sim.request_contacts();
+  sim.step();
+  RegularGrid box;
+  box.lo = Vec3(1.6, -0.5, 1.9);
+  box.hi = Vec3(1.8, -0.3, 2.1);
+  const GridStress g = grid_stress(sim.particles(), sim.contacts(), box, {sim.gravity(), true});
+  const double theta = sim.particles().mass(0) * r * r / 5.0;
+  const Mat3 expected = theta * (w.squaredNorm() * Mat3::Identity() - w * w.transpose()) / box.cell_volume();
+  for (StressFormula f : {StressFormula::nicot, StressFormula::modified_nicot,
+                          StressFormula::modified_de_saxce, StressFormula::de_saxce}) {
+    EXPECT_LE((g[f][0] - expected).norm(), 1e-14 * expected.norm()) << name_of(f) << "\n" << g[f][0];
+  }
+  EXPECT_EQ(g[StressFormula::bagi][0], Mat3::Zero());
+  EXPECT_GT(expected(0, 0), 0.0);  // tension across the spin axis
+  EXPECT_NEAR(g.solid_fraction[0], 4.0 / 3.0 * M_PI * r * r * r / box.cell_volume(), 1e-15);
 }
