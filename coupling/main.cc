@@ -2,6 +2,7 @@
 // plain structs to the DEM engine (STYLE.md section 4).
 #include <mpi.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -10,6 +11,7 @@
 #include "coupling/scene_input.h"
 #include "dem/core/error.h"
 #include "dem/deposition.h"
+#include "dem/stress/asymmetry.h"
 #include "dem/time_step.h"
 
 namespace {
@@ -94,8 +96,30 @@ int run(int argc, char** argv) {
               r.bed.particles_outside);
   std::printf("  energy: kinetic/released %.3e, balance error %.3e\n", r.kinetic_to_released,
               r.energy_balance_error);
-  std::printf("  results: %s/{summary.json,time_series.csv,particles.xdmf,snapshots/}\n",
-              in.output.folder.c_str());
+  if (r.final_stress) {
+    const dem::GridStress& g = *r.final_stress;
+    const dem::RegularGrid& grid = r.final_grid;
+    std::printf("  grid stress (%d x %d x %d cells up to z = %.4f m), final state:\n", grid.n[0], grid.n[1],
+                grid.n[2], grid.hi.z());
+    for (dem::StressFormula f : in.output.grid_stress.formulas) {
+      double max_rai = 0.0, floor_szz = 0.0;
+      int floor_cells = 0;
+      for (int c = 0; c < grid.num_cells(); ++c) {
+        if (g.particles[c] == 0) continue;
+        max_rai = std::max(max_rai, dem::relative_asymmetry_index(g[f][c]));
+        if (c < grid.n[0] * grid.n[1]) {
+          floor_szz += g[f][c](2, 2);
+          ++floor_cells;
+        }
+      }
+      std::printf("    %-18s max RAI %.3e %%, mean sigma_zz of the bottom layer %.6g Pa\n",
+                  std::string(dem::name_of(f)).c_str(), 100.0 * max_rai,
+                  floor_cells ? floor_szz / floor_cells : 0.0);
+    }
+  }
+  std::printf("  results: %s/{summary.json,time_series.csv,particles.xdmf,snapshots/%s}\n",
+              in.output.folder.c_str(),
+              r.final_stress ? ",grid_stress.csv,grid_stress.xdmf,grid_stress/" : "");
   return 0;
 }
 

@@ -100,6 +100,20 @@ const std::vector<ParameterSpec>& parameter_schema() {
        "Simulated time between HDF5 snapshots; 0 = first and last only."},
       {"Output", "time series interval", "0.002", K::real, 0.0, 1e6, "", "s",
        "Simulated time between rows of time_series.csv."},
+
+      {"Stress", "formulas", "weber, drescher, bagi, de saxce, nicot, modified nicot, modified de saxce",
+       K::multiple_selection, 0, 0, "weber|drescher|bagi|de saxce|nicot|modified nicot|modified de saxce",
+       "-",
+       "Average-stress formulas written per grid cell (paper eqs. 1-7, docs/stress.md), comma-separated. "
+       "Empty: no grid stress."},
+      {"Stress", "grid cells", "3, 3, 4", K::integer3, 1, 1000, "", "-",
+       "Cells of the stress grid along x, y, z."},
+      {"Stress", "box", "auto", K::text, 0, 0, "", "m",
+       "Box of the stress grid as 'x0, y0, z0, x1, y1, z1', or 'auto': the container footprint from the "
+       "floor to the top of the highest grain at each evaluation."},
+      {"Stress", "interval", "0", K::real, 0.0, 1e6, "", "s",
+       "Simulated time between grid-stress evaluations; 0 = with each snapshot. The final state is always "
+       "evaluated."},
   };
   return schema;
 }

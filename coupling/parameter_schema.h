@@ -8,7 +8,7 @@
 
 namespace upgrain::coupling {
 
-enum class Kind { real, integer, boolean, selection, text, vector3 };
+enum class Kind { real, integer, boolean, selection, multiple_selection, text, vector3, integer3 };
 
 struct ParameterSpec {
   std::string section;  // one subsection level
@@ -17,7 +17,7 @@ struct ParameterSpec {
   Kind kind;
   double min = 0.0;  // inclusive bounds for real and integer kinds
   double max = 0.0;
-  std::string choices;  // "a|b" for selection
+  std::string choices;  // "a|b" for selection and multiple_selection
   std::string unit;     // SI unit, or "-" for dimensionless
   std::string doc;
 };

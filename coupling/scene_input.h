@@ -15,6 +15,7 @@ struct SceneInput {
   dem::io::OutputOptions output;
   dem::RunControl control;
   bool overwrite = false;
+  std::string stress_box = "auto";  // Stress/box as written; applied by validate_scene
 };
 
 // Reads a .prm file: syntax and entry names first (prm_syntax.h), values by deal.II's
@@ -26,9 +27,9 @@ SceneInput read_scene_file(const std::string& filename);
 SceneInput default_scene();
 
 // Checks that involve several parameters or the file system: gradation curve, the fill
-// fits the container, the time step is safe, the output folder holds no earlier results.
-// Nothing is written.
-void validate_scene(const SceneInput& input);
+// fits the container, the time step is safe, the stress grid's box, the output folder
+// holds no earlier results. Fills in what depends on several entries. Nothing is written.
+void validate_scene(SceneInput& input);
 
 // The annotated default parameter file, and its Markdown form for docs/parameters.md.
 void print_default_parameters(std::ostream& out);

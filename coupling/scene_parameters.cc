@@ -2,7 +2,9 @@
 // declarations and the extraction of values into plain structs.
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/patterns.h>
+#include <deal.II/base/utilities.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -46,6 +48,16 @@ void declare(ParameterHandler& prm) {
         case Kind::vector3:
           prm.declare_entry(p.name, p.default_value,
                             Patterns::List(Patterns::Double(p.min, p.max), 3, 3, ","), documentation(p));
+          break;
+        case Kind::multiple_selection:
+          prm.declare_entry(p.name, p.default_value, Patterns::MultipleSelection(p.choices),
+                            documentation(p));
+          break;
+        case Kind::integer3:
+          prm.declare_entry(
+              p.name, p.default_value,
+              Patterns::List(Patterns::Integer(static_cast<int>(p.min), static_cast<int>(p.max)), 3, 3, ","),
+              documentation(p));
           break;
       }
     }
@@ -144,6 +156,22 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   in.output.snapshot_interval = prm.get_double("snapshot interval");
   in.output.series_interval = prm.get_double("time series interval");
   prm.leave_subsection();
+
+  prm.enter_subsection("Stress");
+  dem::io::GridStressOptions& gs = in.output.grid_stress;
+  for (const std::string& name : dealii::Utilities::split_string_list(prm.get("formulas"), ',')) {
+    const auto f = dem::stress_formula_from_name(name);
+    if (f && std::find(gs.formulas.begin(), gs.formulas.end(), *f) == gs.formulas.end())
+      gs.formulas.push_back(*f);
+  }
+  {
+    const auto n = Patterns::Tools::Convert<std::vector<int>>::to_value(
+        prm.get("grid cells"), Patterns::List(Patterns::Integer(1, 1000), 3, 3, ","));
+    for (int d = 0; d < 3; ++d) gs.cells[d] = n[d];
+  }
+  in.stress_box = prm.get("box");
+  gs.interval = prm.get_double("interval");
+  prm.leave_subsection();
   return in;
 }
 
@@ -232,6 +260,12 @@ void print_parameters_markdown(std::ostream& out) {
           break;
         case Kind::vector3:
           r << "three reals in [" << p.min << ", " << p.max << "]";
+          break;
+        case Kind::multiple_selection:
+          r << "comma-separated subset of " << p.choices;
+          break;
+        case Kind::integer3:
+          r << "three integers in [" << p.min << ", " << p.max << "]";
           break;
       }
       out << "| `" << p.name << "` | `" << p.default_value << "` | " << r.str() << " | " << p.unit << " | "

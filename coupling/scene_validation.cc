@@ -1,3 +1,4 @@
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 
@@ -9,9 +10,48 @@
 
 namespace upgrain::coupling {
 
-void validate_scene(const SceneInput& in) {
+namespace {
+
+// Stress/box: "auto", or six reals x0, y0, z0, x1, y1, z1 with x1 > x0 etc.
+void apply_stress_box(SceneInput& in, const std::string& where) {
+  dem::io::GridStressOptions& gs = in.output.grid_stress;
+  std::string text = in.stress_box;
+  text.erase(0, text.find_first_not_of(" \t"));
+  text.erase(text.find_last_not_of(" \t") + 1);
+  if (text == "auto" || text.empty()) {
+    gs.fixed_box = false;
+    return;
+  }
+  std::vector<double> v;
+  std::istringstream list(text);
+  std::string item;
+  while (std::getline(list, item, ',')) {
+    std::istringstream one(item);
+    double x = 0.0;
+    std::string rest;
+    if (!(one >> x) || (one >> rest) || !std::isfinite(x))
+      throw Error(where + "Stress/box = '" + in.stress_box + "': '" + item +
+                  "' is not a number; give 'auto' or 'x0, y0, z0, x1, y1, z1' in m");
+    v.push_back(x);
+  }
+  if (v.size() != 6)
+    throw Error(where + "Stress/box = '" + in.stress_box + "' has " + std::to_string(v.size()) +
+                " numbers; give 'auto' or six: 'x0, y0, z0, x1, y1, z1' in m");
+  gs.fixed_box = true;
+  gs.lo = dem::Vec3(v[0], v[1], v[2]);
+  gs.hi = dem::Vec3(v[3], v[4], v[5]);
+  for (int d = 0; d < 3; ++d)
+    if (!(gs.hi[d] > gs.lo[d]))
+      throw Error(where + "Stress/box = '" + in.stress_box + "' is empty along " + "xyz"[d] +
+                  ": the upper bound must exceed the lower");
+}
+
+}  // namespace
+
+void validate_scene(SceneInput& in) {
   const dem::SceneConfig& s = in.scene;
   const std::string where = in.source + ": ";
+  apply_stress_box(in, where);
   try {
     if (!s.particles.gradation.empty()) dem::validate_gradation(s.particles.gradation);
   } catch (const Error& e) {

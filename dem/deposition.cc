@@ -36,12 +36,30 @@ DepositionResult run_deposition(const SceneConfig& scene, const RunControl& cont
     recorder->write_snapshot(sim);
   }
 
+  // Grid stress needs the contacts of a force evaluation, which are recorded on request
+  // before the step that computes them (Simulation::request_contacts()).
   DepositionResult r;
+  std::optional<io::GridStressRecorder> stress_out;
+  const bool stress_on = output && output->grid_stress.enabled();
+  if (stress_on) stress_out.emplace(output->folder, output->grid_stress.formulas);
+  const long stress_every =
+      stress_on ? (output->grid_stress.interval > 0.0 ? every(output->grid_stress.interval) : snapshot_every)
+                : 0;
+  auto stress_due = [&](long s) { return stress_on && (s % stress_every == 0 || s == total); };
+  auto evaluate_stress = [&] {
+    r.final_grid = stress_grid(output->grid_stress, sim.particles(), scene.container);
+    r.final_stress = grid_stress(sim.particles(), sim.contacts(), r.final_grid,
+                                 {sim.gravity(), sim.integrates_rotation()});
+    stress_out->record(r.final_grid, *r.final_stress, sim.time(), sim.step_count());
+  };
+
   const auto t0 = Clock::now();
   auto last_report = t0;
   const double pe0 = sim.initial_energy().potential;
   for (long s = 1; s <= total; ++s) {
+    if (stress_due(s)) sim.request_contacts();
     sim.step();
+    if (stress_due(s)) evaluate_stress();
     const bool series_now = (s % series_every == 0) || s == total;
     if (series_now) {
       if (recorder) recorder->record_series(sim);
@@ -63,7 +81,19 @@ DepositionResult run_deposition(const SceneConfig& scene, const RunControl& cont
         last_report = now;
       }
     }
-    if (r.stopped_at_rest) break;
+    if (r.stopped_at_rest) {
+      if (stress_on && !stress_due(s)) {
+        // One more step, recorded, so the final state has its stress.
+        sim.request_contacts();
+        sim.step();
+        evaluate_stress();
+        if (recorder) {
+          recorder->record_series(sim);
+          recorder->write_snapshot(sim);
+        }
+      }
+      break;
+    }
   }
   sim.check_finite();
   r.wall_seconds = std::chrono::duration<double>(Clock::now() - t0).count();

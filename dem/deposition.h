@@ -4,6 +4,8 @@
 #include <functional>
 #include <optional>
 
+#include "dem/io/grid_stress_output.h"
+
 #include "dem/analysis/bed_state.h"
 #include "dem/io/run_recorder.h"
 #include "dem/simulation.h"
@@ -34,6 +36,9 @@ struct DepositionResult {
   StepDiagnostics diagnostics;
   BedState bed;
   bool stopped_at_rest = false;
+  // The last grid-stress evaluation, when the output asked for one (for in-memory use).
+  std::optional<GridStress> final_stress;
+  RegularGrid final_grid;
 };
 
 DepositionResult run_deposition(const SceneConfig& scene, const RunControl& control,

@@ -43,6 +43,8 @@ class Simulation {
   [[nodiscard]] long step_count() const { return step_; }
   [[nodiscard]] double time_step() const { return dt_; }
   [[nodiscard]] Vec3 gravity() const { return g_; }
+  // Whether rotation is integrated (the rotation effect, and some friction to drive it).
+  [[nodiscard]] bool integrates_rotation() const { return rotation_; }
   // Any direction of gravity (tests: an incline is a tilted gravity over a flat floor).
   // Resets the energy reference, since the potential energy is -m g.x.
   void set_gravity(const Vec3& g);

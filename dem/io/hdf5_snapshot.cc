@@ -8,52 +8,15 @@
 
 #include "dem/core/error.h"
 #include "dem/io/atomic_file.h"
+#include "dem/io/hdf5_util.h"
 
 namespace upgrain::dem::io {
 
 namespace {
 
-// Closes an HDF5 handle when it goes out of scope.
-class Handle {
- public:
-  Handle(hid_t h, herr_t (*close)(hid_t), const std::string& what) : h_(h), close_(close) {
-    if (h_ < 0) throw Error("HDF5: cannot " + what);
-  }
-  ~Handle() { close_(h_); }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  operator hid_t() const { return h_; }  // NOLINT(google-explicit-constructor)
-
- private:
-  hid_t h_;
-  herr_t (*close_)(hid_t);
-};
-
-void write_dataset(hid_t group, const char* name, hid_t mem_type, hid_t file_type, const void* data,
-                   hsize_t rows, hsize_t cols) {
-  const hsize_t dims[2] = {rows, cols};
-  Handle space(H5Screate_simple(cols == 1 ? 1 : 2, dims, nullptr), H5Sclose, "create a dataspace");
-  Handle set(H5Dcreate2(group, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
-             std::string("create dataset ") + name);
-  if (rows > 0 && H5Dwrite(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
-    throw Error(std::string("HDF5: cannot write dataset ") + name);
-}
-
-void write_attribute(hid_t obj, const char* name, double value) {
-  Handle space(H5Screate(H5S_SCALAR), H5Sclose, "create a dataspace");
-  Handle attr(H5Acreate2(obj, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
-              std::string("create attribute ") + name);
-  H5Awrite(attr, H5T_NATIVE_DOUBLE, &value);
-}
-
-void write_attribute(hid_t obj, const char* name, const std::string& value) {
-  Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "copy a string type");
-  H5Tset_size(type, std::max<std::size_t>(value.size(), 1));
-  Handle space(H5Screate(H5S_SCALAR), H5Sclose, "create a dataspace");
-  Handle attr(H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
-              std::string("create attribute ") + name);
-  H5Awrite(attr, type, value.c_str());
-}
+using hdf5::Handle;
+using hdf5::write_attribute;
+using hdf5::write_dataset;
 
 std::vector<double> flatten(const std::vector<Vec3>& v, const std::vector<std::size_t>& order) {
   std::vector<double> out(3 * order.size());

@@ -1,5 +1,6 @@
 #include "dem/io/run_recorder.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
@@ -17,6 +18,21 @@ constexpr const char* kSeriesHeader =
     "elastic_tangential,dissipated_damping,dissipated_friction,tangential_stiffness_change,total,balance_"
     "error,"
     "particle_contacts,wall_contacts,max_overlap_ratio,neighbor_builds\n";
+}
+
+RegularGrid stress_grid(const GridStressOptions& options, const ParticleStore& p, const BoxContainer& box) {
+  RegularGrid g;
+  for (int d = 0; d < 3; ++d) g.n[d] = options.cells[d];
+  if (options.fixed_box) {
+    g.lo = options.lo;
+    g.hi = options.hi;
+    return g;
+  }
+  double top = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) top = std::max(top, p.x[i].z() + p.radius[i]);
+  g.lo = Vec3::Zero();
+  g.hi = Vec3(box.lx, box.ly, top > 0.0 ? top : box.height);
+  return g;
 }
 
 RunRecorder::RunRecorder(OutputOptions options) : options_(std::move(options)) {

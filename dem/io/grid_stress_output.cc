@@ -1,0 +1,168 @@
+#include "dem/io/grid_stress_output.h"
+
+#include <cstdio>
+#include <sstream>
+
+#include "dem/core/error.h"
+#include "dem/io/atomic_file.h"
+#include "dem/io/hdf5_util.h"
+#include "dem/stress/asymmetry.h"
+
+namespace upgrain::dem::io {
+
+namespace {
+
+constexpr const char* kSignConvention =
+    "sigma_ij = (1/V) sum f_i l_j: first index the force, second the branch (t_i = sigma_ij n_j); "
+    "compression negative; Pa";
+constexpr const char* kVolume = "V = grid cell volume; grains belong to the cell of their centroid";
+
+}  // namespace
+
+std::string field_name(StressFormula f) {
+  std::string s(name_of(f));
+  for (char& c : s)
+    if (c == ' ') c = '_';
+  return s;
+}
+
+void write_grid_stress(const std::filesystem::path& path, const RegularGrid& grid, const GridStress& stress,
+                       const std::vector<StressFormula>& formulas, double time, long step) {
+  using namespace hdf5;
+  const auto cells = static_cast<hsize_t>(grid.num_cells());
+  AtomicFile target(path);
+  {
+    Handle file(H5Fcreate(target.temporary_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
+                "create " + target.temporary_path().string());
+    write_attribute(file, "time", time);
+    write_attribute(file, "step", static_cast<double>(step));
+    write_attribute(file, "sign_convention", kSignConvention);
+    write_attribute(file, "volume", kVolume);
+    {
+      Handle g(create_group(file, "grid"), H5Gclose, "create group grid");
+      write_dataset(g, "lo", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, grid.lo.data(), 3, 1);
+      write_dataset(g, "hi", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, grid.hi.data(), 3, 1);
+      write_dataset(g, "n", H5T_NATIVE_INT, H5T_STD_I32LE, grid.n, 3, 1);
+      write_attribute(g, "cell_volume", stress.cell_volume);
+    }
+    {
+      Handle g(create_group(file, "cells"), H5Gclose, "create group cells");
+      const struct {
+        const char* name;
+        const std::vector<long>* data;
+      } counts[] = {{"particles", &stress.particles},
+                    {"internal_contacts", &stress.internal_contacts},
+                    {"external_contacts", &stress.external_contacts},
+                    {"wall_contacts", &stress.wall_contacts}};
+      for (const auto& c : counts)
+        write_dataset(g, c.name, H5T_NATIVE_LONG, H5T_STD_I64LE, c.data->data(), cells, 1);
+      write_dataset(g, "solid_fraction", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, stress.solid_fraction.data(),
+                    cells, 1);
+    }
+    Handle sg(create_group(file, "stress"), H5Gclose, "create group stress");
+    for (StressFormula f : formulas) {
+      Handle g(create_group(sg, field_name(f)), H5Gclose, "create group " + field_name(f));
+      std::vector<double> tensor(9 * cells), rai(cells), szz(cells);
+      for (hsize_t c = 0; c < cells; ++c) {
+        const Mat3& s = stress[f][c];
+        for (int e = 0; e < 9; ++e) tensor[9 * c + e] = s(e / 3, e % 3);
+        rai[c] = relative_asymmetry_index(s);
+        szz[c] = s(2, 2);
+      }
+      write_dataset(g, "tensor", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, tensor.data(), cells, 9);
+      write_dataset(g, "rai", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, rai.data(), cells, 1);
+      write_dataset(g, "sigma_zz", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, szz.data(), cells, 1);
+    }
+  }
+  target.commit();
+}
+
+GridStressRecorder::GridStressRecorder(std::filesystem::path folder, std::vector<StressFormula> formulas)
+    : folder_(std::move(folder)), formulas_(std::move(formulas)) {
+  std::error_code ec;
+  std::filesystem::create_directories(folder_ / "grid_stress", ec);
+  if (ec) throw Error("cannot create " + (folder_ / "grid_stress").string() + ": " + ec.message());
+}
+
+void GridStressRecorder::record(const RegularGrid& grid, const GridStress& stress, double time, long step) {
+  char name[64];
+  std::snprintf(name, sizeof name, "grid_stress_%09ld.h5", step);
+  const std::string rel = (std::filesystem::path("grid_stress") / name).string();
+  write_grid_stress(folder_ / rel, grid, stress, formulas_, time, step);
+  entries_.push_back({rel, time, step, grid});
+  for (int c = 0; c < grid.num_cells(); ++c) {
+    const int i = c % grid.n[0], j = (c / grid.n[0]) % grid.n[1], k = c / (grid.n[0] * grid.n[1]);
+    const Vec3 x = grid.cell_centre(c);
+    for (StressFormula f : formulas_) {
+      const Mat3& s = stress[f][c];
+      char line[768];
+      std::snprintf(
+          line, sizeof line,
+          "%.9g,%ld,%d,%d,%d,%d,%.17g,%.17g,%.17g,%s,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%."
+          "17g,%.17g,%ld,%ld,%ld,%ld,%.17g\n",
+          time, step, c, i, j, k, x.x(), x.y(), x.z(), field_name(f).c_str(), s(0, 0), s(0, 1), s(0, 2),
+          s(1, 0), s(1, 1), s(1, 2), s(2, 0), s(2, 1), s(2, 2), relative_asymmetry_index(s),
+          stress.particles[c], stress.internal_contacts[c], stress.external_contacts[c],
+          stress.wall_contacts[c], stress.solid_fraction[c]);
+      rows_.emplace_back(line);
+    }
+  }
+  flush();
+}
+
+void GridStressRecorder::flush() const {
+  std::ostringstream csv;
+  csv << "# Upgrain grid stress. " << kSignConvention << ". " << kVolume
+      << ". rai = relative asymmetry index (fraction, 2-norm).\n"
+         "time,step,cell,i,j,k,x,y,z,formula,s_xx,s_xy,s_xz,s_yx,s_yy,s_yz,s_zx,s_zy,s_zz,rai,"
+         "particles,internal_contacts,external_contacts,wall_contacts,solid_fraction\n";
+  for (const auto& r : rows_) csv << r;
+  write_text_atomically(folder_ / "grid_stress.csv", csv.str());
+
+  // XDMF: a 3DCoRectMesh per evaluation (dimensions, origin and spacing in z, y, x order),
+  // cell-centred fields.
+  std::ostringstream x;
+  x.precision(17);
+  x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
+    << "  <Grid Name=\"grid_stress\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (const GridStressEntry& e : entries_) {
+    const RegularGrid& g = e.grid;
+    const Vec3 h = (g.hi - g.lo).cwiseQuotient(Vec3(g.n[0], g.n[1], g.n[2]));
+    auto item = [&](const std::string& path, int comps, const char* type = "Float") {
+      std::ostringstream i;
+      i << "<DataItem Dimensions=\"" << g.n[2] << " " << g.n[1] << " " << g.n[0];
+      if (comps > 1) i << " " << comps;
+      i << "\" NumberType=\"" << type << "\" Precision=\"8\" Format=\"HDF\">" << e.file << ":" << path
+        << "</DataItem>";
+      return i.str();
+    };
+    auto attribute = [&](const std::string& name, const char* kind, const std::string& path, int comps,
+                         const char* type = "Float") {
+      x << "    <Attribute Name=\"" << name << "\" AttributeType=\"" << kind << "\" Center=\"Cell\">"
+        << item(path, comps, type) << "</Attribute>\n";
+    };
+    x << "   <Grid Name=\"step_" << e.step << "\" GridType=\"Uniform\">\n"
+      << "    <Time Value=\"" << e.time << "\"/>\n"
+      << "    <Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"" << g.n[2] + 1 << " " << g.n[1] + 1 << " "
+      << g.n[0] + 1 << "\"/>\n"
+      << "    <Geometry GeometryType=\"ORIGIN_DXDYDZ\">\n"
+      << "     <DataItem Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">" << g.lo.z()
+      << " " << g.lo.y() << " " << g.lo.x() << "</DataItem>\n"
+      << "     <DataItem Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">" << h.z()
+      << " " << h.y() << " " << h.x() << "</DataItem>\n"
+      << "    </Geometry>\n";
+    attribute("particles", "Scalar", "/cells/particles", 1, "Int");
+    attribute("solid_fraction", "Scalar", "/cells/solid_fraction", 1);
+    for (StressFormula f : formulas_) {
+      const std::string n = field_name(f);
+      attribute(n, "Tensor", "/stress/" + n + "/tensor", 9);
+      attribute(n + "_sigma_zz", "Scalar", "/stress/" + n + "/sigma_zz", 1);
+      attribute(n + "_rai", "Scalar", "/stress/" + n + "/rai", 1);
+    }
+    x << "   </Grid>\n";
+  }
+  x << "  </Grid>\n </Domain>\n</Xdmf>\n";
+  write_text_atomically(folder_ / "grid_stress.xdmf", x.str());
+}
+
+}  // namespace upgrain::dem::io

@@ -1,0 +1,45 @@
+#include "dem/io/hdf5_util.h"
+
+#include <algorithm>
+
+#include "dem/core/error.h"
+
+namespace upgrain::dem::io::hdf5 {
+
+Handle::Handle(hid_t h, herr_t (*close)(hid_t), const std::string& what) : h_(h), close_(close) {
+  if (h_ < 0) throw Error("HDF5: cannot " + what);
+}
+
+void write_dataset(hid_t group, const char* name, hid_t mem_type, hid_t file_type, const void* data,
+                   hsize_t rows, hsize_t cols) {
+  const hsize_t dims[2] = {rows, cols};
+  Handle space(H5Screate_simple(cols == 1 ? 1 : 2, dims, nullptr), H5Sclose, "create a dataspace");
+  Handle set(H5Dcreate2(group, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
+             std::string("create dataset ") + name);
+  if (rows > 0 && H5Dwrite(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
+    throw Error(std::string("HDF5: cannot write dataset ") + name);
+}
+
+void write_attribute(hid_t obj, const char* name, double value) {
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose, "create a dataspace");
+  Handle attr(H5Acreate2(obj, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+              std::string("create attribute ") + name);
+  H5Awrite(attr, H5T_NATIVE_DOUBLE, &value);
+}
+
+void write_attribute(hid_t obj, const char* name, const std::string& value) {
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "copy a string type");
+  H5Tset_size(type, std::max<std::size_t>(value.size(), 1));
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose, "create a dataspace");
+  Handle attr(H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+              std::string("create attribute ") + name);
+  H5Awrite(attr, type, value.c_str());
+}
+
+hid_t create_group(hid_t parent, const std::string& name) {
+  const hid_t g = H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  if (g < 0) throw Error("HDF5: cannot create group " + name);
+  return g;
+}
+
+}  // namespace upgrain::dem::io::hdf5
