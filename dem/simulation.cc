@@ -116,6 +116,7 @@ EnergyBalance Simulation::energy() const {
   e.dissipated_damping = dissipated_damping_;
   e.dissipated_friction = dissipated_friction_;
   e.tangential_stiffness_change = stiffness_change_;
+  e.removed_by_relaxation = removed_by_relaxation_;
   return e;
 }
 

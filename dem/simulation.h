@@ -49,6 +49,10 @@ class Simulation {
   // Resets the energy reference, since the potential energy is -m g.x.
   void set_gravity(const Vec3& g);
 
+  // Books kinetic energy that a caller removed by changing velocities (relaxation), so the
+  // energy balance stays closed.
+  void account_removed_kinetic_energy(double joules) { removed_by_relaxation_ += joules; }
+
   [[nodiscard]] EnergyBalance energy() const;
   // (E_total(t) - E_total(0)) / (initial kinetic energy + |potential energy released|).
   [[nodiscard]] double energy_balance_error() const;
@@ -81,6 +85,7 @@ class Simulation {
   double dissipated_damping_ = 0.0;
   double dissipated_friction_ = 0.0;
   double stiffness_change_ = 0.0;
+  double removed_by_relaxation_ = 0.0;
   EnergyBalance e0_;
 };
 

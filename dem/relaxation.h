@@ -1,0 +1,36 @@
+#pragma once
+// Relaxation of a granular assembly to static equilibrium by FIRE, the fast inertial
+// relaxation engine (Bitzek et al., Phys. Rev. Lett. 97, 170201, 2006): the dynamics of the
+// run itself (same contact law, same time step) with velocities steered along the force
+// and zeroed whenever the power turns negative. Used to bring beds to the rest state in
+// which the paper's symmetry results hold (docs/stress.md, "Relaxed beds").
+#include "dem/simulation.h"
+
+namespace upgrain::dem {
+
+struct RelaxationOptions {
+  // Stop when every grain's out-of-balance force |F + m g| is below this fraction of its
+  // weight and its contact torque below this fraction of m g r.
+  double force_tolerance = 1e-9;
+  long max_steps = 200000;
+  // FIRE constants (Bitzek et al. 2006, Table I, without the time-step adaptation: the
+  // DEM step is already at its stability limit).
+  double alpha_start = 0.1;
+  double alpha_shrink = 0.99;
+  int delay_steps = 5;
+};
+
+struct RelaxationResult {
+  long steps = 0;
+  bool converged = false;
+  double max_force_residual = 0.0;   // max |F + m g| / (m |g|) over grains
+  double max_torque_residual = 0.0;  // max |T| / (m |g| r) over grains
+  double kinetic_removed = 0.0;      // J, booked in the run's energy balance
+};
+
+// Residuals of the current state (no step taken).
+RelaxationResult equilibrium_residual(const Simulation& sim);
+
+RelaxationResult relax_to_equilibrium(Simulation& sim, const RelaxationOptions& options = {});
+
+}  // namespace upgrain::dem
