@@ -5,6 +5,9 @@
 //   bench_dense_bed run bed.data [steps] time `steps` steps (default 2000) from the file and
 //                                        print particle-steps/s, contacts per particle and
 //                                        peak memory per particle
+//   bench_dense_bed stress bed.data OUT [steps [evaluations]]
+//                                        cost of grid stress per contact and its share of a
+//                                        run that evaluates it every 1,000 steps
 // Benchmark scene: r = 1.5 mm, 2,650 kg/m^3, E = 29 GPa, nu = 0.25, mu = 0.5 (particles
 // and walls), zeta = 0.5, dt = 1e-6 s, gravity on.
 #include <sys/resource.h>
@@ -19,7 +22,10 @@
 #include <sstream>
 #include <string>
 
+#include <memory>
+
 #include "dem/deposition.h"
+#include "dem/io/grid_stress_output.h"
 #include "dem/scene/fill.h"
 #include "dem/simulation.h"
 
@@ -123,12 +129,12 @@ int settle(long n, const std::string& path) {
   return 0;
 }
 
-int run(const std::string& path, long steps) {
-  const double baseline = current_rss_bytes();  // the process before any particle data
+// Reads a bed written by `settle` into a simulation with the benchmark material.
+std::unique_ptr<Simulation> load_bed(const std::string& path) {
   std::ifstream in(path);
   if (!in) {
     std::fprintf(stderr, "cannot open %s\n", path.c_str());
-    return 1;
+    return nullptr;
   }
   std::string line;
   long n = 0;
@@ -145,11 +151,22 @@ int run(const std::string& path, long steps) {
   double d, rho, x, y, z;
   while (in >> id >> type >> d >> rho >> x >> y >> z)
     p.add_sphere(id - 1, 0.5 * d, rho, Vec3(x, y, z), Vec3::Zero(), Vec3::Zero());
-  Simulation sim(s, std::move(p));
+  return std::make_unique<Simulation>(s, std::move(p));
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+int run(const std::string& path, long steps) {
+  const double baseline = current_rss_bytes();  // the process before any particle data
+  std::unique_ptr<Simulation> sim = load_bed(path);
+  if (!sim) return 1;
+  const auto n = static_cast<long>(sim->particles().size());
   const auto t0 = std::chrono::steady_clock::now();
-  sim.run(steps);
-  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const auto d2 = sim.diagnostics();
+  sim->run(steps);
+  const double secs = seconds_since(t0);
+  const auto d2 = sim->diagnostics();
   std::printf(
       "upgrain particles %ld steps %ld seconds %.4f particle_steps_per_second %.4e "
       "contacts_per_particle %.3f wall_contacts %ld peak_bytes_per_particle %.0f "
@@ -159,12 +176,67 @@ int run(const std::string& path, long steps) {
   return 0;
 }
 
+// Cost of grid stress (issue 7): `steps` plain steps against `evaluations` steps that
+// record their contacts, each followed by all seven formulas on a 3 x 3 x 4 grid and the
+// HDF5 + CSV + XDMF output of the result, all in one run. Prints the cost per contact and
+// the share of a run that evaluates stress every 1,000 steps.
+int stress(const std::string& path, long steps, long evaluations, const std::string& folder) {
+  std::unique_ptr<Simulation> sim = load_bed(path);
+  if (!sim) return 1;
+  const auto n = static_cast<double>(sim->particles().size());
+  sim->run(200);  // warm-up: lists built, caches hot
+  auto t0 = std::chrono::steady_clock::now();
+  sim->run(steps);
+  const double plain = seconds_since(t0) / static_cast<double>(steps);
+
+  io::GridStressOptions options;
+  options.formulas.assign({StressFormula::weber, StressFormula::drescher, StressFormula::bagi,
+                           StressFormula::de_saxce, StressFormula::nicot, StressFormula::modified_nicot,
+                           StressFormula::modified_de_saxce});
+  io::GridStressRecorder recorder(folder, options.formulas);
+  double recorded = 0.0, evaluate = 0.0, write = 0.0;
+  long contacts = 0;
+  for (long e = 0; e < evaluations; ++e) {
+    sim->run(10);
+    t0 = std::chrono::steady_clock::now();
+    sim->request_contacts();
+    sim->step();
+    const auto t1 = std::chrono::steady_clock::now();
+    const RegularGrid grid = io::stress_grid(options, sim->particles(), sim->scene().container);
+    const GridStress g =
+        grid_stress(sim->particles(), sim->contacts(), grid, {sim->gravity(), sim->integrates_rotation()});
+    const auto t2 = std::chrono::steady_clock::now();
+    recorder.record(grid, g, sim->time(), sim->step_count());
+    write += seconds_since(t2);
+    evaluate += std::chrono::duration<double>(t2 - t1).count();
+    recorded += std::chrono::duration<double>(t1 - t0).count();
+    contacts += static_cast<long>(sim->contacts().size());
+  }
+  const double k = static_cast<double>(evaluations);
+  recorded /= k;
+  evaluate /= k;
+  write /= k;
+  const double per_contact = evaluate / (static_cast<double>(contacts) / k);
+  const double extra = (recorded - plain) + evaluate;
+  std::printf(
+      "upgrain stress particles %.0f contacts %.0f plain_step_s %.4e recorded_step_s %.4e evaluation_s %.4e "
+      "evaluation_ns_per_contact %.1f output_s %.4e share_every_1000_steps_compute %.4f%% "
+      "share_every_1000_steps_with_output %.4f%%\n",
+      n, static_cast<double>(contacts) / k, plain, recorded, evaluate, 1e9 * per_contact, write,
+      100.0 * extra / (1000.0 * plain), 100.0 * (extra + write) / (1000.0 * plain));
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const std::string mode = argc > 1 ? argv[1] : "";
   if (mode == "settle" && argc == 4) return settle(std::atol(argv[2]), argv[3]);
   if (mode == "run" && argc >= 3) return run(argv[2], argc > 3 ? std::atol(argv[3]) : 2000);
-  std::fprintf(stderr, "usage: bench_dense_bed settle N bed.data | run bed.data [steps]\n");
+  if (mode == "stress" && argc >= 4)
+    return stress(argv[2], argc > 4 ? std::atol(argv[4]) : 2000, argc > 5 ? std::atol(argv[5]) : 20, argv[3]);
+  std::fprintf(stderr,
+               "usage: bench_dense_bed settle N bed.data | run bed.data [steps] | stress bed.data OUT [steps "
+               "[evaluations]]\n");
   return 2;
 }
