@@ -9,6 +9,7 @@
 #include <string>
 
 #include "coupling/scene_input.h"
+#include "coupling/study.h"
 #include "dem/core/error.h"
 #include "dem/deposition.h"
 #include "dem/stress/asymmetry.h"
@@ -19,9 +20,12 @@ namespace {
 constexpr const char* kUsage =
     "Usage: upgrain [options] [scene.prm]\n"
     "\n"
-    "Runs a DEM deposition scene: spheres poured into an open-top box, with HDF5/XDMF\n"
-    "snapshots, an energy time series and a summary in the output folder. Without a file,\n"
-    "runs the built-in default scene (about 2,000 spheres, about a minute).\n"
+    "Runs a DEM deposition scene (spheres poured into an open-top box) and, unless\n"
+    "'Study/compare with continuum' is false, the DEM-vs-continuum study: grid stress,\n"
+    "the elastic column of the same container (deal.II), comparison tables, plots and a\n"
+    "report, all in the output folder. Without a file, runs the built-in default study\n"
+    "(about 2,000 spheres on a 3 x 3 x 4 grid, a few minutes). Under mpirun the\n"
+    "continuum solve uses every rank.\n"
     "\n"
     "Options:\n"
     "  -h, --help                    this text\n"
@@ -38,57 +42,15 @@ void print_progress(const upgrain::dem::Progress& p) {
   std::fflush(stdout);
 }
 
-int run(int argc, char** argv) {
+void print_deposition(const upgrain::coupling::SceneInput& in, const upgrain::dem::DepositionResult& r) {
   using namespace upgrain;
-  std::string file, output_override;
-  bool check_only = false;
-  for (int k = 1; k < argc; ++k) {
-    const std::string a = argv[k];
-    if (a == "-h" || a == "--help") {
-      std::cout << kUsage;
-      return 0;
-    } else if (a == "--print-parameters") {
-      coupling::print_default_parameters(std::cout);
-      return 0;
-    } else if (a == "--print-parameters-markdown") {
-      coupling::print_parameters_markdown(std::cout);
-      return 0;
-    } else if (a == "--check") {
-      check_only = true;
-    } else if (a == "--output") {
-      if (k + 1 >= argc) throw Error("--output needs a folder name");
-      output_override = argv[++k];
-    } else if (!a.empty() && a[0] == '-') {
-      throw Error("unknown option '" + a + "' (see upgrain --help)");
-    } else if (file.empty()) {
-      file = a;
-    } else {
-      throw Error("more than one scene file given ('" + file + "', '" + a + "')");
-    }
-  }
-  coupling::SceneInput in = file.empty() ? coupling::default_scene() : coupling::read_scene_file(file);
-  if (!output_override.empty()) {
-    in.output.folder = output_override;
-    coupling::validate_scene(in);
-  }
-  const dem::TimeStepEstimate ts = dem::estimate_time_step(in.scene);
-  std::printf("upgrain: %s\n  %ld spheres, time step %.3g s (safe %.3g s, %s-limited), end time %.3g s\n",
-              in.source.c_str(), in.scene.particles.count, in.scene.time_step, ts.safe_step,
-              ts.limiting.c_str(), in.scene.end_time);
-  if (check_only) {
-    std::printf("  scene is valid; nothing written (--check)\n");
-    return 0;
-  }
-  std::printf("  output folder: %s\n", in.output.folder.c_str());
-  dem::DepositionResult r;
-  try {
-    r = dem::run_deposition(in.scene, in.control, in.output, print_progress);
-  } catch (const Error& e) {
-    throw Error(in.source + ": " + e.what());
-  }
   std::printf("\n  done: %ld steps, %.3g s simulated in %.1f s (%.3g particle-steps/s)%s\n", r.steps,
               r.simulated_time, r.wall_seconds, r.particle_steps_per_second,
               r.stopped_at_rest ? ", stopped at rest" : "");
+  if (r.relaxation)
+    std::printf("  relaxed to static equilibrium: %ld FIRE steps, residual force %.2e, torque %.2e%s\n",
+                r.relaxation->steps, r.relaxation->max_force_residual, r.relaxation->max_torque_residual,
+                r.relaxation->converged ? "" : " (not converged: step limit)");
   std::printf("  bed: surface %.4f m, solid fraction %.4f, %.2f contacts per particle, %ld outside\n",
               r.bed.surface_height, r.bed.solid_fraction,
               2.0 * static_cast<double>(r.diagnostics.particle_contacts) /
@@ -120,6 +82,77 @@ int run(int argc, char** argv) {
   std::printf("  results: %s/{summary.json,time_series.csv,particles.xdmf,snapshots/%s}\n",
               in.output.folder.c_str(),
               r.final_stress ? ",grid_stress.csv,grid_stress.xdmf,grid_stress/" : "");
+  std::fflush(stdout);
+}
+
+int run(int argc, char** argv) {
+  using namespace upgrain;
+  std::string file, output_override;
+  bool check_only = false;
+  for (int k = 1; k < argc; ++k) {
+    const std::string a = argv[k];
+    if (a == "-h" || a == "--help") {
+      std::cout << kUsage;
+      return 0;
+    } else if (a == "--print-parameters") {
+      coupling::print_default_parameters(std::cout);
+      return 0;
+    } else if (a == "--print-parameters-markdown") {
+      coupling::print_parameters_markdown(std::cout);
+      return 0;
+    } else if (a == "--check") {
+      check_only = true;
+    } else if (a == "--output") {
+      if (k + 1 >= argc) throw Error("--output needs a folder name");
+      output_override = argv[++k];
+    } else if (!a.empty() && a[0] == '-') {
+      throw Error("unknown option '" + a + "' (see upgrain --help)");
+    } else if (file.empty()) {
+      file = a;
+    } else {
+      throw Error("more than one scene file given ('" + file + "', '" + a + "')");
+    }
+  }
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  coupling::SceneInput in = file.empty() ? coupling::default_scene() : coupling::read_scene_file(file);
+  if (!output_override.empty()) {
+    in.output.folder = output_override;
+    coupling::validate_scene(in);
+  }
+  // Every rank has read and checked the scene before rank 0 creates the output folder.
+  MPI_Barrier(MPI_COMM_WORLD);
+  const dem::TimeStepEstimate ts = dem::estimate_time_step(in.scene);
+  if (rank == 0) {
+    std::printf("upgrain: %s\n  %ld spheres, time step %.3g s (safe %.3g s, %s-limited), end time %.3g s\n",
+                in.source.c_str(), in.scene.particles.count, in.scene.time_step, ts.safe_step,
+                ts.limiting.c_str(), in.scene.end_time);
+    if (in.study.compare_with_continuum)
+      std::printf(
+          "  study: DEM deposition -> grid stress -> continuum column (Q%u) -> comparison and report\n",
+          in.study.continuum.degree);
+    if (ranks > 1)
+      std::printf("  %d MPI ranks: the DEM runs on rank 0 (the MPI DEM is issue 5), the continuum on all\n",
+                  ranks);
+  }
+  if (check_only) {
+    if (rank == 0) std::printf("  scene is valid; nothing written (--check)\n");
+    return 0;
+  }
+  if (rank == 0) std::printf("  output folder: %s\n", in.output.folder.c_str());
+  auto progress = [rank](const dem::Progress& p) {
+    if (rank == 0) print_progress(p);
+  };
+  try {
+    if (in.study.compare_with_continuum) {
+      return coupling::run_study(in, MPI_COMM_WORLD, progress,
+                                 [&](const dem::DepositionResult& r) { print_deposition(in, r); });
+    }
+    if (rank == 0) print_deposition(in, dem::run_deposition(in.scene, in.control, in.output, progress));
+  } catch (const Error& e) {
+    throw Error(in.source + ": " + e.what());
+  }
   return 0;
 }
 

@@ -114,6 +114,30 @@ const std::vector<ParameterSpec>& parameter_schema() {
       {"Stress", "interval", "0", K::real, 0.0, 1e6, "", "s",
        "Simulated time between grid-stress evaluations; 0 = with each snapshot. The final state is always "
        "evaluated."},
+
+      {"Study", "compare with continuum", "true", K::boolean, 0, 0, "", "-",
+       "After the DEM run, solve the elastic column of the same container on a mesh matching the stress grid "
+       "and write the comparison tables, plots and report.md (docs/study.md). False: the DEM run only."},
+      {"Study", "comparison formulas", "bagi, modified nicot, weber", K::multiple_selection, 0, 0,
+       "weber|drescher|bagi|de saxce|nicot|modified nicot|modified de saxce", "-",
+       "DEM stress formulas set beside the continuum; each must also be in Stress/formulas."},
+      {"Study", "relax at end", "true", K::boolean, 0, 0, "", "-",
+       "Relax the deposited bed to static equilibrium by FIRE before its final stress (docs/stress.md)."},
+      {"Study", "relaxation tolerance", "1e-9", K::real, 1e-15, 1.0, "", "-",
+       "FIRE stops when every grain's |F + m g| < tolerance m g and |T| < tolerance m g r."},
+      {"Study", "max relaxation steps", "200000", K::integer, 0, 2147483647, "", "-",
+       "Upper bound on the FIRE steps; the residual reached is reported."},
+
+      {"Continuum", "youngs modulus", "1e8", K::real, 1.0, 1e13, "", "Pa",
+       "Young's modulus of the equivalent elastic continuum (the stresses of the confined column do not "
+       "depend on "
+       "it; the displacements do)."},
+      {"Continuum", "poisson ratio", "0.3", K::real, 0.0, 0.499, "", "-",
+       "Poisson's ratio of the continuum; it sets K0 = nu / (1 - nu)."},
+      {"Continuum", "refinements", "1", K::integer, 0, 6, "", "-",
+       "Global refinements of the mesh whose coarse cells are the stress grid's cells."},
+      {"Continuum", "degree", "2", K::integer, 1, 4, "", "-",
+       "Polynomial degree of the displacement element (Q2 reproduces the analytic column exactly)."},
   };
   return schema;
 }

@@ -3,6 +3,7 @@
 #include <iosfwd>
 #include <string>
 
+#include "coupling/study_options.h"
 #include "dem/deposition.h"
 #include "dem/io/run_recorder.h"
 #include "dem/scene/scene_config.h"
@@ -16,6 +17,7 @@ struct SceneInput {
   dem::RunControl control;
   bool overwrite = false;
   std::string stress_box = "auto";  // Stress/box as written; applied by validate_scene
+  StudyOptions study;
 };
 
 // Reads a .prm file: syntax and entry names first (prm_syntax.h), values by deal.II's

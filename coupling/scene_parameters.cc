@@ -172,6 +172,25 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   in.stress_box = prm.get("box");
   gs.interval = prm.get_double("interval");
   prm.leave_subsection();
+
+  prm.enter_subsection("Study");
+  in.study.compare_with_continuum = prm.get_bool("compare with continuum");
+  for (const std::string& name : dealii::Utilities::split_string_list(prm.get("comparison formulas"), ',')) {
+    const auto f = dem::stress_formula_from_name(name);
+    if (f && std::find(in.study.formulas.begin(), in.study.formulas.end(), *f) == in.study.formulas.end())
+      in.study.formulas.push_back(*f);
+  }
+  in.control.relax_at_end = prm.get_bool("relax at end");
+  in.control.relaxation.force_tolerance = prm.get_double("relaxation tolerance");
+  in.control.relaxation.max_steps = prm.get_integer("max relaxation steps");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Continuum");
+  in.study.continuum.youngs_modulus = prm.get_double("youngs modulus");
+  in.study.continuum.poisson_ratio = prm.get_double("poisson ratio");
+  in.study.continuum.refinements = static_cast<unsigned>(prm.get_integer("refinements"));
+  in.study.continuum.degree = static_cast<unsigned>(prm.get_integer("degree"));
+  prm.leave_subsection();
   return in;
 }
 

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -86,6 +87,18 @@ void validate_scene(SceneInput& in) {
     std::ostringstream m;
     m << where << "Simulation/end time = " << s.end_time << " s is shorter than one time step";
     throw Error(m.str());
+  }
+  if (in.study.compare_with_continuum) {
+    if (in.study.formulas.empty())
+      throw Error(where +
+                  "Study/comparison formulas is empty; name at least one formula, or set "
+                  "'Study/compare with continuum = false'");
+    for (dem::StressFormula f : in.study.formulas) {
+      const auto& written = in.output.grid_stress.formulas;
+      if (std::find(written.begin(), written.end(), f) == written.end())
+        throw Error(where + "Study/comparison formulas names '" + std::string(dem::name_of(f)) +
+                    "', which is not in Stress/formulas; add it there");
+    }
   }
   namespace fs = std::filesystem;
   const fs::path& folder = in.output.folder;

@@ -82,7 +82,7 @@ DepositionResult run_deposition(const SceneConfig& scene, const RunControl& cont
       }
     }
     if (r.stopped_at_rest) {
-      if (stress_on && !stress_due(s)) {
+      if (stress_on && !stress_due(s) && !control.relax_at_end) {
         // One more step, recorded, so the final state has its stress.
         sim.request_contacts();
         sim.step();
@@ -93,6 +93,17 @@ DepositionResult run_deposition(const SceneConfig& scene, const RunControl& cont
         }
       }
       break;
+    }
+  }
+  if (control.relax_at_end) {
+    r.relaxation = relax_to_equilibrium(sim, control.relaxation);
+    // One recorded step of the relaxed state for its stress, snapshot and series row.
+    if (stress_on) sim.request_contacts();
+    sim.step();
+    if (stress_on) evaluate_stress();
+    if (recorder) {
+      recorder->record_series(sim);
+      recorder->write_snapshot(sim);
     }
   }
   sim.check_finite();
@@ -107,6 +118,9 @@ DepositionResult run_deposition(const SceneConfig& scene, const RunControl& cont
   r.kinetic_to_released = sim.kinetic_to_released();
   r.diagnostics = sim.diagnostics();
   r.bed = measure_bed(sim.particles(), scene.container);
+  r.wall_forces = sim.wall_forces();
+  for (const PlaneWall& w : sim.walls()) r.wall_names.push_back(w.name);
+  for (std::size_t i = 0; i < sim.particles().size(); ++i) r.total_mass += sim.particles().mass(i);
 
   if (recorder) {
     recorder->flush();
@@ -131,6 +145,10 @@ DepositionResult run_deposition(const SceneConfig& scene, const RunControl& cont
         {"bed_surface_height_m", num(r.bed.surface_height)},
         {"bed_solid_fraction", num(r.bed.solid_fraction)},
         {"particles_outside_container", num(static_cast<double>(r.bed.particles_outside))},
+        {"relaxed", r.relaxation ? "true" : "false"},
+        {"relaxation_steps", num(r.relaxation ? static_cast<double>(r.relaxation->steps) : 0.0)},
+        {"relaxation_force_residual", num(r.relaxation ? r.relaxation->max_force_residual : 0.0)},
+        {"relaxation_torque_residual", num(r.relaxation ? r.relaxation->max_torque_residual : 0.0)},
     });
   }
   return r;

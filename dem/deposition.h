@@ -8,6 +8,7 @@
 
 #include "dem/analysis/bed_state.h"
 #include "dem/io/run_recorder.h"
+#include "dem/relaxation.h"
 #include "dem/simulation.h"
 
 namespace upgrain::dem {
@@ -16,6 +17,10 @@ struct RunControl {
   // Stop early once kinetic energy < rest_ratio * (potential energy released), checked at
   // each time-series row after the first tenth of the run; 0 disables.
   double rest_ratio = 0.0;
+  // After the run, relax the bed to static equilibrium by FIRE (dem/relaxation.h) and
+  // write the final snapshot and grid stress of the relaxed state.
+  bool relax_at_end = false;
+  RelaxationOptions relaxation;
 };
 
 struct Progress {
@@ -36,6 +41,10 @@ struct DepositionResult {
   StepDiagnostics diagnostics;
   BedState bed;
   bool stopped_at_rest = false;
+  std::optional<RelaxationResult> relaxation;  // when relax_at_end
+  std::vector<Vec3> wall_forces;               // final force of the grains on each wall (N)
+  std::vector<std::string> wall_names;
+  double total_mass = 0.0;  // kg
   // The last grid-stress evaluation, when the output asked for one (for in-memory use).
   std::optional<GridStress> final_stress;
   RegularGrid final_grid;

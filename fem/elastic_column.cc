@@ -1,0 +1,460 @@
+// The only translation unit of upgrain::fem that includes deal.II (each one costs ~25 s
+// and 1.5 GB to compile). It follows the structure of deal.II's step-8 (vector-valued
+// elasticity) and step-40 (distributed mesh, Trilinos, AMG): one class whose run() calls
+// make_grid() -> setup_system() -> assemble_system() -> solve() -> postprocess() ->
+// output_results(), each timed by TimerOutput. The BVP and its exact solution are in
+// fem/analytic/confined_column.h and docs/fem.md.
+#include <deal.II/base/function.h>
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/generic_linear_algebra.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
+#include <deal.II/lac/vector_memory.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <p4est_base.h>
+#include <sc.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+
+#include "dem/io/atomic_file.h"
+#include "fem/elastic_column.h"
+
+namespace upgrain::fem {
+
+namespace {
+
+using namespace dealii;
+namespace LA = dealii::LinearAlgebraTrilinos;
+
+constexpr int dim = 3;
+
+// Boundary ids set by GridGenerator::subdivided_hyper_rectangle(..., colorize = true):
+// 2d is the face x_d = min, 2d+1 the face x_d = max.
+constexpr types::boundary_id wall_x0 = 0, wall_x1 = 1, wall_y0 = 2, wall_y1 = 3, floor_z0 = 4;
+
+// deal.II's MPI_InitFinalize registers p4est with the log threshold SC_LP_SILENT. A caller
+// that uses plain MPI_Init (the upgrain driver, fem_tests) does not, and p4est then logs
+// every mesh operation to stdout. Do the same, once, unless someone already has.
+void silence_p4est() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    if (p4est_package_id < 0) p4est_init(nullptr, SC_LP_SILENT);
+  });
+}
+
+// The exact displacement (0, 0, u_z(z)), eq. (3) of confined_column.h, for
+// VectorTools::integrate_difference.
+class ExactDisplacement : public Function<dim> {
+ public:
+  explicit ExactDisplacement(const ConfinedColumn& column) : Function<dim>(dim), column_(column) {}
+  double value(const Point<dim>& p, const unsigned int component) const override {
+    return component == 2 ? column_.vertical_displacement(p[2]) : 0.0;
+  }
+  void vector_value(const Point<dim>& p, Vector<double>& values) const override {
+    for (unsigned int c = 0; c < dim; ++c) values[c] = value(p, c);
+  }
+
+ private:
+  ConfinedColumn column_;
+};
+
+class ElasticColumn {
+ public:
+  ElasticColumn(const ColumnProblem& problem, MPI_Comm comm);
+  ColumnSolution run(const std::string& vtu_folder);
+
+ private:
+  void make_grid();
+  void setup_system();
+  void assemble_system();
+  void solve();
+  void postprocess();
+  void output_results(const std::string& folder) const;
+
+  // Hooke's law for an isotropic solid: sigma = lambda tr(eps) 1 + 2 mu eps.
+  SymmetricTensor<2, dim> stress(const SymmetricTensor<2, dim>& strain) const {
+    return lambda_ * trace(strain) * unit_symmetric_tensor<dim>() + 2.0 * mu_ * strain;
+  }
+  // Eq. (1)-(2) of confined_column.h: diag(K0, K0, 1) sigma_zz(z).
+  SymmetricTensor<2, dim> exact_stress(const double z) const {
+    const double s = exact_.vertical_stress(z);
+    SymmetricTensor<2, dim> sigma;
+    sigma[0][0] = sigma[1][1] = exact_.k0() * s;
+    sigma[2][2] = s;
+    return sigma;
+  }
+  unsigned int coarse_cell_of(const Point<dim>& centre) const;
+
+  const ColumnProblem problem_;
+  const ConfinedColumn exact_;
+  const double lambda_, mu_;
+  MPI_Comm comm_;
+
+  parallel::distributed::Triangulation<dim> triangulation_;
+  const FESystem<dim> fe_;
+  DoFHandler<dim> dof_handler_;
+  IndexSet locally_owned_dofs_;
+  IndexSet locally_relevant_dofs_;
+  AffineConstraints<double> constraints_;
+
+  LA::MPI::SparseMatrix system_matrix_;
+  LA::MPI::Vector locally_relevant_solution_;
+  LA::MPI::Vector system_rhs_;
+
+  // Volume average of sigma over each locally owned active cell, for output only;
+  // components xx, yy, zz, xy, xz, yz.
+  std::array<Vector<double>, 6> cell_stress_;
+
+  ColumnSolution result_;
+  TimerOutput timer_;
+};
+
+ElasticColumn::ElasticColumn(const ColumnProblem& problem, MPI_Comm comm)
+    : problem_(problem),
+      exact_(analytic_solution(problem)),
+      lambda_(exact_.lame_lambda()),
+      mu_(exact_.shear_modulus()),
+      comm_(comm),
+      triangulation_(comm),
+      fe_(FE_Q<dim>(problem.degree), dim),
+      dof_handler_(triangulation_),
+      // The library prints nothing: the caller gets the times in ColumnSolution. No
+      // communicator: its destructor would otherwise try to synchronise (and print a
+      // warning) while an exception thrown on all ranks unwinds the stack.
+      timer_(std::cout, TimerOutput::never, TimerOutput::wall_times) {}
+
+void ElasticColumn::make_grid() {
+  const std::vector<unsigned int> repetitions(problem_.cells.begin(), problem_.cells.end());
+  GridGenerator::subdivided_hyper_rectangle(triangulation_, repetitions, Point<dim>(0.0, 0.0, 0.0),
+                                            Point<dim>(problem_.length_x, problem_.length_y, problem_.height),
+                                            /*colorize=*/true);
+  triangulation_.refine_global(problem_.refinements);
+}
+
+void ElasticColumn::setup_system() {
+  dof_handler_.distribute_dofs(fe_);
+  locally_owned_dofs_ = dof_handler_.locally_owned_dofs();
+  DoFTools::extract_locally_relevant_dofs(dof_handler_, locally_relevant_dofs_);
+
+  locally_relevant_solution_.reinit(locally_owned_dofs_, locally_relevant_dofs_, comm_);
+  system_rhs_.reinit(locally_owned_dofs_, comm_);
+
+  // Frictionless rollers: only the normal displacement is constrained on each wall and on
+  // the floor, so the walls carry no shear traction (the exact solution has none). The top
+  // stays free. Edges and corners get one constraint per wall they belong to.
+  constraints_.clear();
+  constraints_.reinit(locally_relevant_dofs_);
+  DoFTools::make_hanging_node_constraints(dof_handler_, constraints_);
+  const Functions::ZeroFunction<dim> zero(dim);
+  const std::pair<types::boundary_id, unsigned int> rollers[] = {
+      {wall_x0, 0}, {wall_x1, 0}, {wall_y0, 1}, {wall_y1, 1}, {floor_z0, 2}};
+  for (const auto& [boundary, component] : rollers)
+    VectorTools::interpolate_boundary_values(dof_handler_, boundary, zero, constraints_,
+                                             fe_.component_mask(FEValuesExtractors::Scalar(component)));
+  constraints_.close();
+
+  DynamicSparsityPattern dsp(locally_relevant_dofs_);
+  DoFTools::make_sparsity_pattern(dof_handler_, dsp, constraints_, /*keep_constrained_dofs=*/false);
+  SparsityTools::distribute_sparsity_pattern(dsp, locally_owned_dofs_, comm_, locally_relevant_dofs_);
+  system_matrix_.reinit(locally_owned_dofs_, locally_owned_dofs_, dsp, comm_);
+
+  result_.n_dofs = dof_handler_.n_dofs();
+  result_.n_active_cells = triangulation_.n_global_active_cells();
+}
+
+// The weak form of -div sigma(u) = f (step-8): for all test functions v,
+//   a(u, v) = int lambda (div u)(div v) + 2 mu eps(u) : eps(v) dx = int f . v dx,
+// with f = (0, 0, -rho g). The top is traction free, so there is no boundary term.
+void ElasticColumn::assemble_system() {
+  // Q_k shape gradients are polynomials of degree k per variable, so the products in
+  // a(u, v) have degree 2k per variable: Gauss with k + 1 points is exact.
+  const QGauss<dim> quadrature(fe_.degree + 1);
+  FEValues<dim> fe_values(fe_, quadrature, update_values | update_gradients | update_JxW_values);
+
+  const unsigned int dofs_per_cell = fe_.n_dofs_per_cell();
+  FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
+  Vector<double> cell_rhs(dofs_per_cell);
+  std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
+
+  // Shape-function data at one quadrature point, evaluated once and reused in the double
+  // loop below.
+  const FEValuesExtractors::Vector displacement(0);
+  std::vector<SymmetricTensor<2, dim>> eps_phi(dofs_per_cell);
+  std::vector<double> div_phi(dofs_per_cell);
+  std::vector<double> phi_z(dofs_per_cell);
+  const double body_force_z = -problem_.density * problem_.gravity;
+
+  for (const auto& cell : dof_handler_.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
+    cell_matrix = 0.0;
+    cell_rhs = 0.0;
+    fe_values.reinit(cell);
+
+    for (const unsigned int q : fe_values.quadrature_point_indices()) {
+      for (unsigned int k = 0; k < dofs_per_cell; ++k) {
+        eps_phi[k] = fe_values[displacement].symmetric_gradient(k, q);
+        div_phi[k] = fe_values[displacement].divergence(k, q);
+        phi_z[k] = fe_values[displacement].value(k, q)[2];
+      }
+      const double JxW = fe_values.JxW(q);
+      // a(u, v) is symmetric: fill the lower triangle, mirror below.
+      for (unsigned int i = 0; i < dofs_per_cell; ++i) {
+        for (unsigned int j = 0; j <= i; ++j)
+          cell_matrix(i, j) +=
+              (lambda_ * div_phi[i] * div_phi[j] + 2.0 * mu_ * (eps_phi[i] * eps_phi[j])) * JxW;
+        cell_rhs(i) += phi_z[i] * body_force_z * JxW;
+      }
+    }
+    for (unsigned int i = 0; i < dofs_per_cell; ++i)
+      for (unsigned int j = i + 1; j < dofs_per_cell; ++j) cell_matrix(i, j) = cell_matrix(j, i);
+
+    cell->get_dof_indices(local_dof_indices);
+    constraints_.distribute_local_to_global(cell_matrix, cell_rhs, local_dof_indices, system_matrix_,
+                                            system_rhs_);
+  }
+  system_matrix_.compress(VectorOperation::add);
+  system_rhs_.compress(VectorOperation::add);
+}
+
+// CG (the matrix is symmetric positive definite once the rollers remove the rigid modes)
+// preconditioned by smoothed-aggregation AMG (Trilinos ML), as in step-40 and step-42.
+void ElasticColumn::solve() {
+  LA::MPI::PreconditionAMG::AdditionalData amg_data;
+  amg_data.elliptic = true;
+  amg_data.higher_order_elements = fe_.degree > 1;
+  // Aggregation threshold and smoother sweeps stay at deal.II's defaults (1e-4, 2):
+  // 0.02 (step-31's value) cut CG iterations for Q2 but made the solve slower
+  // (docs/fem.md, "Solver settings: what was tried").
+  //
+  // The near-null space of elasticity: AMG needs the modes the operator barely sees to
+  // build coarse spaces that represent them. extract_constant_modes gives one
+  // translation per displacement component. deal.II 9.4 has no rotation modes here;
+  // adding them through ML's "null space: vectors" saved 10-20% of the iterations but
+  // doubled the solve time of this compression-dominated problem (docs/fem.md).
+  DoFTools::extract_constant_modes(dof_handler_, ComponentMask(dim, true), amg_data.constant_modes);
+  LA::MPI::PreconditionAMG preconditioner;
+  preconditioner.initialize(system_matrix_, amg_data);
+
+  // The brief's tolerance: relative residual 1e-12. Q2 reproduces the quadratic exact
+  // solution, so the solver tolerance is the only error left in that case.
+  SolverControl control(dof_handler_.n_dofs(), 1e-12 * system_rhs_.l2_norm());
+  SolverCG<LA::MPI::Vector> cg(control);
+  LA::MPI::Vector distributed_solution(locally_owned_dofs_, comm_);
+  cg.solve(system_matrix_, distributed_solution, system_rhs_, preconditioner);
+  constraints_.distribute(distributed_solution);
+  locally_relevant_solution_ = distributed_solution;
+  result_.cg_iterations = control.last_step();
+}
+
+unsigned int ElasticColumn::coarse_cell_of(const Point<dim>& centre) const {
+  std::array<unsigned int, dim> index;
+  const double size[dim] = {problem_.length_x, problem_.length_y, problem_.height};
+  for (unsigned int d = 0; d < dim; ++d) {
+    // The centre of a fine cell lies strictly inside its coarse cell, so the floor is
+    // unambiguous; the clamp only guards against round-off at the far wall.
+    const double i = std::floor(centre[d] / size[d] * problem_.cells[d]);
+    index[d] = static_cast<unsigned int>(std::clamp(i, 0.0, problem_.cells[d] - 1.0));
+  }
+  return coarse_cell_index(problem_, index[0], index[1], index[2]);
+}
+
+// Errors against the exact solution and the coarse-cell stress averages that the DEM
+// comparison needs.
+void ElasticColumn::postprocess() {
+  // Displacement: ||u_h - u||_L2 by deal.II; Gauss with k + 2 points per direction is more
+  // than enough for (u_h - u)^2, which has degree 2k per variable.
+  const QGauss<dim> error_quadrature(fe_.degree + 2);
+  // double, not the customary float: float cell errors limit the global error to ~1e-7
+  // relative, which hides what the Q1 tests check (exact interpolation errors).
+  Vector<double> difference_per_cell(triangulation_.n_active_cells());
+  const ExactDisplacement exact_displacement(exact_);
+  VectorTools::integrate_difference(dof_handler_, locally_relevant_solution_, exact_displacement,
+                                    difference_per_cell, error_quadrature, VectorTools::L2_norm);
+  result_.l2_error_displacement =
+      VectorTools::compute_global_error(triangulation_, difference_per_cell, VectorTools::L2_norm);
+
+  // Stress: one loop for the L2 error and the cell integrals. sigma_h has degree <= k per
+  // variable and the exact sigma is linear, so Gauss with k + 1 points integrates both the
+  // averages and the squared error exactly.
+  const QGauss<dim> quadrature(fe_.degree + 1);
+  FEValues<dim> fe_values(fe_, quadrature, update_gradients | update_quadrature_points | update_JxW_values);
+  const FEValuesExtractors::Vector displacement(0);
+  std::vector<SymmetricTensor<2, dim>> strains(quadrature.size());
+
+  const unsigned int n_coarse = n_coarse_cells(problem_);
+  std::vector<double> coarse_integral(9 * n_coarse, 0.0);  // int sigma dx per coarse cell
+  double squared_stress_error = 0.0;
+  for (auto& v : cell_stress_) v.reinit(triangulation_.n_active_cells());
+
+  for (const auto& cell : dof_handler_.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
+    fe_values.reinit(cell);
+    fe_values[displacement].get_function_symmetric_gradients(locally_relevant_solution_, strains);
+    SymmetricTensor<2, dim> cell_integral;
+    for (const unsigned int q : fe_values.quadrature_point_indices()) {
+      const SymmetricTensor<2, dim> sigma = stress(strains[q]);
+      const SymmetricTensor<2, dim> error = sigma - exact_stress(fe_values.quadrature_point(q)[2]);
+      // SymmetricTensor's double contraction counts each off-diagonal entry twice: this is
+      // the Frobenius norm of the full 3x3 tensor.
+      squared_stress_error += (error * error) * fe_values.JxW(q);
+      cell_integral += sigma * fe_values.JxW(q);
+    }
+    double* sum = &coarse_integral[9 * coarse_cell_of(cell->center())];
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = 0; j < dim; ++j) sum[dim * i + j] += cell_integral[i][j];
+
+    const unsigned int c = cell->active_cell_index();
+    const double volume = cell->measure();
+    const std::array<std::pair<unsigned int, unsigned int>, 6> components = {
+        {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}}};
+    for (unsigned int k = 0; k < 6; ++k)
+      cell_stress_[k][c] = cell_integral[components[k].first][components[k].second] / volume;
+  }
+
+  result_.l2_error_stress = std::sqrt(Utilities::MPI::sum(squared_stress_error, comm_));
+  std::vector<double> global_integral(coarse_integral.size());
+  Utilities::MPI::sum(coarse_integral, comm_, global_integral);
+  const double coarse_volume = problem_.length_x / problem_.cells[0] * problem_.length_y / problem_.cells[1] *
+                               problem_.height / problem_.cells[2];
+  result_.cell_average_stress.assign(n_coarse, {});
+  for (unsigned int c = 0; c < n_coarse; ++c)
+    for (unsigned int k = 0; k < 9; ++k)
+      result_.cell_average_stress[c][k] = global_integral[9 * c + k] / coarse_volume;
+}
+
+// One .vtu piece per rank and a .pvtu record, each written under a temporary name and
+// renamed (dem/io/atomic_file.h). The record is written last, after every rank reported
+// its piece complete, so a reader never finds a record that points at a missing piece.
+void ElasticColumn::output_results(const std::string& folder) const {
+  const unsigned int rank = Utilities::MPI::this_mpi_process(comm_);
+  const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm_);
+  const auto piece_name = [](unsigned int r) {
+    return "column.proc" + Utilities::int_to_string(r, 4) + ".vtu";
+  };
+
+  DataOut<dim> data_out;
+  data_out.attach_dof_handler(dof_handler_);
+  const std::vector<std::string> names(dim, "displacement");
+  const std::vector<DataComponentInterpretation::DataComponentInterpretation> interpretation(
+      dim, DataComponentInterpretation::component_is_part_of_vector);
+  data_out.add_data_vector(locally_relevant_solution_, names, DataOut<dim>::type_dof_data, interpretation);
+  const char* stress_names[6] = {"sigma_xx", "sigma_yy", "sigma_zz", "sigma_xy", "sigma_xz", "sigma_yz"};
+  for (unsigned int k = 0; k < 6; ++k)
+    data_out.add_data_vector(cell_stress_[k], stress_names[k], DataOut<dim>::type_cell_data);
+  Vector<float> subdomain(triangulation_.n_active_cells());
+  for (auto& s : subdomain) s = static_cast<float>(triangulation_.locally_owned_subdomain());
+  data_out.add_data_vector(subdomain, "subdomain");
+  // Subdivide each cell degree times so that Q2 displacements are drawn as such.
+  data_out.build_patches(fe_.degree);
+
+  // Every rank reports failure through an all-reduce instead of throwing alone, which would
+  // leave the other ranks waiting in the next collective call.
+  const auto all_succeeded = [this](const std::string& local_error) {
+    return Utilities::MPI::min(local_error.empty() ? 1 : 0, comm_) == 1;
+  };
+  const std::filesystem::path dir(folder);
+  std::string error;
+  try {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);  // concurrent creation by the ranks is fine
+    if (!std::filesystem::is_directory(dir)) throw std::runtime_error("cannot create folder " + folder);
+    std::ostringstream vtu;
+    data_out.write_vtu(vtu);
+    dem::io::write_text_atomically(dir / piece_name(rank), vtu.str());
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  if (!all_succeeded(error))
+    throw std::runtime_error("fem output: " +
+                             (error.empty() ? "another rank failed to write its piece" : error));
+
+  if (rank == 0) {
+    try {
+      std::vector<std::string> pieces;
+      for (unsigned int r = 0; r < n_ranks; ++r) pieces.push_back(piece_name(r));
+      std::ostringstream pvtu;
+      data_out.write_pvtu_record(pvtu, pieces);
+      dem::io::write_text_atomically(dir / "column.pvtu", pvtu.str());
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  }
+  if (!all_succeeded(error))
+    throw std::runtime_error("fem output: " + (error.empty() ? "rank 0 failed to write column.pvtu" : error));
+}
+
+ColumnSolution ElasticColumn::run(const std::string& vtu_folder) {
+  Timer total(comm_, /*sync_lap_times=*/true);
+  {
+    TimerOutput::Scope t(timer_, "setup");
+    make_grid();
+    setup_system();
+  }
+  {
+    TimerOutput::Scope t(timer_, "assemble");
+    assemble_system();
+  }
+  {
+    TimerOutput::Scope t(timer_, "solve");
+    solve();
+  }
+  {
+    TimerOutput::Scope t(timer_, "postprocess");
+    postprocess();
+  }
+  if (!vtu_folder.empty()) {
+    TimerOutput::Scope t(timer_, "output");
+    output_results(vtu_folder);
+  }
+  const std::map<std::string, double> times = timer_.get_summary_data(TimerOutput::total_wall_time);
+  result_.setup_seconds = times.at("setup");
+  result_.assemble_seconds = times.at("assemble");
+  result_.solve_seconds = times.at("solve");
+  result_.total_seconds = total.wall_time();
+  return result_;
+}
+
+}  // namespace
+
+ColumnSolution solve_column(const ColumnProblem& problem, MPI_Comm comm, const std::string& vtu_folder) {
+  validate(problem);  // before any communication, so every rank throws alike
+  silence_p4est();
+  ColumnSolution solution = ElasticColumn(problem, comm).run(vtu_folder);
+  // SolverCG takes its vectors from deal.II's static GrowingVectorMemory pool, which keeps
+  // them (and their Epetra communicators) alive after this call. Release them now: freed
+  // after MPI_Finalize they would abort. deal.II's MPI_InitFinalize does the same.
+  GrowingVectorMemory<LA::MPI::Vector>::release_unused_memory();
+  return solution;
+}
+
+}  // namespace upgrain::fem

@@ -1,0 +1,68 @@
+#!/usr/bin/python3
+"""Checks a DEM-vs-continuum study folder by physical invariants, not stored numbers
+(docs/study.md):
+- the continuum (Q2) equals the analytic column to solver tolerance;
+- the floor carries the bed's weight minus what the side walls carry (equilibrium);
+- Bagi's stress summed over the grid balances the weight's moment about the floor:
+  sum_cells V sigma_zz = -M g z_mean exactly at equilibrium when the side walls are
+  frictionless (the floor's contacts have zero lever arm);
+- DEM sigma_zz, averaged over each level of cells, grows in magnitude with depth;
+- the continuum's sigma_zz is uniform across each level, its lateral ratio is K0;
+- report, plots, tables and meshes are there, and no temporary file is left."""
+import csv
+import glob
+import json
+import os
+import sys
+
+import h5py
+import numpy as np
+
+folder = sys.argv[1]
+os.chdir(folder)
+s = json.load(open("study.json"))
+assert s["fem_relative_l2_error_stress"] < 1e-8, s["fem_relative_l2_error_stress"]
+assert abs(s["fem_mean_lateral_ratio"] - s["k0"]) < 1e-8, (s["fem_mean_lateral_ratio"], s["k0"])
+
+weight = s["weight_N"]
+carried = -s["floor_force_z_N"] - s["side_wall_force_z_N"]
+assert abs(carried - weight) <= 0.05 * weight, (carried, weight)
+floor_share = -s["floor_force_z_N"] / weight
+
+# Bagi's stress of the final (relaxed) state against the weight's moment.
+last = sorted(glob.glob("grid_stress/*.h5"))[-1]
+snap = sorted(glob.glob("snapshots/*.h5"))[-1]
+with h5py.File(last, "r") as g, h5py.File(snap, "r") as p:
+    assert g.attrs["step"] == p.attrs["step"], "grid stress and snapshot of different steps"
+    bagi = g["/stress/bagi/tensor"][:].reshape(-1, 3, 3)
+    volume = g["/grid"].attrs["cell_volume"]
+    r = p["/particles/radius"][:]
+    z = p["/particles/position"][:, 2]
+mass = s["grain_mass_kg"] * r**3 / np.sum(r**3)
+moment = -np.sum(mass * 9.81 * z)
+total = volume * bagi[:, 2, 2].sum()
+assert abs(total - moment) <= 1e-6 * abs(moment), (total, moment)
+
+with open("profiles.csv") as f:
+    prof = list(csv.DictReader(l for l in f if not l.startswith("#")))
+centre = sorted((row for row in prof if row["column"] == "centre"), key=lambda row: float(row["z"]))
+# Each level's mean sigma_zz carries the weight above it (single columns of a small bed
+# may arch, so the invariant is on whole levels).
+nx, ny, nz = s["grid_cells"]
+level = bagi[:, 2, 2].reshape(nz, ny * nx).mean(axis=1)
+szz = list(level)
+assert all(a < b for a, b in zip(szz, szz[1:])), f"Bagi sigma_zz does not grow with depth: {szz}"
+fem = [float(row["fem_s_zz"]) for row in centre]
+exact = [float(row["analytic_s_zz"]) for row in centre]
+assert np.allclose(fem, exact, rtol=1e-8, atol=1e-9 * abs(exact[0])), (fem, exact)
+
+for name in ("report.md", "comparison_cells.csv", "relative_l2.csv", "profiles_szz.png", "lateral_ratio.png",
+             "level_spread.png", "mesh/dem_fem.pvtu", "fem/column.pvtu"):
+    assert os.path.exists(name), name
+report = open("report.md").read()
+for needle in ("Headline figures", "Timings", "profiles_szz.png", "bagi"):
+    assert needle in report, needle
+leftovers = [f for root, _, files in os.walk(".") for f in files if ".tmp" in f]
+assert not leftovers, f"temporary files left: {leftovers}"
+print(f"study ok: floor carries {100 * floor_share:.2f} % of the weight, sum V s_zz = {total:.6g} vs "
+      f"-M g z_mean = {moment:.6g}, level means of s_zz {['%.4g' % v for v in szz]}")
