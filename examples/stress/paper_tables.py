@@ -2,11 +2,12 @@
 """Runs the stress examples (stress_examples) and turns their CSV tables into the paper's
 tables and plots (docs/stress.md, "Examples"):
 
-  paper_tables.py STRESS_EXAMPLES OUT [--quick]
+  paper_tables.py STRESS_EXAMPLES OUT [--quick] [--plot-only]
 
 Table 2/4: symmetry against particle count, every formula on the largest bed.
 Table 6/7: per-grid Bagi stress of one relaxed bed on 3x3x4, 3x3x5, 5x5x9 and 7x7x13 grids.
 --quick uses small beds (a minute); the full set takes about ten minutes on one core.
+--plot-only redraws the plots from the CSV tables already in OUT.
 Plots: OUT/symmetry.png (RAI against count), OUT/grids.png (sigma_zz against depth)."""
 import csv
 import os
@@ -33,8 +34,9 @@ def main():
     counts = ["68", "153", "500"] if quick else ["68", "153", "500", "1536", "3456"]
     bed = "1000" if quick else "7200"
     grids = ["3,3,4", "3,3,5"] if quick else ["3,3,4", "3,3,5", "5,5,9", "7,7,13"]
-    subprocess.run([exe, "symmetry", out] + counts, check=True)
-    subprocess.run([exe, "grids", out, bed] + grids, check=True)
+    if "--plot-only" not in sys.argv:
+        subprocess.run([exe, "symmetry", out] + counts, check=True)
+        subprocess.run([exe, "grids", out, bed] + grids, check=True)
 
     sym = rows(os.path.join(out, "symmetry.csv"))
     fig, ax = plt.subplots(figsize=(6, 4))
