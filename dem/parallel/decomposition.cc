@@ -1,0 +1,104 @@
+#include "dem/parallel/decomposition.h"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "dem/core/error.h"
+
+namespace upgrain::dem {
+
+std::array<int, 3> choose_blocks(int ranks, const Box& box, double min_block) {
+  const Vec3 l = box.hi - box.lo;
+  std::array<int, 3> best{0, 0, 0};
+  double best_area = std::numeric_limits<double>::infinity();
+  // px outermost, pz innermost and a strict '<': among equal areas the first found wins,
+  // i.e. the largest px, then the largest py (fewest z cuts, then fewest y cuts).
+  for (int px = ranks; px >= 1; --px) {
+    if (ranks % px != 0) continue;
+    for (int py = ranks / px; py >= 1; --py) {
+      if ((ranks / px) % py != 0) continue;
+      const int pz = ranks / (px * py);
+      const std::array<int, 3> b{px, py, pz};
+      bool thin = false;
+      for (int d = 0; d < 3; ++d) thin = thin || (b[d] > 1 && l[d] / b[d] < min_block);
+      if (thin) continue;
+      const double area = (px - 1) * l[1] * l[2] + (py - 1) * l[0] * l[2] + (pz - 1) * l[0] * l[1];
+      if (area < best_area) {
+        best_area = area;
+        best = {px, py, pz};
+      }
+    }
+  }
+  if (best[0] == 0) {
+    std::ostringstream m;
+    m << "domain decomposition: no arrangement of " << ranks << " blocks over the box " << l[0] << " x "
+      << l[1] << " x " << l[2] << " m keeps every block at least as thick as the interaction range "
+      << min_block << " m (largest diameter + skin); use fewer ranks";
+    throw Error(m.str());
+  }
+  return best;
+}
+
+Decomposition::Decomposition(MPI_Comm comm, const Box& box, double min_block, std::array<int, 3> blocks)
+    : box_(box) {
+  MPI_Comm_size(comm, &size_);
+  if (blocks[0] <= 0 || blocks[1] <= 0 || blocks[2] <= 0) blocks = choose_blocks(size_, box, min_block);
+  const Vec3 l = box.hi - box.lo;
+  if (blocks[0] * blocks[1] * blocks[2] != size_) {
+    std::ostringstream m;
+    m << "domain decomposition: " << blocks[0] << " x " << blocks[1] << " x " << blocks[2] << " blocks for "
+      << size_ << " MPI ranks; their product must equal the rank count";
+    throw Error(m.str());
+  }
+  for (int d = 0; d < 3; ++d) {
+    // One block along an axis has no neighbour along it: any thickness will do.
+    if (blocks[d] > 1 && l[d] / blocks[d] < min_block) {
+      std::ostringstream m;
+      m << "domain decomposition: blocks of " << l[0] / blocks[0] << " x " << l[1] / blocks[1] << " x "
+        << l[2] / blocks[2] << " m (" << blocks[0] << " x " << blocks[1] << " x " << blocks[2]
+        << " over the box " << l[0] << " x " << l[1] << " x " << l[2] << " m) are thinner along "
+        << "xyz"[d] << " than the interaction range " << min_block
+        << " m (largest diameter + skin): ghosts would need a second layer of neighbours";
+      throw Error(m.str());
+    }
+  }
+  dims_ = blocks;
+  const int periods[3] = {0, 0, 0};
+  // reorder = 0: the Cartesian rank is the rank in `comm`, so callers' rank 0 stays rank 0.
+  MPI_Cart_create(comm, 3, dims_.data(), periods, 0, &cart_);
+  MPI_Comm_rank(cart_, &rank_);
+  MPI_Cart_coords(cart_, rank_, 3, coords_.data());
+  const double inf = std::numeric_limits<double>::infinity();
+  for (int d = 0; d < 3; ++d) {
+    MPI_Cart_shift(cart_, d, 1, &neighbor_[d][0], &neighbor_[d][1]);
+    block_.lo[d] = coords_[d] == 0 ? -inf : plane(d, coords_[d]);
+    block_.hi[d] = coords_[d] == dims_[d] - 1 ? inf : plane(d, coords_[d] + 1);
+  }
+}
+
+Decomposition::~Decomposition() {
+  if (cart_ != MPI_COMM_NULL) MPI_Comm_free(&cart_);
+}
+
+std::array<int, 3> Decomposition::block_of(const Vec3& x) const {
+  std::array<int, 3> c{};
+  for (int d = 0; d < 3; ++d) {
+    const double s = (x[d] - box_.lo[d]) / (box_.hi[d] - box_.lo[d]) * dims_[d];
+    // Compare against the same planes as plane(): the owner test must agree with the
+    // block bounds bit for bit, or a particle on a plane would belong to no block.
+    int k = s > 0.0 ? static_cast<int>(std::min(s, static_cast<double>(dims_[d] - 1))) : 0;
+    while (k > 0 && x[d] < plane(d, k)) --k;
+    while (k < dims_[d] - 1 && x[d] >= plane(d, k + 1)) ++k;
+    c[d] = k;
+  }
+  return c;
+}
+
+int Decomposition::rank_of_block(const std::array<int, 3>& c) const {
+  int r = 0;
+  MPI_Cart_rank(cart_, c.data(), &r);
+  return r;
+}
+
+}  // namespace upgrain::dem

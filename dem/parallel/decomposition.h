@@ -1,0 +1,66 @@
+#pragma once
+// Static Cartesian domain decomposition: px x py x pz blocks over a global box, one block
+// per rank of an MPI Cartesian communicator (non-periodic). The outer faces of the border
+// blocks are open: a particle outside the box (above the fill, say) belongs to the nearest
+// block, so ownership is defined everywhere. The block-choice rule is in docs/parallel.md.
+#include <mpi.h>
+
+#include <array>
+
+#include "dem/core/types.h"
+
+namespace upgrain::dem {
+
+struct Box {
+  Vec3 lo = Vec3::Zero();
+  Vec3 hi = Vec3::Zero();
+};
+
+// The px x py x pz of least internal cut area, (px-1) Ly Lz + (py-1) Lx Lz + (pz-1) Lx Ly,
+// over the factorisations of `ranks` whose blocks are at least `min_block` thick along every
+// axis that is cut; ties
+// go to fewer cuts in z, then in y (particles fall along z: fewer migrations). Throws
+// upgrain::Error naming the sizes when no factorisation fits.
+std::array<int, 3> choose_blocks(int ranks, const Box& box, double min_block);
+
+class Decomposition {
+ public:
+  // blocks {0, 0, 0}: chosen by choose_blocks(). Collective over `comm`. Throws
+  // upgrain::Error (on every rank) when px py pz differs from the rank count or a block is
+  // thinner than `min_block` (the interaction range: largest diameter + skin).
+  Decomposition(MPI_Comm comm, const Box& box, double min_block, std::array<int, 3> blocks = {0, 0, 0});
+  ~Decomposition();
+  Decomposition(const Decomposition&) = delete;
+  Decomposition& operator=(const Decomposition&) = delete;
+
+  [[nodiscard]] MPI_Comm comm() const { return cart_; }
+  [[nodiscard]] int rank() const { return rank_; }
+  [[nodiscard]] int size() const { return size_; }
+  [[nodiscard]] const std::array<int, 3>& blocks() const { return dims_; }
+  [[nodiscard]] const std::array<int, 3>& coords() const { return coords_; }
+  [[nodiscard]] const Box& box() const { return box_; }
+  // This rank's block; the open outer faces are +-infinity.
+  [[nodiscard]] const Box& block() const { return block_; }
+  // Neighbour rank across the lower (side 0) or upper (side 1) face along axis d, or
+  // MPI_PROC_NULL at the border of the box.
+  [[nodiscard]] int neighbor(int d, int side) const { return neighbor_[d][side]; }
+
+  // Block coordinates of a point (clamped into the grid: the outer blocks are open).
+  [[nodiscard]] std::array<int, 3> block_of(const Vec3& x) const;
+  [[nodiscard]] int rank_of_block(const std::array<int, 3>& c) const;
+  [[nodiscard]] int owner_of(const Vec3& x) const { return rank_of_block(block_of(x)); }
+  // The k-th plane along axis d (k = 0 .. blocks[d]); block k spans planes k and k + 1.
+  [[nodiscard]] double plane(int d, int k) const {
+    return box_.lo[d] + k * (box_.hi[d] - box_.lo[d]) / dims_[d];
+  }
+
+ private:
+  MPI_Comm cart_ = MPI_COMM_NULL;
+  int rank_ = 0, size_ = 1;
+  std::array<int, 3> dims_{1, 1, 1};
+  std::array<int, 3> coords_{0, 0, 0};
+  std::array<std::array<int, 2>, 3> neighbor_{};
+  Box box_, block_;
+};
+
+}  // namespace upgrain::dem

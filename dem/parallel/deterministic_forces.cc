@@ -1,0 +1,158 @@
+#include "dem/parallel/deterministic_forces.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "dem/contact/contact_response.h"
+
+namespace upgrain::dem {
+
+namespace {
+
+template <class E>
+DeterministicForceResult compute(const DeterministicForceInput& in) {
+  ParticleStore& p = *in.particles;
+  ContactLists& l = *in.lists;
+  const int n_owned = in.n_owned;
+  const ContactMaterial& mat = in.material;
+  DeterministicForceResult out;
+  ContactEnergy unused_energy;  // energies are not tracked by the parallel engine yet
+  TangentialSpring dummy_spring;
+
+  for (int i = 0; i < n_owned; ++i) {
+    p.force[i].setZero();
+    if constexpr (E::rotation) p.torque[i].setZero();
+  }
+
+  // 1. Walls, straight into the owned particles: entries are sorted by (particle, wall),
+  //    so each particle receives its wall forces in wall order, before any pair.
+  const std::vector<PlaneWall>& walls = *in.walls;
+  ContactParameters wp{mat.e_star_pw, mat.g_star_pw, 0.0, 0.0, 0.0, mat.damping_ratio, in.dt};
+  for (WallContact& c : l.wall) {
+    const int i = c.particle;
+    const PlaneWall& wall = walls[c.wall];
+    const double gap = wall.distance(p.x[i]);
+    const double ri = p.radius[i];
+    TangentialSpring& spring = E::wall_friction ? c.spring : dummy_spring;
+    if (gap >= ri) {
+      if constexpr (E::wall_friction) {
+        if (spring.stiffness != 0.0) spring = TangentialSpring{};
+      }
+      continue;
+    }
+    ContactKinematics kin;
+    kin.normal = -wall.normal;
+    kin.overlap = ri - gap;
+    kin.arm_i = gap;
+    kin.arm_j = 0.0;
+    kin.v_i = p.v[i];
+    kin.v_j = Vec3::Zero();
+    if constexpr (E::rotation) {
+      kin.omega_i = p.omega[i];
+      kin.omega_j = Vec3::Zero();
+    }
+    wp.friction = wall.friction;
+    wp.r_star = ri;
+    wp.m_star = p.mass(i);
+    const ContactForce cf =
+        contact_response<E::wall_friction, E::damping, E::rotation, false>(wp, kin, spring, unused_energy);
+    p.force[i] += cf.on_i;
+    if constexpr (E::rotation) p.torque[i] += gap * kin.normal.cross(cf.on_i);
+    ++out.wall_contacts;
+    out.max_overlap_ratio = std::max(out.max_overlap_ratio, kin.overlap / ri);
+  }
+
+  // 2. Pairs into their slots, in the canonical orientation (lo = lower global id).
+  ContactParameters cp{mat.e_star_pp, mat.g_star_pp, 0.0, 0.0, mat.friction_pp, mat.damping_ratio, in.dt};
+  const std::size_t m = l.lo.size();
+  double max_ratio = out.max_overlap_ratio;
+  for (std::size_t k = 0; k < m; ++k) {
+    const int i = l.lo[k];
+    const int j = l.hi[k];
+    const Vec3 d = p.x[j] - p.x[i];
+    const double ri = p.radius[i];
+    const double rj = p.radius[j];
+    const double rsum = ri + rj;
+    const double dist2 = d.squaredNorm();
+    if (dist2 >= rsum * rsum) {
+      l.touching[k] = 0;
+      if constexpr (E::friction) {
+        if (l.spring[k].stiffness != 0.0) l.spring[k] = TangentialSpring{};
+      }
+      continue;
+    }
+    const double dist = std::sqrt(dist2);
+    const double delta = rsum - dist;
+    ContactKinematics kin;
+    kin.normal = d * (1.0 / dist);
+    kin.overlap = delta;
+    kin.arm_i = ri - 0.5 * delta;
+    kin.arm_j = rj - 0.5 * delta;
+    kin.v_i = p.v[i];
+    kin.v_j = p.v[j];
+    if constexpr (E::rotation) {
+      kin.omega_i = p.omega[i];
+      kin.omega_j = p.omega[j];
+    }
+    cp.r_star = ri * rj / rsum;
+    cp.m_star = 1.0 / (p.inv_mass[i] + p.inv_mass[j]);
+    TangentialSpring& spring = E::friction ? l.spring[k] : dummy_spring;
+    const ContactForce cf =
+        contact_response<E::friction, E::damping, E::rotation, false>(cp, kin, spring, unused_energy);
+    l.touching[k] = 1;
+    l.force[k] = cf.on_i;
+    if constexpr (E::rotation) {
+      const Vec3 arm_x_f = kin.normal.cross(cf.on_i);
+      l.torque_lo[k] = kin.arm_i * arm_x_f;
+      l.torque_hi[k] = kin.arm_j * arm_x_f;
+    }
+    ++out.pair_contacts;
+    const double r_min = std::min(ri, rj);
+    if (delta > max_ratio * r_min) max_ratio = delta / r_min;
+  }
+  out.max_overlap_ratio = max_ratio;
+
+  // 3. Segmented sum: each owned particle adds its slots in the order of its row, the
+  //    partners' global ids.
+  for (int i = 0; i < n_owned; ++i) {
+    Vec3 f = p.force[i];
+    Vec3 t = Vec3::Zero();
+    if constexpr (E::rotation) t = p.torque[i];
+    for (int r = l.row_start[i]; r < l.row_start[i + 1]; ++r) {
+      const int e = l.row[r];
+      const int k = e >> 1;
+      if (!l.touching[k]) continue;
+      if (e & 1) {
+        f -= l.force[k];
+        if constexpr (E::rotation) t += l.torque_hi[k];
+      } else {
+        f += l.force[k];
+        if constexpr (E::rotation) t += l.torque_lo[k];
+      }
+    }
+    p.force[i] = f;
+    if constexpr (E::rotation) p.torque[i] = t;
+  }
+  return out;
+}
+
+template <bool F, bool D, bool W>
+DeterministicForceKernel pick_rotation(bool r) {
+  return r ? &compute<Effects<F, D, W, true, false>> : &compute<Effects<F, D, W, false, false>>;
+}
+template <bool F, bool D>
+DeterministicForceKernel pick_wall(const EffectSet& e) {
+  return e.wall_friction ? pick_rotation<F, D, true>(e.rotation) : pick_rotation<F, D, false>(e.rotation);
+}
+template <bool F>
+DeterministicForceKernel pick_damping(const EffectSet& e) {
+  return e.damping ? pick_wall<F, true>(e) : pick_wall<F, false>(e);
+}
+
+}  // namespace
+
+DeterministicForceKernel select_deterministic_forces(const EffectSet& e) {
+  return e.friction ? pick_damping<true>(e) : pick_damping<false>(e);
+}
+
+}  // namespace upgrain::dem

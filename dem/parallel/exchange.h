@@ -1,0 +1,67 @@
+#pragma once
+// Point-to-point plumbing of the three-stage (x, then y, then z) exchange: along one
+// axis, every rank sends one buffer to each face neighbour and receives one from each,
+// with MPI_Isend/MPI_Irecv and one MPI_Waitall. Buffers are the caller's and keep their
+// capacity between calls, so the per-step refresh allocates nothing after warm-up.
+#include <mpi.h>
+
+#include <array>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "dem/core/error.h"
+
+namespace upgrain::dem {
+
+// Sends to_side[s] to neighbour[s] and receives from_side[s] from it (s = 0 lower, 1
+// upper face). With counts_known the receive buffers already have their sizes (a ghost
+// refresh); otherwise the counts are exchanged first.
+template <class T>
+void exchange_along_axis(MPI_Comm comm, const std::array<int, 2>& neighbor,
+                         const std::array<std::vector<T>, 2>& to_side,
+                         std::array<std::vector<T>, 2>& from_side, bool counts_known, int tag) {
+  std::array<MPI_Request, 4> req{};
+  if (!counts_known) {
+    std::array<long, 2> send_count{static_cast<long>(to_side[0].size()),
+                                   static_cast<long>(to_side[1].size())};
+    std::array<long, 2> recv_count{0, 0};
+    for (int s = 0; s < 2; ++s) {
+      MPI_Irecv(&recv_count[s], 1, MPI_LONG, neighbor[s], tag, comm, &req[s]);
+      MPI_Isend(&send_count[s], 1, MPI_LONG, neighbor[s], tag, comm, &req[2 + s]);
+    }
+    MPI_Waitall(4, req.data(), MPI_STATUSES_IGNORE);
+    for (int s = 0; s < 2; ++s) from_side[s].resize(static_cast<std::size_t>(recv_count[s]));
+  }
+  for (int s = 0; s < 2; ++s) {
+    const std::size_t bytes_in = from_side[s].size() * sizeof(T);
+    const std::size_t bytes_out = to_side[s].size() * sizeof(T);
+    if (bytes_in > 2147483647u || bytes_out > 2147483647u)
+      throw Error("parallel exchange: message above 2 GB");
+    MPI_Irecv(from_side[s].data(), static_cast<int>(bytes_in), MPI_BYTE, neighbor[s], tag + 1, comm, &req[s]);
+    MPI_Isend(to_side[s].data(), static_cast<int>(bytes_out), MPI_BYTE, neighbor[s], tag + 1, comm,
+              &req[2 + s]);
+  }
+  MPI_Waitall(4, req.data(), MPI_STATUSES_IGNORE);
+}
+
+// Makes an error collective: every rank calls it; if any rank passes a non-empty message,
+// the lowest such rank's message is thrown as upgrain::Error on every rank, so no rank is
+// left waiting in a later message.
+inline void throw_if_any(MPI_Comm comm, const std::string& local_message) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  int mine = local_message.empty() ? size : rank;
+  int first = size;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm);
+  if (first == size) return;
+  std::string m = local_message;
+  int length = static_cast<int>(m.size());
+  MPI_Bcast(&length, 1, MPI_INT, first, comm);
+  m.resize(static_cast<std::size_t>(length));
+  MPI_Bcast(m.data(), length, MPI_CHAR, first, comm);
+  throw Error(m);
+}
+
+}  // namespace upgrain::dem

@@ -1,0 +1,198 @@
+// The communication of ParallelSimulation: migration and ghosts, both by the three-stage
+// exchange (along x, then y, then z, each with the two face neighbours). Forwarding what
+// arrived in earlier stages reaches the 12 edge and 8 corner neighbours without messages
+// to them (Plimpton 1995, J. Comput. Phys. 117:1, sec. 4).
+#include <algorithm>
+#include <cstdlib>
+#include <sstream>
+
+#include "dem/parallel/exchange.h"
+#include "dem/parallel/parallel_simulation.h"
+
+namespace upgrain::dem {
+
+namespace {
+
+constexpr int kTagMigrate = 100;
+constexpr int kTagSprings = 200;
+constexpr int kTagGhosts = 300;
+constexpr int kTagRefresh = 400;
+
+std::string block_name(const std::array<int, 3>& c) {
+  std::ostringstream m;
+  m << "(" << c[0] << ", " << c[1] << ", " << c[2] << ")";
+  return m.str();
+}
+
+}  // namespace
+
+void ParallelSimulation::migrate() {
+  const Decomposition& dec = *decomp_;
+  const std::array<int, 3>& me = dec.coords();
+  // A particle may only move to an adjacent block between two rebuilds: farther, and the
+  // ghosts it should have met were never here. Stop, naming it, rather than lose contacts.
+  std::string message;
+  for (int i = 0; i < n_owned_ && message.empty(); ++i) {
+    const std::array<int, 3> c = dec.block_of(p_.x[i]);
+    if (std::abs(c[0] - me[0]) > 1 || std::abs(c[1] - me[1]) > 1 || std::abs(c[2] - me[2]) > 1) {
+      std::ostringstream m;
+      m << "particle " << p_.id[i] << " at (" << p_.x[i][0] << ", " << p_.x[i][1] << ", " << p_.x[i][2]
+        << ") m moved from block " << block_name(me) << " (rank " << dec.rank() << ") to block "
+        << block_name(c) << ", farther than one block, by step " << step_ << " (t = " << step_ * dt_
+        << " s); the time step is too large or the particle was ejected";
+      message = m.str();
+    }
+  }
+  throw_if_any(comm_, message);
+
+  std::array<std::vector<GlobalId>, 2> leaving;
+  for (int d = 0; d < 3; ++d) {
+    for (int s = 0; s < 2; ++s) {
+      state_out_[s].clear();
+      spring_out_[s].clear();
+      leaving[s].clear();
+    }
+    // Compact the owned particles in place, packing the leavers.
+    int keep = 0;
+    for (int i = 0; i < n_owned_; ++i) {
+      const int c = dec.block_of(p_.x[i])[d];
+      if (c != me[d]) {
+        const int s = c < me[d] ? 0 : 1;
+        StateRecord r{};
+        r.gid = p_.id[i];
+        r.radius = p_.radius[i];
+        r.inv_mass = p_.inv_mass[i];
+        r.inv_inertia = p_.inv_inertia[i];
+        put(r.x, p_.x[i]);
+        put(r.v, p_.v[i]);
+        put(r.omega, p_.omega[i]);
+        put(r.force, p_.force[i]);
+        put(r.torque, p_.torque[i]);
+        state_out_[s].push_back(r);
+        leaving[s].push_back(r.gid);
+        continue;
+      }
+      if (keep != i) {
+        p_.id[keep] = p_.id[i];
+        p_.radius[keep] = p_.radius[i];
+        p_.inv_mass[keep] = p_.inv_mass[i];
+        p_.inv_inertia[keep] = p_.inv_inertia[i];
+        p_.x[keep] = p_.x[i];
+        p_.v[keep] = p_.v[i];
+        p_.omega[keep] = p_.omega[i];
+        p_.force[keep] = p_.force[i];
+        p_.torque[keep] = p_.torque[i];
+      }
+      ++keep;
+    }
+    const std::size_t k = static_cast<std::size_t>(keep);
+    p_.id.resize(k);
+    p_.radius.resize(k);
+    p_.inv_mass.resize(k);
+    p_.inv_inertia.resize(k);
+    p_.x.resize(k);
+    p_.v.resize(k);
+    p_.omega.resize(k);
+    p_.force.resize(k);
+    p_.torque.resize(k);
+    n_owned_ = keep;
+    // Every spring of a leaver goes with it (a copy stays: the partner may stay here).
+    for (int s = 0; s < 2; ++s) {
+      std::sort(leaving[s].begin(), leaving[s].end());
+      if (leaving[s].empty()) continue;
+      for (const SpringRecord& r : history_) {
+        if (std::binary_search(leaving[s].begin(), leaving[s].end(), r.a) ||
+            (r.b >= 0 && std::binary_search(leaving[s].begin(), leaving[s].end(), r.b)))
+          spring_out_[s].push_back(r);
+      }
+    }
+    const std::array<int, 2> nb{dec.neighbor(d, 0), dec.neighbor(d, 1)};
+    exchange_along_axis(comm_, nb, state_out_, state_in_, false, kTagMigrate + 10 * d);
+    exchange_along_axis(comm_, nb, spring_out_, spring_in_, false, kTagSprings + 10 * d);
+    for (int s = 0; s < 2; ++s) {
+      migrated_out_ += static_cast<long>(state_out_[s].size());
+      for (const StateRecord& r : state_in_[s]) append(r);
+      history_.insert(history_.end(), spring_in_[s].begin(), spring_in_[s].end());
+    }
+    n_owned_ = static_cast<int>(p_.size());
+  }
+}
+
+void ParallelSimulation::build_ghosts() {
+  const Decomposition& dec = *decomp_;
+  const Box& block = dec.block();
+  for (int d = 0; d < 3; ++d) {
+    for (int s = 0; s < 2; ++s) {
+      std::vector<int>& send = ghost_send_[d][s];
+      send.clear();
+      ghost_out_[s].clear();
+      if (dec.neighbor(d, s) == MPI_PROC_NULL) continue;
+      // Everything within the interaction range of the face, ghosts of earlier stages
+      // included (they cover the edges and corners).
+      const double bound = s == 0 ? block.lo[d] + range_ : block.hi[d] - range_;
+      const int n = static_cast<int>(p_.size());
+      for (int i = 0; i < n; ++i) {
+        if (s == 0 ? p_.x[i][d] < bound : p_.x[i][d] > bound) send.push_back(i);
+      }
+      for (int i : send) {
+        GhostRecord r{};
+        r.gid = p_.id[i];
+        r.radius = p_.radius[i];
+        r.inv_mass = p_.inv_mass[i];
+        r.inv_inertia = p_.inv_inertia[i];
+        put(r.x, p_.x[i]);
+        put(r.v, p_.v[i]);
+        put(r.omega, p_.omega[i]);
+        ghost_out_[s].push_back(r);
+      }
+    }
+    exchange_along_axis(comm_, {dec.neighbor(d, 0), dec.neighbor(d, 1)}, ghost_out_, ghost_in_, false,
+                        kTagGhosts + 10 * d);
+    for (int s = 0; s < 2; ++s) {
+      ghost_recv_start_[d][s] = static_cast<int>(p_.size());
+      ghost_recv_count_[d][s] = static_cast<int>(ghost_in_[s].size());
+      for (const GhostRecord& r : ghost_in_[s]) {
+        p_.id.push_back(r.gid);
+        p_.radius.push_back(r.radius);
+        p_.inv_mass.push_back(r.inv_mass);
+        p_.inv_inertia.push_back(r.inv_inertia);
+        p_.x.push_back(get(r.x));
+        p_.v.push_back(get(r.v));
+        p_.omega.push_back(get(r.omega));
+        p_.force.push_back(Vec3::Zero());
+        p_.torque.push_back(Vec3::Zero());
+      }
+    }
+  }
+}
+
+void ParallelSimulation::refresh_ghosts() {
+  const Decomposition& dec = *decomp_;
+  for (int d = 0; d < 3; ++d) {
+    for (int s = 0; s < 2; ++s) {
+      const std::vector<int>& send = ghost_send_[d][s];
+      motion_out_[s].resize(send.size());
+      for (std::size_t k = 0; k < send.size(); ++k) {
+        MotionRecord& r = motion_out_[s][k];
+        put(r.x, p_.x[send[k]]);
+        put(r.v, p_.v[send[k]]);
+        put(r.omega, p_.omega[send[k]]);
+      }
+      motion_in_[s].resize(static_cast<std::size_t>(ghost_recv_count_[d][s]));
+    }
+    exchange_along_axis(comm_, {dec.neighbor(d, 0), dec.neighbor(d, 1)}, motion_out_, motion_in_, true,
+                        kTagRefresh + 10 * d);
+    for (int s = 0; s < 2; ++s) {
+      const int start = ghost_recv_start_[d][s];
+      for (std::size_t k = 0; k < motion_in_[s].size(); ++k) {
+        const MotionRecord& r = motion_in_[s][k];
+        const std::size_t i = static_cast<std::size_t>(start) + k;
+        p_.x[i] = get(r.x);
+        p_.v[i] = get(r.v);
+        p_.omega[i] = get(r.omega);
+      }
+    }
+  }
+}
+
+}  // namespace upgrain::dem

@@ -1,0 +1,282 @@
+#include "dem/parallel/parallel_simulation.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "dem/core/error.h"
+#include "dem/neighbor/cell_grid.h"
+#include "dem/parallel/exchange.h"
+#include "dem/simulation.h"
+
+namespace upgrain::dem {
+
+namespace {
+
+StateRecord pack_state(const ParticleStore& p, std::size_t i) {
+  StateRecord r{};
+  r.gid = p.id[i];
+  r.radius = p.radius[i];
+  r.inv_mass = p.inv_mass[i];
+  r.inv_inertia = p.inv_inertia[i];
+  put(r.x, p.x[i]);
+  put(r.v, p.v[i]);
+  put(r.omega, p.omega[i]);
+  put(r.force, p.force[i]);
+  put(r.torque, p.torque[i]);
+  return r;
+}
+
+// Rank 0's particles on every rank, so that every rank derives the same box and radii.
+std::vector<StateRecord> broadcast_particles(const ParticleStore& p, MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  std::vector<StateRecord> all;
+  long n = 0;
+  if (rank == 0) {
+    n = static_cast<long>(p.size());
+    all.reserve(p.size());
+    for (std::size_t i = 0; i < p.size(); ++i) all.push_back(pack_state(p, i));
+  }
+  MPI_Bcast(&n, 1, MPI_LONG, 0, comm);
+  all.resize(static_cast<std::size_t>(n));
+  // In chunks below 2 GB (int counts).
+  constexpr std::size_t kChunk = (1u << 30) / sizeof(StateRecord);
+  for (std::size_t s = 0; s < all.size(); s += kChunk) {
+    const std::size_t c = std::min(kChunk, all.size() - s);
+    MPI_Bcast(all.data() + s, static_cast<int>(c * sizeof(StateRecord)), MPI_BYTE, 0, comm);
+  }
+  return all;
+}
+
+Box default_box(const SceneConfig& scene, const std::vector<StateRecord>& all, double r_max) {
+  Box b;
+  double z_lo = 0.0, z_hi = 0.0;
+  for (const StateRecord& r : all) {
+    z_lo = std::min(z_lo, r.x[2] - r_max);
+    z_hi = std::max(z_hi, r.x[2] + r_max);
+  }
+  b.lo = Vec3(0.0, 0.0, z_lo);
+  b.hi = Vec3(scene.container.lx, scene.container.ly, z_hi);
+  return b;
+}
+
+}  // namespace
+
+ParallelSimulation::ParallelSimulation(const SceneConfig& scene, const ParticleStore& particles,
+                                       MPI_Comm comm, const ParallelOptions& options)
+    : ParallelSimulation(scene, particles, make_open_box(scene.container), comm, options) {}
+
+ParallelSimulation::ParallelSimulation(const SceneConfig& scene, const ParticleStore& particles,
+                                       std::vector<PlaneWall> walls, MPI_Comm comm,
+                                       const ParallelOptions& options)
+    : scene_(scene),
+      walls_(std::move(walls)),
+      g_(scene.effects.gravity ? Vec3(0, 0, -scene.gravity) : Vec3::Zero()),
+      dt_(scene.time_step),
+      rotation_(scene.effects.rotation && (scene.effects.friction || scene.effects.wall_friction)),
+      kernel_(select_deterministic_forces(scene.effects)),
+      material_(ContactMaterial::from(scene.particles.material, scene.friction, scene.damping_ratio)) {
+  if (!scene.effects.wall_friction) {
+    for (auto& w : walls_) w.friction = 0.0;
+  }
+  const std::vector<StateRecord> all = broadcast_particles(particles, comm);
+  n_global_ = static_cast<long>(all.size());
+  for (const StateRecord& r : all) max_radius_ = std::max(max_radius_, r.radius);
+  // As Simulation: the skin in units of the largest diameter.
+  skin_ = scene.neighbor_skin * 2.0 * max_radius_;
+  max_radius_ = std::max(max_radius_, 1e-12);
+  range_ = 2.0 * max_radius_ + skin_;
+  const Box box = options.box ? *options.box : default_box(scene, all, max_radius_);
+  decomp_ = std::make_unique<Decomposition>(comm, box, range_, options.blocks);
+  comm_ = decomp_->comm();
+  for (const StateRecord& r : all)
+    if (decomp_->owner_of(get(r.x)) == decomp_->rank()) append(r);
+  n_owned_ = static_cast<int>(p_.size());
+  rebuild();
+  evaluate_forces();
+}
+
+void ParallelSimulation::append(const StateRecord& r) {
+  p_.id.push_back(r.gid);
+  p_.radius.push_back(r.radius);
+  p_.inv_mass.push_back(r.inv_mass);
+  p_.inv_inertia.push_back(r.inv_inertia);
+  p_.x.push_back(get(r.x));
+  p_.v.push_back(get(r.v));
+  p_.omega.push_back(get(r.omega));
+  p_.force.push_back(get(r.force));
+  p_.torque.push_back(get(r.torque));
+}
+
+void ParallelSimulation::step() {
+  const int n = n_owned_;
+  const double half = 0.5 * dt_;
+  const double limit2 = 0.25 * skin_ * skin_;
+  // Simulation::step, operation for operation: first half kick and drift with the
+  // displacement check in the same pass, then the rotational half kick.
+  bool moved = false;
+  for (int i = 0; i < n; ++i) {
+    p_.v[i] += half * (p_.force[i] * p_.inv_mass[i] + g_);
+    p_.x[i] += dt_ * p_.v[i];
+    moved = moved || (p_.x[i] - x_at_build_[i]).squaredNorm() > limit2;
+  }
+  if (rotation_) {
+    for (int i = 0; i < n; ++i) p_.omega[i] += half * p_.inv_inertia[i] * p_.torque[i];
+  }
+  // One reduction per step carries both global decisions: rebuild now (every rank at the
+  // same steps), and the runaway-overlap check of the previous evaluation.
+  double local[2] = {moved ? 1.0 : 0.0, last_overlap_ratio_};
+  double global[2] = {0.0, 0.0};
+  MPI_Allreduce(local, global, 2, MPI_DOUBLE, MPI_MAX, comm_);
+  if (global[1] > kRunawayOverlapRatio) {
+    std::ostringstream m;
+    m << "runaway overlap at step " << last_overlap_step_ << " (t = " << last_overlap_step_ * dt_
+      << " s): an overlap reached " << global[1] << " of a radius (limit " << kRunawayOverlapRatio
+      << "); the time step " << dt_
+      << " s is too large for this scene or a particle was placed inside another";
+    throw Error(m.str());
+  }
+  if (global[0] > 0.0)
+    rebuild();
+  else
+    refresh_ghosts();
+  evaluate_forces();
+  for (int i = 0; i < n_owned_; ++i) p_.v[i] += half * (p_.force[i] * p_.inv_mass[i] + g_);
+  if (rotation_) {
+    for (int i = 0; i < n_owned_; ++i) p_.omega[i] += half * p_.inv_inertia[i] * p_.torque[i];
+  }
+  ++step_;
+}
+
+void ParallelSimulation::run(long steps) {
+  for (long s = 0; s < steps; ++s) step();
+}
+
+void ParallelSimulation::rebuild() {
+  check_finite_collective();
+  // Springs of touching contacts, keyed by global ids, before local indices change.
+  history_.clear();
+  lists_.collect_springs(p_, history_);
+  // Drop the ghosts; they are rebuilt below from the new owners.
+  const std::size_t n = static_cast<std::size_t>(n_owned_);
+  p_.id.resize(n);
+  p_.radius.resize(n);
+  p_.inv_mass.resize(n);
+  p_.inv_inertia.resize(n);
+  p_.x.resize(n);
+  p_.v.resize(n);
+  p_.omega.resize(n);
+  p_.force.resize(n);
+  p_.torque.resize(n);
+  migrate();
+  long count = n_owned_;
+  long total = 0;
+  MPI_Allreduce(&count, &total, 1, MPI_LONG, MPI_SUM, comm_);
+  if (total != n_global_) {
+    std::ostringstream m;
+    m << "parallel run: " << total << " particles after the migration at step " << step_ << ", expected "
+      << n_global_;
+    throw Error(m.str());
+  }
+  // A pair straddling two ranks arrives with its spring from both: the copies are equal.
+  std::sort(history_.begin(), history_.end());
+  history_.erase(std::unique(history_.begin(), history_.end(),
+                             [](const SpringRecord& a, const SpringRecord& b) { return a.same_key(b); }),
+                 history_.end());
+  sort_owned_by_cell();
+  build_ghosts();
+  lists_.build(p_, n_owned_, max_radius_, skin_, walls_, history_);
+  x_at_build_.assign(p_.x.begin(), p_.x.begin() + n_owned_);
+  ++rebuilds_;
+}
+
+// Memory locality only (as VerletList::rebuild): no result depends on the local order,
+// since every sum runs in global-id order.
+void ParallelSimulation::sort_owned_by_cell() {
+  if (n_owned_ == 0) return;
+  Vec3 lo = p_.x[0], hi = p_.x[0];
+  for (int i = 1; i < n_owned_; ++i) {
+    lo = lo.cwiseMin(p_.x[i]);
+    hi = hi.cwiseMax(p_.x[i]);
+  }
+  CellGrid grid(lo, hi, range_, 4L * n_owned_ + 64);
+  grid.bin(p_.x);
+  p_.permute(grid.order());
+}
+
+void ParallelSimulation::evaluate_forces() {
+  DeterministicForceInput in;
+  in.particles = &p_;
+  in.n_owned = n_owned_;
+  in.lists = &lists_;
+  in.walls = &walls_;
+  in.material = material_;
+  in.dt = dt_;
+  const DeterministicForceResult r = kernel_(in);
+  last_overlap_ratio_ = r.max_overlap_ratio;
+  last_overlap_step_ = step_;
+}
+
+void ParallelSimulation::check_finite_collective() const {
+  std::string message;
+  for (int i = 0; i < n_owned_; ++i) {
+    if (!p_.x[i].allFinite() || !p_.v[i].allFinite() || !p_.omega[i].allFinite()) {
+      std::ostringstream m;
+      m << "particle " << p_.id[i] << " has a non-finite position or velocity at step " << step_
+        << " (t = " << step_ * dt_ << " s)";
+      message = m.str();
+      break;
+    }
+  }
+  throw_if_any(comm_, message);
+}
+
+ParticleStore ParallelSimulation::gather_sorted_by_id() const {
+  std::vector<StateRecord> mine;
+  mine.reserve(static_cast<std::size_t>(n_owned_));
+  for (int i = 0; i < n_owned_; ++i) mine.push_back(pack_state(p_, static_cast<std::size_t>(i)));
+  const int bytes = static_cast<int>(mine.size() * sizeof(StateRecord));
+  const int rank = decomp_->rank();
+  const int size = decomp_->size();
+  std::vector<int> counts(rank == 0 ? size : 0), displs(rank == 0 ? size : 0);
+  MPI_Gather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_);
+  std::vector<StateRecord> all;
+  if (rank == 0) {
+    long total = 0;
+    for (int r = 0; r < size; ++r) {
+      displs[r] = static_cast<int>(total);
+      total += counts[r];
+    }
+    all.resize(static_cast<std::size_t>(total) / sizeof(StateRecord));
+  }
+  MPI_Gatherv(mine.data(), bytes, MPI_BYTE, all.data(), counts.data(), displs.data(), MPI_BYTE, 0, comm_);
+  std::sort(all.begin(), all.end(), [](const StateRecord& a, const StateRecord& b) { return a.gid < b.gid; });
+  ParticleStore out;
+  out.reserve(all.size());
+  for (const StateRecord& r : all) {
+    out.id.push_back(r.gid);
+    out.radius.push_back(r.radius);
+    out.inv_mass.push_back(r.inv_mass);
+    out.inv_inertia.push_back(r.inv_inertia);
+    out.x.push_back(get(r.x));
+    out.v.push_back(get(r.v));
+    out.omega.push_back(get(r.omega));
+    out.force.push_back(get(r.force));
+    out.torque.push_back(get(r.torque));
+  }
+  return out;
+}
+
+ParallelDiagnostics ParallelSimulation::diagnostics() const {
+  ParallelDiagnostics d;
+  d.particles = n_global_;
+  d.owned = n_owned_;
+  d.ghosts = static_cast<long>(p_.size()) - n_owned_;
+  d.pair_slots = static_cast<long>(lists_.num_pairs());
+  d.rebuilds = rebuilds_;
+  d.migrated_out = migrated_out_;
+  d.max_overlap_ratio = last_overlap_ratio_;
+  return d;
+}
+
+}  // namespace upgrain::dem

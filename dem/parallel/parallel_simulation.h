@@ -1,0 +1,117 @@
+#pragma once
+// The MPI step loop: a static Cartesian decomposition (decomposition.h), ghosts over the
+// 26 neighbours by the three-stage x/y/z exchange, migration with contact history at
+// neighbour-list rebuilds, and a force sum whose result does not depend on the number of
+// ranks, bit for bit (docs/parallel.md). The integrator is Simulation::step's velocity
+// Verlet, operation for operation.
+#include <mpi.h>
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "dem/boundary/plane_wall.h"
+#include "dem/core/material.h"
+#include "dem/core/particle_store.h"
+#include "dem/parallel/contact_lists.h"
+#include "dem/parallel/decomposition.h"
+#include "dem/parallel/deterministic_forces.h"
+#include "dem/parallel/records.h"
+#include "dem/scene/scene_config.h"
+
+namespace upgrain::dem {
+
+struct ParallelOptions {
+  std::array<int, 3> blocks{0, 0, 0};  // {0,0,0}: chosen from the rank count and the box
+  // The box the blocks divide; default: the container footprint, from the floor (or the
+  // lowest particle) to the highest particle surface. Outer blocks are open outwards.
+  std::optional<Box> box;
+};
+
+struct ParallelDiagnostics {
+  long particles = 0;              // global
+  long owned = 0;                  // on this rank
+  long ghosts = 0;                 // on this rank
+  long pair_slots = 0;             // on this rank
+  long rebuilds = 0;               // neighbour-list rebuilds (identical on every rank)
+  long migrated_out = 0;           // particles this rank sent away, cumulative
+  double max_overlap_ratio = 0.0;  // of the last evaluation, on this rank
+};
+
+class ParallelSimulation {
+ public:
+  // Collective over `comm`. The particles of rank 0 are the scene (other ranks may pass
+  // the same or an empty store); each rank keeps those in its block. Walls: the scene's
+  // open box, or the given planes.
+  ParallelSimulation(const SceneConfig& scene, const ParticleStore& particles, MPI_Comm comm,
+                     const ParallelOptions& options = {});
+  ParallelSimulation(const SceneConfig& scene, const ParticleStore& particles, std::vector<PlaneWall> walls,
+                     MPI_Comm comm, const ParallelOptions& options = {});
+
+  // Collective. Throws upgrain::Error on every rank (a lost or runaway particle, a
+  // non-finite state, a particle count that changed).
+  void step();
+  void run(long steps);
+
+  // Collective: the whole state sorted by global id on rank 0 (empty on the other ranks),
+  // with the forces and torques of the last evaluation.
+  [[nodiscard]] ParticleStore gather_sorted_by_id() const;
+
+  [[nodiscard]] const Decomposition& decomposition() const { return *decomp_; }
+  // Owned particles are p[0, owned()); ghosts follow.
+  [[nodiscard]] const ParticleStore& local_particles() const { return p_; }
+  [[nodiscard]] int owned() const { return n_owned_; }
+  [[nodiscard]] long step_count() const { return step_; }
+  [[nodiscard]] double time() const { return step_ * dt_; }
+  [[nodiscard]] double interaction_range() const { return range_; }
+  [[nodiscard]] ParallelDiagnostics diagnostics() const;
+
+ private:
+  void rebuild();
+  void migrate();
+  void build_ghosts();
+  void refresh_ghosts();
+  void sort_owned_by_cell();
+  void evaluate_forces();
+  void check_finite_collective() const;
+  void append(const StateRecord& r);
+
+  SceneConfig scene_;
+  std::vector<PlaneWall> walls_;
+  std::unique_ptr<Decomposition> decomp_;
+  MPI_Comm comm_ = MPI_COMM_NULL;  // the Cartesian communicator
+  ParticleStore p_;
+  int n_owned_ = 0;
+  long n_global_ = 0;
+  double max_radius_ = 0.0;
+  double skin_ = 0.0;
+  double range_ = 0.0;  // largest diameter + skin
+  Vec3 g_ = Vec3::Zero();
+  double dt_ = 0.0;
+  bool rotation_ = false;
+  long step_ = 0;
+  long rebuilds_ = 0;
+  long migrated_out_ = 0;
+  double last_overlap_ratio_ = 0.0;
+  long last_overlap_step_ = 0;
+
+  ContactLists lists_;
+  DeterministicForceKernel kernel_ = nullptr;
+  ContactMaterial material_;
+  std::vector<Vec3> x_at_build_;
+  std::vector<SpringRecord> history_;
+
+  // Ghost routes of the current rebuild, per axis and face: the local indices sent and
+  // where the received ghosts start in the store. Refreshes follow the same routes.
+  std::array<std::array<std::vector<int>, 2>, 3> ghost_send_;
+  std::array<std::array<int, 2>, 3> ghost_recv_start_{};
+  std::array<std::array<int, 2>, 3> ghost_recv_count_{};
+  // Message buffers, kept between steps.
+  std::array<std::vector<GhostRecord>, 2> ghost_out_, ghost_in_;
+  std::array<std::vector<MotionRecord>, 2> motion_out_, motion_in_;
+  std::array<std::vector<StateRecord>, 2> state_out_, state_in_;
+  std::array<std::vector<SpringRecord>, 2> spring_out_, spring_in_;
+};
+
+}  // namespace upgrain::dem

@@ -1,0 +1,110 @@
+#pragma once
+// Shared pieces of the parallel tests: scenes, and the bitwise comparison of a run on all
+// ranks of MPI_COMM_WORLD with the same run on rank 0 alone (MPI_COMM_SELF).
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <sstream>
+#include <string>
+
+#include "dem/parallel/parallel_simulation.h"
+#include "dem/scene/fill.h"
+
+namespace upgrain::test {
+
+inline int world_rank() {
+  int r = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r;
+}
+inline int world_size() {
+  int s = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &s);
+  return s;
+}
+
+// Bitwise equality of x, v and omega, particle by particle (both sorted by id). Reports
+// the count of differing numbers and the first difference, not one failure per number.
+inline void expect_bitwise_equal(const dem::ParticleStore& a, const dem::ParticleStore& b,
+                                 const std::string& what) {
+  ASSERT_EQ(a.size(), b.size()) << what;
+  long differing = 0;
+  std::string first;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ASSERT_EQ(a.id[i], b.id[i]) << what;
+    for (int d = 0; d < 3; ++d) {
+      const double pairs[3][2] = {
+          {a.x[i][d], b.x[i][d]}, {a.v[i][d], b.v[i][d]}, {a.omega[i][d], b.omega[i][d]}};
+      for (int f = 0; f < 3; ++f) {
+        if (pairs[f][0] == pairs[f][1]) continue;
+        if (differing++ == 0) {
+          std::ostringstream m;
+          m.precision(17);
+          m << "particle " << a.id[i] << " "
+            << "xvw"[f] << "[" << d << "]: " << pairs[f][0] << " vs " << pairs[f][1];
+          first = m.str();
+        }
+      }
+    }
+  }
+  EXPECT_EQ(differing, 0) << what << ": first difference " << first;
+}
+
+// Runs `steps` steps on MPI_COMM_WORLD and, on rank 0, the same scene on MPI_COMM_SELF,
+// and compares the states bitwise. Returns the world run's diagnostics (this rank).
+inline dem::ParallelDiagnostics expect_rank_independent(const dem::SceneConfig& scene,
+                                                        const dem::ParticleStore& particles,
+                                                        const std::vector<dem::PlaneWall>& walls,
+                                                        const dem::ParallelOptions& world_options,
+                                                        const dem::ParallelOptions& self_options,
+                                                        long steps) {
+  dem::ParallelSimulation world(scene, particles, walls, MPI_COMM_WORLD, world_options);
+  world.run(steps);
+  const dem::ParticleStore parallel = world.gather_sorted_by_id();
+  if (world_rank() == 0) {
+    dem::ParallelSimulation self(scene, particles, walls, MPI_COMM_SELF, self_options);
+    self.run(steps);
+    const dem::ParticleStore serial = self.gather_sorted_by_id();
+    EXPECT_EQ(parallel.size(), particles.size());
+    expect_bitwise_equal(parallel, serial, std::to_string(world_size()) + " ranks vs 1");
+  }
+  return world.diagnostics();
+}
+
+// The paper's patch test scene: 162 spheres, two layers of 9 x 9, dropped with some
+// random velocity into an open box so that they hit the floor and each other.
+inline dem::SceneConfig patch_scene() {
+  dem::SceneConfig s;
+  s.particles.count = 162;
+  s.particles.radius = 5e-3;
+  s.particles.material = {2650.0, 5e7, 0.25};
+  // Lattice pitch 1.1 d = 11 mm; 9 per row needs 8.5 pitches + d + gap.
+  s.container.lx = s.container.ly = 0.1045;
+  s.fill.bottom_gap = 0.5e-3;
+  s.fill.position_jitter = 0.5;
+  s.fill.velocity = dem::Vec3(0, 0, -0.5);
+  s.fill.velocity_jitter = 0.3;
+  s.friction = 0.5;
+  s.damping_ratio = 0.3;
+  s.time_step = 2e-5;
+  return s;
+}
+
+// A smaller cousin of tests/regression/deposition_test.cc's scene.
+inline dem::SceneConfig deposition_scene(long count) {
+  dem::SceneConfig s;
+  s.particles.count = count;
+  s.particles.radius = 1.5e-3;
+  s.particles.material = {2650.0, 5e7, 0.25};
+  s.container.lx = s.container.ly = 0.03;
+  s.fill.bottom_gap = 0.002;
+  s.fill.position_jitter = 0.5;
+  s.fill.velocity = dem::Vec3(0, 0, -0.5);
+  s.fill.velocity_jitter = 0.2;
+  s.friction = 0.5;
+  s.damping_ratio = 0.7;
+  s.time_step = 1e-5;
+  return s;
+}
+
+}  // namespace upgrain::test
