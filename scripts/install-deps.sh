@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages Upgrain needs. Skips the install when all are present.
 set -euo pipefail
 PACKAGES=(cmake g++ ninja-build ccache lld pkg-config
-  libdeal.ii-dev libeigen3-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev
+  libdeal.ii-dev libeigen3-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev libcgal-dev libgmp-dev libmpfr-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-numpy python3-matplotlib python3-h5py)
 missing=()

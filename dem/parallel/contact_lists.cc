@@ -86,6 +86,9 @@ void ContactLists::build(const ParticleStore& p, int n_owned, double max_radius,
   torque_lo.resize(m);
   torque_hi.resize(m);
   touching.assign(m, 0);
+  elastic_normal.assign(m, 0.0);
+  elastic_tangential.assign(m, 0.0);
+  damping_on_lo.assign(m, Vec3::Zero());
 
   // 4. Wall contacts of the owned particles, by particle then wall.
   wall.clear();
@@ -97,6 +100,7 @@ void ContactLists::build(const ParticleStore& p, int n_owned, double max_radius,
       wall.push_back({i, static_cast<int>(w), s});
     }
   }
+  wall_force_on_particle.assign(wall.size(), Vec3::Zero());
 }
 
 void ContactLists::collect_springs(const ParticleStore& p, std::vector<SpringRecord>& out) const {

@@ -32,10 +32,16 @@ struct ContactLists {
   // and hi, and whether the pair touched.
   std::vector<Vec3> force, torque_lo, torque_hi;
   std::vector<unsigned char> touching;
+  // With energy tracking: the slot's elastic energies and the viscous part of its force on
+  // lo (hi receives the opposite).
+  std::vector<double> elastic_normal, elastic_tangential;
+  std::vector<Vec3> damping_on_lo;
   // CSR rows of the owned particles: entry 2 k + s for slot k, s = 1 when the row's
   // particle is the slot's hi.
   std::vector<int> row_start, row;
   std::vector<WallContact> wall;
+  // Per wall entry, per evaluation: the force on the particle (zero when not touching).
+  std::vector<Vec3> wall_force_on_particle;
 
   // Rebuilds everything from the local store (n_owned owned particles, then ghosts).
   // `history` must be sorted and free of duplicate keys.

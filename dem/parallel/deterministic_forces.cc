@@ -9,26 +9,33 @@ namespace upgrain::dem {
 
 namespace {
 
-template <class E>
+template <class E, bool Record>
 DeterministicForceResult compute(const DeterministicForceInput& in) {
   ParticleStore& p = *in.particles;
   ContactLists& l = *in.lists;
   const int n_owned = in.n_owned;
   const ContactMaterial& mat = in.material;
   DeterministicForceResult out;
-  ContactEnergy unused_energy;  // energies are not tracked by the parallel engine yet
   TangentialSpring dummy_spring;
+  constexpr bool kDampingWork = E::damping && E::energy;
 
   for (int i = 0; i < n_owned; ++i) {
     p.force[i].setZero();
     if constexpr (E::rotation) p.torque[i].setZero();
   }
+  if constexpr (E::energy) {
+    in.energy->elastic_normal.assign(n_owned, 0.0);
+    in.energy->elastic_tangential.assign(n_owned, 0.0);
+    if constexpr (kDampingWork) in.energy->damping_force.assign(n_owned, Vec3::Zero());
+  }
+  if constexpr (Record) in.record->clear();
 
   // 1. Walls, straight into the owned particles: entries are sorted by (particle, wall),
   //    so each particle receives its wall forces in wall order, before any pair.
   const std::vector<PlaneWall>& walls = *in.walls;
   ContactParameters wp{mat.e_star_pw, mat.g_star_pw, 0.0, 0.0, 0.0, mat.damping_ratio, in.dt};
-  for (WallContact& c : l.wall) {
+  for (std::size_t e = 0; e < l.wall.size(); ++e) {
+    WallContact& c = l.wall[e];
     const int i = c.particle;
     const PlaneWall& wall = walls[c.wall];
     const double gap = wall.distance(p.x[i]);
@@ -38,6 +45,7 @@ DeterministicForceResult compute(const DeterministicForceInput& in) {
       if constexpr (E::wall_friction) {
         if (spring.stiffness != 0.0) spring = TangentialSpring{};
       }
+      l.wall_force_on_particle[e].setZero();
       continue;
     }
     ContactKinematics kin;
@@ -54,8 +62,19 @@ DeterministicForceResult compute(const DeterministicForceInput& in) {
     wp.friction = wall.friction;
     wp.r_star = ri;
     wp.m_star = p.mass(i);
+    ContactEnergy ce;
     const ContactForce cf =
-        contact_response<E::wall_friction, E::damping, E::rotation, false>(wp, kin, spring, unused_energy);
+        contact_response<E::wall_friction, E::damping, E::rotation, E::energy>(wp, kin, spring, ce);
+    l.wall_force_on_particle[e] = cf.on_i;
+    if constexpr (E::energy) {
+      in.energy->elastic_normal[i] += ce.elastic_normal;
+      in.energy->elastic_tangential[i] += ce.elastic_tangential;
+      out.dissipated.dissipated_damping += ce.dissipated_damping;
+      out.dissipated.dissipated_friction += ce.dissipated_friction;
+      out.dissipated.tangential_stiffness_change += ce.tangential_stiffness_change;
+      if constexpr (kDampingWork) in.energy->damping_force[i] -= cf.damping * kin.normal;
+    }
+    if constexpr (Record) in.record->push_back({i, -c.wall - 1, p.x[i] + gap * kin.normal, cf.on_i});
     p.force[i] += cf.on_i;
     if constexpr (E::rotation) p.torque[i] += gap * kin.normal.cross(cf.on_i);
     ++out.wall_contacts;
@@ -97,10 +116,22 @@ DeterministicForceResult compute(const DeterministicForceInput& in) {
     cp.r_star = ri * rj / rsum;
     cp.m_star = 1.0 / (p.inv_mass[i] + p.inv_mass[j]);
     TangentialSpring& spring = E::friction ? l.spring[k] : dummy_spring;
+    ContactEnergy ce;
     const ContactForce cf =
-        contact_response<E::friction, E::damping, E::rotation, false>(cp, kin, spring, unused_energy);
+        contact_response<E::friction, E::damping, E::rotation, E::energy>(cp, kin, spring, ce);
     l.touching[k] = 1;
     l.force[k] = cf.on_i;
+    if constexpr (E::energy) {
+      l.elastic_normal[k] = ce.elastic_normal;
+      l.elastic_tangential[k] = ce.elastic_tangential;
+      if constexpr (kDampingWork) l.damping_on_lo[k] = -cf.damping * kin.normal;
+      if (i < n_owned) {
+        out.dissipated.dissipated_damping += ce.dissipated_damping;
+        out.dissipated.dissipated_friction += ce.dissipated_friction;
+        out.dissipated.tangential_stiffness_change += ce.tangential_stiffness_change;
+      }
+    }
+    if constexpr (Record) in.record->push_back({i, j, p.x[i] + kin.arm_i * kin.normal, cf.on_i});
     if constexpr (E::rotation) {
       const Vec3 arm_x_f = kin.normal.cross(cf.on_i);
       l.torque_lo[k] = kin.arm_i * arm_x_f;
@@ -118,6 +149,13 @@ DeterministicForceResult compute(const DeterministicForceInput& in) {
     Vec3 f = p.force[i];
     Vec3 t = Vec3::Zero();
     if constexpr (E::rotation) t = p.torque[i];
+    [[maybe_unused]] double en = 0.0, et = 0.0;
+    [[maybe_unused]] Vec3 fd = Vec3::Zero();
+    if constexpr (E::energy) {
+      en = in.energy->elastic_normal[i];
+      et = in.energy->elastic_tangential[i];
+    }
+    if constexpr (kDampingWork) fd = in.energy->damping_force[i];
     for (int r = l.row_start[i]; r < l.row_start[i + 1]; ++r) {
       const int e = l.row[r];
       const int k = e >> 1;
@@ -125,33 +163,52 @@ DeterministicForceResult compute(const DeterministicForceInput& in) {
       if (e & 1) {
         f -= l.force[k];
         if constexpr (E::rotation) t += l.torque_hi[k];
+        if constexpr (kDampingWork) fd -= l.damping_on_lo[k];
       } else {
         f += l.force[k];
         if constexpr (E::rotation) t += l.torque_lo[k];
+        if constexpr (E::energy) {
+          en += l.elastic_normal[k];
+          et += l.elastic_tangential[k];
+        }
+        if constexpr (kDampingWork) fd += l.damping_on_lo[k];
       }
     }
+    if constexpr (E::energy) {
+      in.energy->elastic_normal[i] = en;
+      in.energy->elastic_tangential[i] = et;
+    }
+    if constexpr (kDampingWork) in.energy->damping_force[i] = fd;
     p.force[i] = f;
     if constexpr (E::rotation) p.torque[i] = t;
   }
   return out;
 }
 
+template <bool F, bool D, bool W, bool R>
+DeterministicForceKernels pick_energy(bool energy) {
+  using On = Effects<F, D, W, R, true>;
+  using Off = Effects<F, D, W, R, false>;
+  return energy ? DeterministicForceKernels{&compute<On, false>, &compute<On, true>}
+                : DeterministicForceKernels{&compute<Off, false>, &compute<Off, true>};
+}
 template <bool F, bool D, bool W>
-DeterministicForceKernel pick_rotation(bool r) {
-  return r ? &compute<Effects<F, D, W, true, false>> : &compute<Effects<F, D, W, false, false>>;
+DeterministicForceKernels pick_rotation(const EffectSet& e) {
+  return e.rotation ? pick_energy<F, D, W, true>(e.energy_tracking)
+                    : pick_energy<F, D, W, false>(e.energy_tracking);
 }
 template <bool F, bool D>
-DeterministicForceKernel pick_wall(const EffectSet& e) {
-  return e.wall_friction ? pick_rotation<F, D, true>(e.rotation) : pick_rotation<F, D, false>(e.rotation);
+DeterministicForceKernels pick_wall(const EffectSet& e) {
+  return e.wall_friction ? pick_rotation<F, D, true>(e) : pick_rotation<F, D, false>(e);
 }
 template <bool F>
-DeterministicForceKernel pick_damping(const EffectSet& e) {
+DeterministicForceKernels pick_damping(const EffectSet& e) {
   return e.damping ? pick_wall<F, true>(e) : pick_wall<F, false>(e);
 }
 
 }  // namespace
 
-DeterministicForceKernel select_deterministic_forces(const EffectSet& e) {
+DeterministicForceKernels select_deterministic_forces(const EffectSet& e) {
   return e.friction ? pick_damping<true>(e) : pick_damping<false>(e);
 }
 

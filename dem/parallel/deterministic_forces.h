@@ -8,12 +8,23 @@
 #include <vector>
 
 #include "dem/boundary/plane_wall.h"
+#include "dem/contact/contact_response.h"
+#include "dem/contact/contact_sample.h"
 #include "dem/contact/effects.h"
 #include "dem/core/material.h"
 #include "dem/core/particle_store.h"
 #include "dem/parallel/contact_lists.h"
 
 namespace upgrain::dem {
+
+// Per owned particle, written by the kernels with energy tracking: the elastic energy of
+// its wall contacts and of the pairs where it is lo (so each pair is counted once, by the
+// owner of its lower-id particle), and the viscous part of its total contact force (for
+// the second half of the damping work, docs/integrator.md).
+struct OwnedEnergyTerms {
+  std::vector<double> elastic_normal, elastic_tangential;
+  std::vector<Vec3> damping_force;
+};
 
 struct DeterministicForceInput {
   ParticleStore* particles = nullptr;  // owned first, then ghosts
@@ -22,16 +33,30 @@ struct DeterministicForceInput {
   const std::vector<PlaneWall>* walls = nullptr;
   ContactMaterial material;
   double dt = 0.0;
+  OwnedEnergyTerms* energy = nullptr;            // required by the energy kernels
+  std::vector<ContactSample>* record = nullptr;  // required by the recording kernels
 };
 
 struct DeterministicForceResult {
   long pair_contacts = 0;  // pairs touching, counted on this rank (straddling pairs on both)
   long wall_contacts = 0;
   double max_overlap_ratio = 0.0;
+  // With energy tracking: this evaluation's dissipation on this rank, over the wall
+  // contacts of owned particles and the pairs whose lo is owned (elastic fields unused).
+  ContactEnergy dissipated;
 };
 
 using DeterministicForceKernel = DeterministicForceResult (*)(const DeterministicForceInput&);
 
-DeterministicForceKernel select_deterministic_forces(const EffectSet& effects);
+// The same loop without and with contact recording (stress output). The recording kernel
+// writes every contact of the owned particles, once per rank: wall contacts (a = the
+// particle, b = -(w + 1)), then pairs in slot order (a = lo, b = hi, force on lo, point
+// x_lo + (r_lo - delta / 2) n); a pair straddling two ranks is recorded on both.
+struct DeterministicForceKernels {
+  DeterministicForceKernel plain;
+  DeterministicForceKernel recording;
+};
+
+DeterministicForceKernels select_deterministic_forces(const EffectSet& effects);
 
 }  // namespace upgrain::dem

@@ -45,6 +45,32 @@ void exchange_along_axis(MPI_Comm comm, const std::array<int, 2>& neighbor,
   MPI_Waitall(4, req.data(), MPI_STATUSES_IGNORE);
 }
 
+// Gathers every rank's records on `root` (rank order; empty elsewhere), as bytes. For
+// output-time reductions: the caller sorts by a global key and sums in that order, so the
+// result does not depend on how the records were divided among the ranks.
+template <class T>
+std::vector<T> gather_to_root(const std::vector<T>& mine, MPI_Comm comm, int root = 0) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  if (mine.size() * sizeof(T) > 2147483647u) throw Error("parallel gather: message above 2 GB");
+  const int bytes = static_cast<int>(mine.size() * sizeof(T));
+  std::vector<int> counts(rank == root ? size : 0), displs(rank == root ? size : 0);
+  MPI_Gather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, root, comm);
+  std::vector<T> all;
+  if (rank == root) {
+    long total = 0;
+    for (int r = 0; r < size; ++r) {
+      displs[r] = static_cast<int>(total);
+      total += counts[r];
+    }
+    if (total > 2147483647L) throw Error("parallel gather: message above 2 GB");
+    all.resize(static_cast<std::size_t>(total) / sizeof(T));
+  }
+  MPI_Gatherv(mine.data(), bytes, MPI_BYTE, all.data(), counts.data(), displs.data(), MPI_BYTE, root, comm);
+  return all;
+}
+
 // Makes an error collective: every rank calls it; if any rank passes a non-empty message,
 // the lowest such rank's message is thrown as upgrain::Error on every rank, so no rank is
 // left waiting in a later message.

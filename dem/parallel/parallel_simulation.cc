@@ -74,7 +74,8 @@ ParallelSimulation::ParallelSimulation(const SceneConfig& scene, const ParticleS
       g_(scene.effects.gravity ? Vec3(0, 0, -scene.gravity) : Vec3::Zero()),
       dt_(scene.time_step),
       rotation_(scene.effects.rotation && (scene.effects.friction || scene.effects.wall_friction)),
-      kernel_(select_deterministic_forces(scene.effects)),
+      kernels_(select_deterministic_forces(scene.effects)),
+      energy_tracking_(scene.effects.energy_tracking),
       material_(ContactMaterial::from(scene.particles.material, scene.friction, scene.damping_ratio)) {
   if (!scene.effects.wall_friction) {
     for (auto& w : walls_) w.friction = 0.0;
@@ -122,6 +123,13 @@ void ParallelSimulation::step() {
   }
   if (rotation_) {
     for (int i = 0; i < n; ++i) p_.omega[i] += half * p_.inv_inertia[i] * p_.torque[i];
+  }
+  // Second half of the work of the previous step's damping forces, with v(k+1/2), as
+  // Simulation::step (the owned particles are still those of that evaluation).
+  if (!energy_terms_.damping_force.empty()) {
+    double work = 0.0;
+    for (int i = 0; i < n; ++i) work += energy_terms_.damping_force[i].dot(p_.v[i]);
+    dissipated_damping_ -= half * work;
   }
   // One reduction per step carries both global decisions: rebuild now (every rank at the
   // same steps), and the runaway-overlap check of the previous evaluation.
@@ -212,7 +220,15 @@ void ParallelSimulation::evaluate_forces() {
   in.walls = &walls_;
   in.material = material_;
   in.dt = dt_;
-  const DeterministicForceResult r = kernel_(in);
+  in.energy = &energy_terms_;
+  in.record = &contacts_;
+  recorded_ = record_next_;
+  if (!record_next_) contacts_.clear();
+  const DeterministicForceResult r = record_next_ ? kernels_.recording(in) : kernels_.plain(in);
+  record_next_ = false;
+  dissipated_damping_ += r.dissipated.dissipated_damping;
+  dissipated_friction_ += r.dissipated.dissipated_friction;
+  stiffness_change_ += r.dissipated.tangential_stiffness_change;
   last_overlap_ratio_ = r.max_overlap_ratio;
   last_overlap_step_ = step_;
 }
@@ -264,6 +280,113 @@ ParticleStore ParallelSimulation::gather_sorted_by_id() const {
     out.force.push_back(get(r.force));
     out.torque.push_back(get(r.torque));
   }
+  return out;
+}
+
+GridStress ParallelSimulation::grid_stress(const RegularGrid& grid) const {
+  if (!recorded_)
+    throw Error("parallel grid stress: no contacts recorded at the last step (request_contacts())");
+  return parallel_grid_stress(p_, n_owned_, contacts_, grid, grain_dynamics(), comm_);
+}
+
+ComputeGridStress ParallelSimulation::compute_grid_stress() const {
+  if (!recorded_)
+    throw Error("parallel grid stress: no contacts recorded at the last step (request_contacts())");
+  return parallel_compute_grid_stress(p_, n_owned_, contacts_, *decomp_, grain_dynamics());
+}
+
+std::vector<ContactRecord> ParallelSimulation::gather_contacts_by_id() const {
+  if (!recorded_) throw Error("parallel contacts: none recorded at the last step (request_contacts())");
+  std::vector<ContactRecord> mine;
+  for (const ContactSample& c : contacts_) {
+    // Walls belong to owned particles; a pair is sent by the owner of its lower id.
+    if (!c.with_wall() && c.a >= n_owned_) continue;
+    ContactRecord r{p_.id[c.a], c.with_wall() ? -1 - static_cast<GlobalId>(c.wall()) : p_.id[c.b], {}, {}};
+    put(r.point, c.point);
+    put(r.force, c.force_on_a);
+    mine.push_back(r);
+  }
+  std::vector<ContactRecord> all = gather_to_root(mine, comm_);
+  std::sort(all.begin(), all.end());
+  return all;
+}
+
+std::vector<ContactSample> contacts_in_store(const std::vector<ContactRecord>& contacts,
+                                             const ParticleStore& sorted) {
+  auto index = [&](GlobalId gid) {
+    const auto it = std::lower_bound(sorted.id.begin(), sorted.id.end(), gid);
+    if (it == sorted.id.end() || *it != gid) throw Error("contacts_in_store: particle not in the store");
+    return static_cast<int>(it - sorted.id.begin());
+  };
+  std::vector<ContactSample> out;
+  out.reserve(contacts.size());
+  for (const ContactRecord& r : contacts)
+    out.push_back({index(r.a), r.b < 0 ? static_cast<int>(r.b) : index(r.b), get(r.point), get(r.force)});
+  return out;
+}
+
+EnergyBalance ParallelSimulation::energy() const {
+  struct Record {
+    GlobalId gid;
+    double e[5];  // kinetic translational, rotational, potential, elastic normal, tangential
+  };
+  const bool elastic = !energy_terms_.elastic_normal.empty();
+  std::vector<Record> mine(static_cast<std::size_t>(n_owned_));
+  for (int i = 0; i < n_owned_; ++i) {
+    const double m = p_.mass(static_cast<std::size_t>(i));
+    Record& r = mine[i];
+    r.gid = p_.id[i];
+    r.e[0] = 0.5 * m * p_.v[i].squaredNorm();
+    r.e[1] = rotation_ ? 0.5 * p_.omega[i].squaredNorm() / p_.inv_inertia[i] : 0.0;
+    r.e[2] = -m * g_.dot(p_.x[i]);
+    r.e[3] = elastic ? energy_terms_.elastic_normal[i] : 0.0;
+    r.e[4] = elastic ? energy_terms_.elastic_tangential[i] : 0.0;
+  }
+  std::vector<Record> all = gather_to_root(mine, comm_);
+  std::sort(all.begin(), all.end(), [](const Record& a, const Record& b) { return a.gid < b.gid; });
+  double sums[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  for (const Record& r : all)
+    for (int k = 0; k < 5; ++k) sums[k] += r.e[k];
+  const double local[3] = {dissipated_damping_, dissipated_friction_, stiffness_change_};
+  MPI_Reduce(local, sums + 5, 3, MPI_DOUBLE, MPI_SUM, 0, comm_);
+  MPI_Bcast(sums, 8, MPI_DOUBLE, 0, comm_);
+  EnergyBalance e;
+  e.kinetic_translational = sums[0];
+  e.kinetic_rotational = sums[1];
+  e.potential = sums[2];
+  e.elastic_normal = sums[3];
+  e.elastic_tangential = sums[4];
+  e.dissipated_damping = sums[5];
+  e.dissipated_friction = sums[6];
+  e.tangential_stiffness_change = sums[7];
+  return e;
+}
+
+std::vector<Vec3> ParallelSimulation::wall_forces() const {
+  struct Record {
+    long wall;
+    GlobalId gid;
+    double f[3];
+  };
+  std::vector<Record> mine;
+  for (std::size_t e = 0; e < lists_.wall.size(); ++e) {
+    const Vec3& f = lists_.wall_force_on_particle[e];
+    if (f == Vec3::Zero()) continue;
+    Record r{lists_.wall[e].wall, p_.id[lists_.wall[e].particle], {}};
+    put(r.f, f);
+    mine.push_back(r);
+  }
+  std::vector<Record> all = gather_to_root(mine, comm_);
+  std::sort(all.begin(), all.end(), [](const Record& a, const Record& b) {
+    return a.wall < b.wall || (a.wall == b.wall && a.gid < b.gid);
+  });
+  std::vector<double> total(3 * walls_.size(), 0.0);
+  for (const Record& r : all)
+    for (int d = 0; d < 3; ++d) total[3 * r.wall + d] -= r.f[d];
+  MPI_Bcast(total.data(), static_cast<int>(total.size()), MPI_DOUBLE, 0, comm_);
+  std::vector<Vec3> out(walls_.size());
+  for (std::size_t w = 0; w < walls_.size(); ++w)
+    out[w] = Vec3(total[3 * w], total[3 * w + 1], total[3 * w + 2]);
   return out;
 }
 

@@ -14,9 +14,11 @@
 #include "dem/boundary/plane_wall.h"
 #include "dem/core/material.h"
 #include "dem/core/particle_store.h"
+#include "dem/energy.h"
 #include "dem/parallel/contact_lists.h"
 #include "dem/parallel/decomposition.h"
 #include "dem/parallel/deterministic_forces.h"
+#include "dem/parallel/parallel_stress.h"
 #include "dem/parallel/records.h"
 #include "dem/scene/scene_config.h"
 
@@ -58,6 +60,33 @@ class ParallelSimulation {
   // with the forces and torques of the last evaluation.
   [[nodiscard]] ParticleStore gather_sorted_by_id() const;
 
+  // Asks the next force evaluation (the next step()) to record the contacts of the owned
+  // particles (DeterministicForceKernels::recording: local indices, pairs with a = the
+  // lower id and the force on it); they stay valid until the following step.
+  void request_contacts() { record_next_ = true; }
+  [[nodiscard]] const std::vector<ContactSample>& contacts() const { return contacts_; }
+  [[nodiscard]] bool contacts_recorded() const { return recorded_; }
+
+  // Collective, after a step that recorded contacts (else upgrain::Error): the stress of a
+  // fixed grid, bitwise the same on any rank count, and of the compute grids (one cell per
+  // block). Every rank receives the result. docs/stress.md, "Stress in parallel".
+  [[nodiscard]] GridStress grid_stress(const RegularGrid& grid) const;
+  [[nodiscard]] ComputeGridStress compute_grid_stress() const;
+  [[nodiscard]] GrainDynamics grain_dynamics() const { return {g_, rotation_}; }
+  // Collective: every recorded contact once (pairs from the owner of their lower id), on
+  // rank 0, sorted by key; empty elsewhere.
+  [[nodiscard]] std::vector<ContactRecord> gather_contacts_by_id() const;
+
+  // Collective; every rank receives the same numbers. Kinetic, potential and elastic
+  // energies are summed per particle in global-id order (bitwise rank-independent); the
+  // cumulative dissipation is a per-rank running sum reduced over ranks (rank-independent
+  // to round-off, docs/parallel.md). All zero but kinetic and potential without the
+  // energy_tracking effect.
+  [[nodiscard]] EnergyBalance energy() const;
+  // Collective: the force exerted by the particles on each wall at the last evaluation,
+  // summed per wall in global-id order (bitwise rank-independent).
+  [[nodiscard]] std::vector<Vec3> wall_forces() const;
+
   [[nodiscard]] const Decomposition& decomposition() const { return *decomp_; }
   // Owned particles are p[0, owned()); ghosts follow.
   [[nodiscard]] const ParticleStore& local_particles() const { return p_; }
@@ -97,7 +126,16 @@ class ParallelSimulation {
   long last_overlap_step_ = 0;
 
   ContactLists lists_;
-  DeterministicForceKernel kernel_ = nullptr;
+  DeterministicForceKernels kernels_{};
+  bool energy_tracking_ = false;
+  bool record_next_ = false;
+  bool recorded_ = false;
+  std::vector<ContactSample> contacts_;
+  OwnedEnergyTerms energy_terms_;
+  // Cumulative dissipation on this rank (owned walls, pairs whose lo is owned).
+  double dissipated_damping_ = 0.0;
+  double dissipated_friction_ = 0.0;
+  double stiffness_change_ = 0.0;
   ContactMaterial material_;
   std::vector<Vec3> x_at_build_;
   std::vector<SpringRecord> history_;
@@ -113,5 +151,10 @@ class ParallelSimulation {
   std::array<std::vector<StateRecord>, 2> state_out_, state_in_;
   std::array<std::vector<SpringRecord>, 2> spring_out_, spring_in_;
 };
+
+// Gathered contacts as ContactSamples indexing a store sorted by id (gather_sorted_by_id):
+// what the serial grid_stress() takes.
+std::vector<ContactSample> contacts_in_store(const std::vector<ContactRecord>& contacts,
+                                             const ParticleStore& sorted_by_id);
 
 }  // namespace upgrain::dem

@@ -36,6 +36,15 @@ struct SpringRecord {
   bool same_key(const SpringRecord& o) const { return a == o.a && b == o.b; }
 };
 
+// One contact keyed by global ids (a < b, force on a; or wall w as b = -1 - w), for
+// gathered output.
+struct ContactRecord {
+  GlobalId a, b;
+  double point[3], force[3];
+  bool operator<(const ContactRecord& o) const { return a < o.a || (a == o.a && b < o.b); }
+};
+
+static_assert(std::is_trivially_copyable_v<ContactRecord>);
 static_assert(std::is_trivially_copyable_v<GhostRecord> && std::is_trivially_copyable_v<MotionRecord> &&
               std::is_trivially_copyable_v<StateRecord> && std::is_trivially_copyable_v<SpringRecord>);
 

@@ -23,94 +23,107 @@ Vec3 RegularGrid::cell_centre(int cell) const {
   return lo + h.cwiseProduct(Vec3(i + 0.5, j + 0.5, k + 0.5));
 }
 
-GridStress grid_stress(const ParticleStore& p, const std::vector<ContactSample>& contacts,
-                       const RegularGrid& grid, const GrainDynamics& dynamics) {
-  const int cells = grid.num_cells();
+StressSums& StressSums::operator+=(const StressSums& o) {
+  weber += o.weber;
+  drescher += o.drescher;
+  bagi += o.bagi;
+  de_saxce += o.de_saxce;
+  inertial += o.inertial;
+  particles += o.particles;
+  internal_contacts += o.internal_contacts;
+  external_contacts += o.external_contacts;
+  wall_contacts += o.wall_contacts;
+  solid_volume += o.solid_volume;
+  return *this;
+}
+
+void add_grain_count(StressSums& s, double radius) {
+  ++s.particles;
+  s.solid_volume += 4.0 / 3.0 * std::numbers::pi * std::pow(radius, 3);
+}
+
+void add_grain_terms(StressSums& s, const ParticleStore& p, std::size_t i, const Vec3& centre,
+                     const GrainDynamics& dynamics) {
+  s.de_saxce -= p.force[i] * (p.x[i] - centre).transpose();
+  if (!dynamics.rotation) return;
+  // Spheres: J = I 1, so w x (J w) = 0 and w_dot = T / I.
+  const Mat3 inertia = Mat3::Identity() / p.inv_inertia[i];
+  const Vec3 omega_dot = angular_acceleration(inertia, p.omega[i], p.torque[i]);
+  s.inertial += rigid_body_inertial_moment(second_moment_from_inertia(inertia), p.omega[i], omega_dot);
+}
+
+GridStress empty_grid_stress(int cells, double cell_volume) {
   GridStress g;
-  g.cell_volume = grid.cell_volume();
+  g.cell_volume = cell_volume;
   for (auto& s : g.sigma) s.assign(cells, Mat3::Zero());
   g.particles.assign(cells, 0);
   g.internal_contacts.assign(cells, 0);
   g.external_contacts.assign(cells, 0);
   g.wall_contacts.assign(cells, 0);
   g.solid_fraction.assign(cells, 0.0);
-  std::vector<Mat3>& weber = g.sigma[static_cast<int>(StressFormula::weber)];
-  std::vector<Mat3>& drescher = g.sigma[static_cast<int>(StressFormula::drescher)];
-  std::vector<Mat3>& bagi = g.sigma[static_cast<int>(StressFormula::bagi)];
-  std::vector<Mat3>& de_saxce = g.sigma[static_cast<int>(StressFormula::de_saxce)];
+  return g;
+}
+
+void finish_cell(GridStress& g, int c, const StressSums& s, double v) {
+  const double inv_v = 1.0 / v;
+  auto set = [&](StressFormula f, const Mat3& m) { g.sigma[static_cast<int>(f)][c] = m * inv_v; };
+  set(StressFormula::weber, s.weber);
+  set(StressFormula::drescher, s.drescher);
+  set(StressFormula::bagi, s.bagi);
+  set(StressFormula::de_saxce, s.de_saxce - s.inertial);
+  set(StressFormula::nicot, s.weber - s.inertial);
+  set(StressFormula::modified_nicot, s.bagi - s.inertial);
+  // (7): integral rho y (x) a over a rigid grain is the same D (rigid_body_inertia.h), so
+  // for rigid grains (6) and (7) coincide term by term.
+  set(StressFormula::modified_de_saxce, s.bagi - s.inertial);
+  g.particles[c] = s.particles;
+  g.internal_contacts[c] = s.internal_contacts;
+  g.external_contacts[c] = s.external_contacts;
+  g.wall_contacts[c] = s.wall_contacts;
+  g.solid_fraction[c] = s.solid_volume * inv_v;
+}
+
+GridStress grid_stress(const ParticleStore& p, const std::vector<ContactSample>& contacts,
+                       const RegularGrid& grid, const GrainDynamics& dynamics) {
+  const int cells = grid.num_cells();
+  GridStress g = empty_grid_stress(cells, grid.cell_volume());
+  std::vector<StressSums> sums(cells);
 
   std::vector<int> cell(p.size());
   std::vector<Vec3> centre(cells);
   for (int c = 0; c < cells; ++c) centre[c] = grid.cell_centre(c);
   for (std::size_t i = 0; i < p.size(); ++i) {
     cell[i] = grid.cell_of(p.x[i]);
-    if (cell[i] < 0) continue;
-    ++g.particles[cell[i]];
-    g.solid_fraction[cell[i]] += 4.0 / 3.0 * std::numbers::pi * std::pow(p.radius[i], 3);
+    if (cell[i] >= 0) add_grain_count(sums[cell[i]], p.radius[i]);
   }
-  // An external contact seen from the inside particle q, which receives force f at point.
-  // De Saxce's absolute positions are taken from the cell centre: the formula is
-  // translation invariant (its body term balances the contact forces), and this keeps the
-  // sums free of cancellation far from the origin. Drescher's is not invariant and keeps
-  // the scene's origin, as published.
-  auto external = [&](int c, int q, const Vec3& point, const Vec3& f) {
-    drescher[c] += f * point.transpose();
-    bagi[c] += f * (point - p.x[q]).transpose();
-    de_saxce[c] += f * (point - centre[c]).transpose();
-  };
   for (const ContactSample& s : contacts) {
     const int ca = cell[s.a];
     if (s.with_wall()) {
       if (ca >= 0) {
-        external(ca, s.a, s.point, s.force_on_a);
-        ++g.wall_contacts[ca];
+        add_external_contact(sums[ca], s.point, p.x[s.a], s.force_on_a, centre[ca]);
+        ++sums[ca].wall_contacts;
       }
       continue;
     }
     const int cb = cell[s.b];
     if (ca >= 0 && ca == cb) {
-      const Mat3 t = s.force_on_a * (p.x[s.b] - p.x[s.a]).transpose();
-      weber[ca] += t;
-      bagi[ca] += t;
-      ++g.internal_contacts[ca];
+      add_internal_contact(sums[ca], s.force_on_a, p.x[s.a], p.x[s.b]);
+      ++sums[ca].internal_contacts;
       continue;
     }
     if (ca >= 0) {
-      external(ca, s.a, s.point, s.force_on_a);
-      ++g.external_contacts[ca];
+      add_external_contact(sums[ca], s.point, p.x[s.a], s.force_on_a, centre[ca]);
+      ++sums[ca].external_contacts;
     }
     if (cb >= 0) {
-      external(cb, s.b, s.point, -s.force_on_a);
-      ++g.external_contacts[cb];
+      add_external_contact(sums[cb], s.point, p.x[s.b], -s.force_on_a, centre[cb]);
+      ++sums[cb].external_contacts;
     }
   }
-
-  // Per grain: the rotational inertial moment D (rigid_body_inertia.h), and De Saxce's body
-  // term integral rho (g - a) (x) x dV = m (g - a^p) (x) x^p - D, where m (a^p - g) is the
-  // grain's total contact force (force index first).
-  std::vector<Mat3> inertial(cells, Mat3::Zero());
   for (std::size_t i = 0; i < p.size(); ++i) {
-    const int c = cell[i];
-    if (c < 0) continue;
-    de_saxce[c] -= p.force[i] * (p.x[i] - centre[c]).transpose();
-    if (!dynamics.rotation) continue;
-    // Spheres: J = I 1, so w x (J w) = 0 and w_dot = T / I.
-    const Mat3 inertia = Mat3::Identity() / p.inv_inertia[i];
-    const Vec3 omega_dot = angular_acceleration(inertia, p.omega[i], p.torque[i]);
-    inertial[c] += rigid_body_inertial_moment(second_moment_from_inertia(inertia), p.omega[i], omega_dot);
+    if (cell[i] >= 0) add_grain_terms(sums[cell[i]], p, i, centre[cell[i]], dynamics);
   }
-
-  const double inv_v = 1.0 / g.cell_volume;
-  for (int c = 0; c < cells; ++c) {
-    de_saxce[c] -= inertial[c];
-    g.sigma[static_cast<int>(StressFormula::nicot)][c] = weber[c] - inertial[c];
-    g.sigma[static_cast<int>(StressFormula::modified_nicot)][c] = bagi[c] - inertial[c];
-    // (7): integral rho y (x) a over a rigid grain is the same D (rigid_body_inertia.h), so
-    // for rigid grains (6) and (7) coincide term by term.
-    g.sigma[static_cast<int>(StressFormula::modified_de_saxce)][c] = bagi[c] - inertial[c];
-    for (auto& s : g.sigma) s[c] *= inv_v;
-    g.solid_fraction[c] *= inv_v;
-  }
+  for (int c = 0; c < cells; ++c) finish_cell(g, c, sums[c], g.cell_volume);
   return g;
 }
 

@@ -48,6 +48,9 @@ struct GridStress {
   // assigned whole by centroid, so it can exceed the true local value at cell faces).
   std::vector<double> solid_fraction;
   double cell_volume = 0.0;
+  // Per-cell volumes when the cells differ (compute grids, dem/parallel/parallel_stress.h);
+  // empty when every cell has cell_volume.
+  std::vector<double> volume;
 
   [[nodiscard]] const std::vector<Mat3>& operator[](StressFormula f) const {
     return sigma[static_cast<int>(f)];
@@ -56,5 +59,59 @@ struct GridStress {
 
 GridStress grid_stress(const ParticleStore& p, const std::vector<ContactSample>& contacts,
                        const RegularGrid& grid, const GrainDynamics& dynamics);
+
+// The building blocks of grid_stress(), shared with the parallel evaluation
+// (dem/parallel/parallel_stress.h), which sums the same terms per grain.
+//
+// The raw sums of one cell, or one grain's share of a cell, before the division by V
+// (force index first). `inertial` is the grains' rotational inertial moment D; the
+// formulas built on it (Nicot, the modified forms, De Saxce's body term) are assembled by
+// finish_cell().
+struct StressSums {
+  Mat3 weber = Mat3::Zero();
+  Mat3 drescher = Mat3::Zero();
+  Mat3 bagi = Mat3::Zero();
+  Mat3 de_saxce = Mat3::Zero();
+  Mat3 inertial = Mat3::Zero();
+  long particles = 0;
+  long internal_contacts = 0;
+  long external_contacts = 0;
+  long wall_contacts = 0;
+  double solid_volume = 0.0;
+
+  StressSums& operator+=(const StressSums& o);
+};
+
+// An internal contact: f (on a) (x) (x_b - x_a), Weber's and Bagi's term.
+inline void add_internal_contact(StressSums& s, const Vec3& force_on_a, const Vec3& x_a, const Vec3& x_b) {
+  const Mat3 t = force_on_a * (x_b - x_a).transpose();
+  s.weber += t;
+  s.bagi += t;
+}
+
+// An external contact seen from the inside grain q at x_q, which receives force f at
+// `point`. De Saxce's absolute positions are taken from the cell centre: the formula is
+// translation invariant (its body term balances the contact forces), and this keeps the
+// sums free of cancellation far from the origin. Drescher's is not invariant and keeps
+// the scene's origin, as published.
+inline void add_external_contact(StressSums& s, const Vec3& point, const Vec3& x_q, const Vec3& f,
+                                 const Vec3& centre) {
+  s.drescher += f * point.transpose();
+  s.bagi += f * (point - x_q).transpose();
+  s.de_saxce += f * (point - centre).transpose();
+}
+
+// One grain's own terms: De Saxce's body term integral rho (g - a) (x) x dV =
+// m (g - a^p) (x) x^p - D, where m (a^p - g) is the grain's total contact force, and the
+// rotational inertial moment D (rigid_body_inertia.h). Counts and solid volume are added
+// by add_grain_count().
+void add_grain_terms(StressSums& s, const ParticleStore& p, std::size_t i, const Vec3& centre,
+                     const GrainDynamics& dynamics);
+void add_grain_count(StressSums& s, double radius);
+
+// Writes cell c of g (arrays already sized) from its sums over a cell of volume v.
+void finish_cell(GridStress& g, int c, const StressSums& s, double v);
+// A GridStress with all arrays sized for `cells` cells, zero.
+GridStress empty_grid_stress(int cells, double cell_volume);
 
 }  // namespace upgrain::dem

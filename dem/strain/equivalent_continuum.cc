@@ -1,0 +1,79 @@
+#include "dem/strain/equivalent_continuum.h"
+
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+
+#include <cmath>
+#include <utility>
+#include <vector>
+
+namespace upgrain::dem {
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using VertexBase = CGAL::Triangulation_vertex_base_with_info_3<int, Kernel>;
+using DataStructure = CGAL::Triangulation_data_structure_3<VertexBase>;
+using Delaunay = CGAL::Delaunay_triangulation_3<Kernel, DataStructure>;
+
+TessellationGradient invalid(std::string reason) {
+  TessellationGradient t;
+  t.reason = std::move(reason);
+  return t;
+}
+
+// adj(A) = det(A) A^-1, by cofactors: defined for singular A too.
+Mat3 adjugate(const Mat3& a) {
+  Mat3 c;
+  c.col(0) = a.col(1).cross(a.col(2));
+  c.col(1) = a.col(2).cross(a.col(0));
+  c.col(2) = a.col(0).cross(a.col(1));
+  return c.transpose();
+}
+
+}  // namespace
+
+TessellationGradient equivalent_continuum_deformation(std::span<const Vec3> reference,
+                                                      std::span<const Vec3> current) {
+  if (reference.size() != current.size()) return invalid("reference and current sets differ in length");
+  if (reference.size() < 4) return invalid("fewer than 4 particles: no tetrahedron");
+  for (std::size_t k = 0; k < reference.size(); ++k)
+    if (!reference[k].allFinite() || !current[k].allFinite()) return invalid("a position is not finite");
+  // Work about the first point of each set: the tessellation and the edge vectors then
+  // carry no digits of the distance to the origin.
+  const Vec3 x0 = reference[0], y0 = current[0];
+  std::vector<std::pair<Kernel::Point_3, int>> points;
+  points.reserve(reference.size());
+  for (std::size_t k = 0; k < reference.size(); ++k) {
+    const Vec3 r = reference[k] - x0;
+    points.emplace_back(Kernel::Point_3(r.x(), r.y(), r.z()), static_cast<int>(k));
+  }
+  const Delaunay tessellation(points.begin(), points.end());
+  if (tessellation.dimension() < 3) return invalid("the particles span less than three dimensions (coplanar)");
+
+  Mat3 weighted = Mat3::Zero();  // sum_t dx_t adj(dX_t)
+  double det_sum = 0.0;          // sum_t det(dX_t) = 6 V
+  long count = 0;
+  for (auto cell = tessellation.finite_cells_begin(); cell != tessellation.finite_cells_end(); ++cell) {
+    int id[4];
+    for (int v = 0; v < 4; ++v) id[v] = cell->vertex(v)->info();
+    Mat3 dx_ref, dx_cur;
+    for (int e = 0; e < 3; ++e) {
+      dx_ref.col(e) = (reference[id[e + 1]] - x0) - (reference[id[0]] - x0);
+      dx_cur.col(e) = (current[id[e + 1]] - y0) - (current[id[0]] - y0);
+    }
+    weighted += dx_cur * adjugate(dx_ref);
+    det_sum += dx_ref.determinant();  // CGAL's finite cells are positively oriented
+    ++count;
+  }
+  if (!(det_sum > 0.0)) return invalid("the tessellation has no volume");
+  TessellationGradient t;
+  t.valid = true;
+  t.gradient = weighted / det_sum;
+  t.volume = det_sum / 6.0;
+  t.tetrahedra = count;
+  return t;
+}
+
+}  // namespace upgrain::dem

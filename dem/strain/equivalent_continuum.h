@@ -1,0 +1,41 @@
+#pragma once
+// The "equivalent continuum" deformation and velocity gradients of a particle set (Bagi
+// 1996, Mech. Mater. 22, 165-177): tessellate the centroids into Delaunay tetrahedra,
+// interpolate the displacement (or velocity) linearly over each tetrahedron, and average
+// its gradient over the tessellated volume. The tessellation comes from CGAL
+// (Delaunay_triangulation_3), not from code of ours (docs/strain.md).
+//
+// For tetrahedron t with reference edge matrix dX_t = [X1-X0, X2-X0, X3-X0] and current
+// dx_t, the linear map is F_t = dx_t dX_t^-1 and its volume V_t = det(dX_t) / 6, so
+//   F = sum_t V_t F_t / sum_t V_t = sum_t dx_t adj(dX_t) / sum_t det(dX_t),
+// which needs no inverse: slivers of near-zero volume carry near-zero weight instead of
+// blowing up. An affine motion x = F X + c gives dx_t = F dX_t, hence exactly F.
+// L is the same with (X, x) replaced by (x, v), tessellating the current positions.
+#include <span>
+#include <string>
+
+#include "dem/core/types.h"
+
+namespace upgrain::dem {
+
+struct TessellationGradient {
+  bool valid = false;
+  std::string reason;            // why not valid; empty when valid
+  Mat3 gradient = Mat3::Zero();  // F or L; zero when not valid
+  double volume = 0.0;           // tessellated volume (convex hull of the tessellated points)
+  long tetrahedra = 0;
+};
+
+// F from reference and current positions: the tessellation is that of the reference
+// positions. Invalid with the reason (fewer than 4 points, different lengths, non-finite
+// values, or points that span less than three dimensions).
+TessellationGradient equivalent_continuum_deformation(std::span<const Vec3> reference,
+                                                      std::span<const Vec3> current);
+
+// L from current positions and velocities (tessellation of the current positions).
+inline TessellationGradient equivalent_continuum_velocity_gradient(std::span<const Vec3> positions,
+                                                                   std::span<const Vec3> velocities) {
+  return equivalent_continuum_deformation(positions, velocities);
+}
+
+}  // namespace upgrain::dem
