@@ -1,0 +1,453 @@
+// Ellipsoid contact geometry: Newton on the unit sphere of normals for the signed minimum
+// translation distance (docs/ellipsoid-contact.md has the derivations cited below as D1-D6).
+#include "dem/contact/ellipsoid_geometry.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace upgrain::dem {
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+constexpr int kMaxIterations = 30;        // per Newton run; a warm start takes 2-3
+constexpr double kAngleConverged = 1e-6;  // rad: a last step this small is taken unchecked
+
+// The pair in its own frame (D1): lengths relative to c2 and multiplied by a power of two
+// `scale` that brings the smallest semi-axis of the pair into [1, 2). Only c1 - c2 enters, so
+// positions far from the origin cost no digits, and the power-of-two scaling is exact.
+struct PairFrame {
+  double scale = 1.0;
+  Vec3 d;                // (c1 - c2) * scale
+  Mat3 m1, m2;           // M_i = R_i diag(a_i^2, b_i^2, c_i^2) R_i^T, scaled
+  Mat3 rot1, rot2;       // R_i (columns: body axes in the world)
+  Vec3 ax1, ax2;         // semi-axes, scaled
+  double size = 1.0;     // |d| + a1 + a2: magnitude of the terms of the gradient
+  double certify = 0.0;  // c1^2/a1 + c2^2/a2: smallest radius of curvature of B1 - B2 (D4)
+};
+
+// A_i v = R_i diag(1/a^2, 1/b^2, 1/c^2) R_i^T v: the normal direction of the surface point
+// of body i along v.
+Vec3 inverse_shape_times(const Mat3& rot, const Vec3& axes, const Vec3& v) {
+  return rot * (rot.transpose() * v).cwiseQuotient(axes.cwiseAbs2());
+}
+
+Mat3 shape_matrix(const Mat3& rot, const Vec3& axes) {
+  Mat3 m = Mat3::Zero();
+  for (int k = 0; k < 3; ++k) m += axes[k] * axes[k] * rot.col(k) * rot.col(k).transpose();
+  return m;
+}
+
+PairFrame make_frame(const Ellipsoid& e1, const Ellipsoid& e2) {
+  PairFrame p;
+  const double c_min = std::min(e1.semi_axes.minCoeff(), e2.semi_axes.minCoeff());
+  p.scale = std::ldexp(1.0, -std::ilogb(c_min));
+  p.d = (e1.centre - e2.centre) * p.scale;
+  p.rot1 = e1.orientation.toRotationMatrix();
+  p.rot2 = e2.orientation.toRotationMatrix();
+  p.ax1 = e1.semi_axes * p.scale;
+  p.ax2 = e2.semi_axes * p.scale;
+  p.m1 = shape_matrix(p.rot1, p.ax1);
+  p.m2 = shape_matrix(p.rot2, p.ax2);
+  p.size = p.d.norm() + p.ax1.maxCoeff() + p.ax2.maxCoeff();
+  p.certify = p.ax1.minCoeff() * p.ax1.minCoeff() / p.ax1.maxCoeff() +
+              p.ax2.minCoeff() * p.ax2.minCoeff() / p.ax2.maxCoeff();
+  return p;
+}
+
+// f(n) and the pieces its derivatives reuse (D2): u = M1 n, h1 = sqrt(n.u), v = M2 n,
+// h2 = sqrt(n.v); G = d + u/h1 + v/h2 = p1 - p2 (the two support points), f = n.G.
+struct Eval {
+  double f;
+  Vec3 g;  // G, the gradient of f extended to R^3 (homogeneous of degree 0)
+  Vec3 u, v;
+  double h1, h2;
+};
+
+Eval evaluate(const PairFrame& p, const Vec3& n) {
+  Eval e;
+  e.u = p.m1 * n;
+  e.v = p.m2 * n;
+  e.h1 = std::sqrt(n.dot(e.u));
+  e.h2 = std::sqrt(n.dot(e.v));
+  e.g = p.d + e.u / e.h1 + e.v / e.h2;
+  e.f = n.dot(p.d) + e.h1 + e.h2;
+  return e;
+}
+
+// Orthonormal tangent basis of a unit vector (Duff et al., JCGT 6(1), 2017): no branch on
+// a threshold, so the basis varies smoothly within each hemisphere of n.z.
+void tangent_basis(const Vec3& n, Vec3& t1, Vec3& t2) {
+  const double sign = std::copysign(1.0, n.z());
+  const double a = -1.0 / (sign + n.z());
+  const double b = n.x() * n.y() * a;
+  t1 = Vec3(1.0 + sign * n.x() * n.x() * a, sign * b, -sign * n.x());
+  t2 = Vec3(b, sign + n.y() * n.y() * a, -n.y());
+}
+
+// Eigenvalues l0 >= l1 of the symmetric [[p, q], [q, r]].
+void symmetric_eigenvalues_2x2(double p, double q, double r, double& l0, double& l1) {
+  const double mean = 0.5 * (p + r);
+  const double half = 0.5 * (p - r);
+  const double radius = std::sqrt(half * half + q * q);
+  l0 = mean + radius;
+  l1 = mean - radius;
+}
+
+// The same with the unit eigenvector (c, s) of l0, from the better-conditioned row of
+// (matrix - l1): no trigonometry.
+void symmetric_eigen_2x2(double p, double q, double r, double& l0, double& l1, double& c, double& s) {
+  symmetric_eigenvalues_2x2(p, q, r, l0, l1);
+  double x = p - l1, y = q;  // first row of (matrix - l1): parallel to the l0 eigenvector
+  if (r - l1 > x) {
+    x = q;
+    y = r - l1;
+  }
+  const double len = std::sqrt(x * x + y * y);
+  if (len > 0.0) {
+    c = x / len;
+    s = y / len;
+  } else {  // isotropic: every direction is principal
+    c = 1.0;
+    s = 0.0;
+  }
+}
+
+struct NewtonResult {
+  Vec3 n;
+  Eval e;
+  int iterations = 0;
+  bool converged = false;
+};
+
+// Riemannian Newton on the unit sphere (D3). In a tangent basis (t1, t2) of n the gradient is
+// g_i = t_i.G and the Hessian H_ij = t_i^T H3 t_j - f delta_ij, with the R^3 Hessian
+// H3 = M1/h1 - u u^T/h1^3 + M2/h2 - v v^T/h2^3. Far from a minimum H may be indefinite: it is
+// shifted to positive definite (Levenberg), the step is capped at 0.5 rad and backtracked
+// until f decreases (Armijo), so every run descends and cannot cycle.
+NewtonResult newton_on_sphere(const PairFrame& p, const Vec3& start) {
+  NewtonResult r;
+  r.n = start.normalized();
+  r.e = evaluate(p, r.n);
+  const double tol_g = 16.0 * kEps * p.size;    // round-off level of the gradient
+  const double noise_f = 64.0 * kEps * p.size;  // round-off level of f
+  for (;;) {
+    Vec3 t1, t2;
+    tangent_basis(r.n, t1, t2);
+    const double g1 = t1.dot(r.e.g), g2 = t2.dot(r.e.g);
+    const double g_norm = std::sqrt(g1 * g1 + g2 * g2);
+    if (g_norm <= tol_g) {
+      r.converged = true;
+      return r;
+    }
+    const Vec3 m1t1 = p.m1 * t1, m1t2 = p.m1 * t2, m2t1 = p.m2 * t1, m2t2 = p.m2 * t2;
+    const double h1_3 = r.e.h1 * r.e.h1 * r.e.h1, h2_3 = r.e.h2 * r.e.h2 * r.e.h2;
+    const double u1 = t1.dot(r.e.u), u2 = t2.dot(r.e.u), v1 = t1.dot(r.e.v), v2 = t2.dot(r.e.v);
+    double h11 = t1.dot(m1t1) / r.e.h1 - u1 * u1 / h1_3 + t1.dot(m2t1) / r.e.h2 - v1 * v1 / h2_3 - r.e.f;
+    double h22 = t2.dot(m1t2) / r.e.h1 - u2 * u2 / h1_3 + t2.dot(m2t2) / r.e.h2 - v2 * v2 / h2_3 - r.e.f;
+    const double h12 = t1.dot(m1t2) / r.e.h1 - u1 * u2 / h1_3 + t1.dot(m2t2) / r.e.h2 - v1 * v2 / h2_3;
+    double l0, l1;
+    symmetric_eigenvalues_2x2(h11, h12, h22, l0, l1);
+    const double floor = 1e-3 * (std::abs(l0) + p.certify);
+    const bool shifted = l1 < floor;
+    if (shifted) {  // Levenberg shift to a positive-definite model
+      h11 += floor - l1;
+      h22 += floor - l1;
+    }
+    const double det = h11 * h22 - h12 * h12;
+    double x1 = -(h22 * g1 - h12 * g2) / det;
+    double x2 = -(h11 * g2 - h12 * g1) / det;
+    const double step = std::sqrt(x1 * x1 + x2 * x2);
+    // The Newton step of a positive-definite Hessian estimates the angle between n and the
+    // minimiser: below kAngleConverged, take it unchecked (it leaves an error ~ step^2) and stop.
+    if (!shifted && step <= kAngleConverged) {
+      r.n = (r.n + x1 * t1 + x2 * t2).normalized();
+      r.e = evaluate(p, r.n);
+      ++r.iterations;
+      r.converged = true;
+      return r;
+    }
+    if (r.iterations >= kMaxIterations) return r;
+    if (step > 0.5) {
+      x1 *= 0.5 / step;
+      x2 *= 0.5 / step;
+    }
+    const double slope = g1 * x1 + g2 * x2;  // < 0: a descent direction
+    double alpha = 1.0;
+    bool accepted = false;
+    for (int k = 0; k < 40; ++k) {
+      const Vec3 n_try = (r.n + alpha * (x1 * t1 + x2 * t2)).normalized();
+      const Eval e_try = evaluate(p, n_try);
+      // Armijo decrease; or a full step whose predicted decrease is below the round-off of f,
+      // which the test cannot resolve: Newton's local regime, take it.
+      if (e_try.f <= r.e.f + 1e-4 * alpha * slope || (k == 0 && -slope <= noise_f)) {
+        r.n = n_try;
+        r.e = e_try;
+        accepted = true;
+        break;
+      }
+      alpha *= 0.5;
+    }
+    ++r.iterations;
+    if (!accepted) {  // no decrease at any step length: at the minimum to round-off, or stuck
+      r.converged = g_norm <= 1e3 * tol_g;
+      return r;
+    }
+  }
+}
+
+// Principal curvatures at body-frame point y of an ellipsoid with semi-axes ax (D5).
+PrincipalCurvatures curvatures_body(const Mat3& rot, const Vec3& ax, const Vec3& y) {
+  const Vec3 a_diag = ax.cwiseProduct(ax).cwiseInverse();
+  const Vec3 ay = a_diag.cwiseProduct(y);
+  const double grad = ay.norm();
+  const Vec3 nu = ay / grad;
+  Vec3 t1, t2;
+  tangent_basis(nu, t1, t2);
+  const double s11 = t1.dot(a_diag.cwiseProduct(t1)) / grad;
+  const double s12 = t1.dot(a_diag.cwiseProduct(t2)) / grad;
+  const double s22 = t2.dot(a_diag.cwiseProduct(t2)) / grad;
+  PrincipalCurvatures k;
+  double cs, sn;
+  symmetric_eigen_2x2(s11, s12, s22, k.k[0], k.k[1], cs, sn);
+  k.direction = rot * (cs * t1 + sn * t2);
+  return k;
+}
+
+// Candidate normals for a cold start (D4), all turned into the half-space n.(c2 - c1) >= 0
+// that holds the global minimum: the centre line u0, the surface normals where it leaves each
+// body, their bisector, the six body axes and the cross product of the two major axes.
+int cold_candidates(const PairFrame& p, std::array<Vec3, 11>& out) {
+  const double dn = p.d.norm();
+  const Vec3 u0 = dn > 0.0 ? Vec3(-p.d / dn) : Vec3(p.rot1.col(2));
+  int count = 0;
+  auto add = [&](const Vec3& v) {
+    const double len = v.norm();
+    if (!(len > 1e-8)) return;
+    out[count++] = (v.dot(u0) < 0.0 ? -v : v) / len;
+  };
+  add(u0);
+  const Vec3 n1 = inverse_shape_times(p.rot1, p.ax1, u0).normalized();
+  const Vec3 n2 = inverse_shape_times(p.rot2, p.ax2, u0).normalized();
+  add(n1);
+  add(n2);
+  add(n1 + n2);
+  for (int k = 0; k < 3; ++k) add(p.rot1.col(k));
+  for (int k = 0; k < 3; ++k) add(p.rot2.col(k));
+  add(p.rot1.col(0).cross(p.rot2.col(0)));
+  return count;
+}
+
+// Unit vectors spread over the hemisphere around `pole` (Fibonacci lattice), for the fallback.
+Vec3 hemisphere_point(const Vec3& pole, int i, int count) {
+  Vec3 t1, t2;
+  tangent_basis(pole, t1, t2);
+  const double z = 1.0 - (i + 0.5) / count;  // cos of the polar angle in (0, 1)
+  const double rho = std::sqrt(std::max(0.0, 1.0 - z * z));
+  const double phi = 2.39996322972865332 * i;  // golden angle
+  return z * pole + rho * (std::cos(phi) * t1 + std::sin(phi) * t2);
+}
+
+// Multi-start fallback: Newton from every candidate and the best few of a hemisphere lattice;
+// the lowest converged stationary point wins.
+NewtonResult fallback(const PairFrame& p, const std::array<Vec3, 11>& cands, int n_cands, int& iterations) {
+  NewtonResult best;
+  best.e.f = std::numeric_limits<double>::infinity();
+  auto consider = [&](const Vec3& start) {
+    NewtonResult r = newton_on_sphere(p, start);
+    iterations += r.iterations;
+    const bool better =
+        (r.converged && !best.converged) || (r.converged == best.converged && r.e.f < best.e.f);
+    if (better) best = r;
+  };
+  for (int i = 0; i < n_cands; ++i) consider(cands[i]);
+  constexpr int kLattice = 96, kKeep = 6;
+  std::array<std::pair<double, int>, kLattice> lattice;
+  for (int i = 0; i < kLattice; ++i) lattice[i] = {evaluate(p, hemisphere_point(cands[0], i, kLattice)).f, i};
+  std::partial_sort(lattice.begin(), lattice.begin() + kKeep, lattice.end());
+  for (int k = 0; k < kKeep; ++k) consider(hemisphere_point(cands[0], lattice[k].second, kLattice));
+  return best;
+}
+
+ContactGeometry assemble(const PairFrame& p, const Ellipsoid& e1, const Ellipsoid& e2,
+                         const NewtonResult& r) {
+  ContactGeometry g;
+  const double inv = 1.0 / p.scale;  // exact: a power of two
+  g.depth = r.e.f * inv;
+  g.touching = r.e.f > 0.0;
+  g.normal = r.n;
+  const Vec3 arm1 = r.e.u / r.e.h1;   // p1 - c1, scaled (support point of body 1 along n)
+  const Vec3 arm2 = -r.e.v / r.e.h2;  // p2 - c2, scaled (support point of body 2 along -n)
+  g.point1 = e1.centre + arm1 * inv;
+  g.point2 = e2.centre + arm2 * inv;
+  g.point = e1.centre + (arm1 - 0.5 * r.e.f * r.n) * inv;
+  if (g.touching) {  // curvatures feed the contact law only: skipped for gaps
+    const PrincipalCurvatures k1 = curvatures_body(p.rot1, p.ax1, p.rot1.transpose() * arm1);
+    const PrincipalCurvatures k2 = curvatures_body(p.rot2, p.ax2, p.rot2.transpose() * arm2);
+    for (int i = 0; i < 2; ++i) {
+      g.curvature1[i] = k1.k[i] * p.scale;
+      g.curvature2[i] = k2.k[i] * p.scale;
+    }
+    g.direction1 = k1.direction;
+    g.direction2 = k2.direction;
+  }
+  g.iterations = r.iterations;
+  g.converged = r.converged;
+  g.certified = r.converged && r.e.f < p.certify * (1.0 - 1e-9);
+  return g;
+}
+
+}  // namespace
+
+ContactGeometry sphere_sphere_contact(const Vec3& c1, double r1, const Vec3& c2, double r2) {
+  ContactGeometry g;
+  const Vec3 d = c2 - c1;
+  const double dist = d.norm();
+  g.normal = dist > 0.0 ? Vec3(d / dist) : Vec3(Vec3::UnitZ());
+  g.depth = r1 + r2 - dist;
+  g.touching = g.depth > 0.0;
+  g.point1 = c1 + r1 * g.normal;
+  g.point2 = c2 - r2 * g.normal;
+  g.point = c1 + (r1 - 0.5 * g.depth) * g.normal;
+  g.curvature1[0] = g.curvature1[1] = 1.0 / r1;
+  g.curvature2[0] = g.curvature2[1] = 1.0 / r2;
+  Vec3 t2;
+  tangent_basis(g.normal, g.direction1, t2);
+  g.direction2 = g.direction1;
+  return g;
+}
+
+ContactGeometry ellipsoid_contact(const Ellipsoid& e1, const Ellipsoid& e2, ContactSolverStats& stats,
+                                  const std::optional<Vec3>& initial_normal) {
+  if (e1.is_sphere() && e2.is_sphere()) {
+    ++stats.calls;
+    return sphere_sphere_contact(e1.centre, e1.semi_axes.x(), e2.centre, e2.semi_axes.x());
+  }
+  return support_function_contact(e1, e2, stats, initial_normal);
+}
+
+ContactGeometry support_function_contact(const Ellipsoid& e1, const Ellipsoid& e2, ContactSolverStats& stats,
+                                         const std::optional<Vec3>& initial_normal) {
+  ++stats.calls;
+  const PairFrame p = make_frame(e1, e2);
+  int iterations = 0;
+  if (initial_normal && initial_normal->squaredNorm() > 0.5) {
+    ++stats.warm_starts;
+    const NewtonResult r = newton_on_sphere(p, *initial_normal);
+    iterations += r.iterations;
+    if (r.converged && r.e.f < p.certify * (1.0 - 1e-9)) {
+      stats.newton_iterations += iterations;
+      return assemble(p, e1, e2, r);
+    }
+    ++stats.warm_rejected;
+  }
+  std::array<Vec3, 11> cands;
+  const int n_cands = cold_candidates(p, cands);
+  int best = 0;
+  double best_f = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n_cands; ++i) {
+    const double f = evaluate(p, cands[i]).f;
+    if (f < best_f) {
+      best_f = f;
+      best = i;
+    }
+  }
+  NewtonResult r = newton_on_sphere(p, cands[best]);
+  iterations += r.iterations;
+  // Certified (D4): a stationary point below the smallest radius of curvature of B1 - B2 is
+  // the global minimum. Otherwise search more widely before answering.
+  if (!(r.converged && r.e.f < p.certify * (1.0 - 1e-9))) {
+    ++stats.fallbacks;
+    const NewtonResult wide = fallback(p, cands, n_cands, iterations);
+    if ((wide.converged && !r.converged) || (wide.converged == r.converged && wide.e.f < r.e.f)) r = wide;
+  }
+  stats.newton_iterations += iterations;
+  ContactGeometry g = assemble(p, e1, e2, r);
+  g.iterations = iterations;
+  if (!g.converged)
+    ++stats.failures;
+  else if (!g.certified)
+    ++stats.uncertified;
+  return g;
+}
+
+ContactGeometry ellipsoid_sphere_contact(const Ellipsoid& e, const Vec3& centre, double radius,
+                                         ContactSolverStats& stats,
+                                         const std::optional<Vec3>& initial_normal) {
+  return ellipsoid_contact(e, Ellipsoid::sphere(centre, radius), stats, initial_normal);
+}
+
+ContactGeometry ellipsoid_plane_contact(const Ellipsoid& e, const Plane& plane) {
+  ContactGeometry g;
+  const Mat3 rot = e.orientation.toRotationMatrix();
+  const Vec3 m = plane.normal;
+  const Vec3 mm = shape_matrix(rot, e.semi_axes) * m;
+  const double h = std::sqrt(m.dot(mm));
+  const Vec3 arm = -mm / h;  // lowest point of the ellipsoid along -m, relative to its centre
+  g.depth = h - m.dot(e.centre - plane.point);
+  g.touching = g.depth > 0.0;
+  g.normal = -m;
+  g.point1 = e.centre + arm;
+  g.point2 = e.centre + (arm + g.depth * m);
+  g.point = e.centre + (arm + 0.5 * g.depth * m);
+  const PrincipalCurvatures k = curvatures_body(rot, e.semi_axes, rot.transpose() * arm);
+  g.curvature1[0] = k.k[0];
+  g.curvature1[1] = k.k[1];
+  g.direction1 = k.direction;
+  g.direction2 = k.direction;
+  return g;
+}
+
+double support_gap_function(const Ellipsoid& e1, const Ellipsoid& e2, const Vec3& n) {
+  const PairFrame p = make_frame(e1, e2);
+  return evaluate(p, n).f / p.scale;
+}
+
+bool proven_separated(const Ellipsoid& e1, const Ellipsoid& e2, double margin) {
+  const PairFrame p = make_frame(e1, e2);
+  const double dn = p.d.norm();
+  if (!(dn > 0.0)) return false;
+  const Vec3 u0 = -p.d / dn;
+  const double bound = -margin * p.scale;
+  if (evaluate(p, u0).f < bound) return true;
+  const Vec3 n1 = inverse_shape_times(p.rot1, p.ax1, u0).normalized();
+  if (evaluate(p, n1).f < bound) return true;
+  const Vec3 n2 = inverse_shape_times(p.rot2, p.ax2, u0).normalized();
+  return evaluate(p, n2).f < bound;
+}
+
+PrincipalCurvatures principal_curvatures(const Ellipsoid& e, const Vec3& surface_point) {
+  const Mat3 rot = e.orientation.toRotationMatrix();
+  return curvatures_body(rot, e.semi_axes, rot.transpose() * (surface_point - e.centre));
+}
+
+RelativeCurvature relative_curvature(const ContactGeometry& g) {
+  // Curvature tensors of both surfaces in the common tangent plane (t1, t2) of the normal;
+  // the relative curvature is half their sum and A, B its eigenvalues (Johnson 1985, eq. 4.2-4.4).
+  const Vec3 t1 = (g.direction1 - g.direction1.dot(g.normal) * g.normal).normalized();
+  const Vec3 t2 = g.normal.cross(t1);
+  const double c = g.direction2.dot(t1), s = g.direction2.dot(t2);
+  const double len = std::sqrt(c * c + s * s);
+  const double c2 = len > 0.0 ? c / len : 1.0, s2 = len > 0.0 ? s / len : 0.0;
+  const double p = 0.5 * (g.curvature1[0] + g.curvature2[0] * c2 * c2 + g.curvature2[1] * s2 * s2);
+  const double r = 0.5 * (g.curvature1[1] + g.curvature2[0] * s2 * s2 + g.curvature2[1] * c2 * c2);
+  const double q = 0.5 * (g.curvature2[0] - g.curvature2[1]) * c2 * s2;
+  RelativeCurvature rc;
+  double l0, l1, cs, sn;
+  symmetric_eigen_2x2(p, q, r, l0, l1, cs, sn);
+  rc.a = l1;
+  rc.b = l0;
+  return rc;
+}
+
+double mean_curvature_radius(const ContactGeometry& g) {
+  return 2.0 / (g.curvature1[0] + g.curvature1[1] + g.curvature2[0] + g.curvature2[1]);
+}
+
+double gaussian_curvature_radius(const ContactGeometry& g) {
+  const RelativeCurvature rc = relative_curvature(g);
+  return 0.5 / std::sqrt(rc.a * rc.b);
+}
+
+}  // namespace upgrain::dem
