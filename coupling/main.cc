@@ -79,9 +79,10 @@ void print_deposition(const upgrain::coupling::SceneInput& in, const upgrain::de
                   floor_cells ? floor_szz / floor_cells : 0.0);
     }
   }
-  std::printf("  results: %s/{summary.json,time_series.csv,particles.xdmf,snapshots/%s}\n",
+  std::printf("  results: %s/{summary.json,time_series.csv,particles.xdmf,snapshots/%s%s}\n",
               in.output.folder.c_str(),
-              r.final_stress ? ",grid_stress.csv,grid_stress.xdmf,grid_stress/" : "");
+              r.final_stress ? ",grid_stress.csv,grid_stress.xdmf,grid_stress/" : "",
+              r.final_strain ? ",grid_strain.csv,grid_strain.xdmf,grid_strain/" : "");
   std::fflush(stdout);
 }
 

@@ -115,6 +115,23 @@ const std::vector<ParameterSpec>& parameter_schema() {
        "Simulated time between grid-stress evaluations; 0 = with each snapshot. The final state is always "
        "evaluated."},
 
+      {"Strain", "enabled", "false", K::boolean, 0, 0, "", "-",
+       "Write finite-strain measures per cell of the stress grid (F, L, J, ln J, E, e, Hencky strain, "
+       "equivalent shear strain, D, W, R, increment from the previous evaluation; docs/strain.md), at the "
+       "grid-stress evaluations and on their grid (Stress/grid cells and box). Needs Stress/formulas."},
+      {"Strain", "reference time", "0", K::real, 0.0, 1e6, "", "s",
+       "t0, where F = 1: 0 = the initial state; otherwise the first grid-stress evaluation at or after t0 "
+       "(no strain is written before it). The end of deposition cannot be the reference of a deposition "
+       "run."},
+      {"Strain", "set", "lagrangian", K::selection, 0, 0, "lagrangian|eulerian", "-",
+       "Particles of a cell: lagrangian = those in the cell at t0 (on the grid of t0), followed by global "
+       "id; "
+       "eulerian = those in the cell now, with their positions at t0."},
+      {"Strain", "definitions", "best fit, tessellation", K::multiple_selection, 0, 0,
+       "best fit|tessellation", "-",
+       "How F and L are taken from a cell's particles: best fit = least-squares affine map; tessellation = "
+       "volume average over the Delaunay tessellation of the centroids (Bagi 1996), comma-separated."},
+
       {"Study", "compare with continuum", "true", K::boolean, 0, 0, "", "-",
        "After the DEM run, solve the elastic column of the same container on a mesh matching the stress grid "
        "and write the comparison tables, plots and report.md (docs/study.md). False: the DEM run only."},

@@ -173,6 +173,20 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   gs.interval = prm.get_double("interval");
   prm.leave_subsection();
 
+  prm.enter_subsection("Strain");
+  {
+    dem::io::GridStrainOutputOptions& st = in.output.grid_strain;
+    st.enabled = prm.get_bool("enabled");
+    st.reference_time = prm.get_double("reference time");
+    st.kernel.set = prm.get("set") == "eulerian" ? dem::StrainSet::eulerian : dem::StrainSet::lagrangian;
+    st.kernel.definitions = {false, false};
+    for (const std::string& name : dealii::Utilities::split_string_list(prm.get("definitions"), ','))
+      st.kernel.definitions[static_cast<int>(name == "tessellation" ? dem::StrainDefinition::tessellation
+                                                                    : dem::StrainDefinition::best_fit)] =
+          true;
+  }
+  prm.leave_subsection();
+
   prm.enter_subsection("Study");
   in.study.compare_with_continuum = prm.get_bool("compare with continuum");
   for (const std::string& name : dealii::Utilities::split_string_list(prm.get("comparison formulas"), ',')) {

@@ -88,6 +88,21 @@ void validate_scene(SceneInput& in) {
     m << where << "Simulation/end time = " << s.end_time << " s is shorter than one time step";
     throw Error(m.str());
   }
+  if (const dem::io::GridStrainOutputOptions& st = in.output.grid_strain; st.enabled) {
+    if (!in.output.grid_stress.enabled())
+      throw Error(where +
+                  "Strain/enabled = true needs the stress grid, but Stress/formulas is empty; name at least "
+                  "one formula there (strain is evaluated with the grid stress, on its grid), or set "
+                  "'Strain/enabled = false'");
+    if (!st.kernel.definitions[0] && !st.kernel.definitions[1])
+      throw Error(where + "Strain/definitions is empty; name 'best fit', 'tessellation' or both");
+    if (st.reference_time > s.end_time) {
+      std::ostringstream m;
+      m << where << "Strain/reference time = " << st.reference_time
+        << " s is after Simulation/end time = " << s.end_time << " s: no strain would be written";
+      throw Error(m.str());
+    }
+  }
   if (in.study.compare_with_continuum) {
     if (in.study.formulas.empty())
       throw Error(where +

@@ -46,11 +46,33 @@ DepositionResult run_deposition(const SceneConfig& scene, const RunControl& cont
       stress_on ? (output->grid_stress.interval > 0.0 ? every(output->grid_stress.interval) : snapshot_every)
                 : 0;
   auto stress_due = [&](long s) { return stress_on && (s % stress_every == 0 || s == total); };
+  // Grid strain goes with the grid stress, on its grid. The reference state (positions by
+  // global id at t0) is kept in memory: the initial state when t0 = 0, otherwise the first
+  // evaluation at or after t0, which is then also the first strain written (F = 1).
+  std::optional<io::GridStrainRecorder> strain_out;
+  const bool strain_on = stress_on && output->grid_strain.enabled;
+  if (strain_on) strain_out.emplace(output->folder);
+  std::optional<StrainReference> strain_reference;
+  auto evaluate_strain = [&](const RegularGrid& grid) {
+    const ParticleStore& p = sim.particles();
+    if (!strain_reference) {
+      const double t0 = output->grid_strain.reference_time;
+      if (t0 > 0.0 && sim.time() < t0 - 0.5 * scene.time_step) return;
+      strain_reference = make_strain_reference(p.id, p.x, grid, sim.time(), sim.step_count());
+    }
+    GridStrain g = grid_strain(*strain_reference, grid, {p.id, p.x, p.v}, sim.time(), sim.step_count(),
+                               output->grid_strain.kernel, r.final_strain ? &*r.final_strain : nullptr);
+    strain_out->record(g);
+    r.final_strain = std::move(g);
+  };
+  if (strain_on && output->grid_strain.reference_time <= 0.0)
+    evaluate_strain(stress_grid(output->grid_stress, sim.particles(), scene.container));
   auto evaluate_stress = [&] {
     r.final_grid = stress_grid(output->grid_stress, sim.particles(), scene.container);
     r.final_stress = grid_stress(sim.particles(), sim.contacts(), r.final_grid,
                                  {sim.gravity(), sim.integrates_rotation()});
     stress_out->record(r.final_grid, *r.final_stress, sim.time(), sim.step_count());
+    if (strain_on) evaluate_strain(r.final_grid);
   };
 
   const auto t0 = Clock::now();

@@ -4,6 +4,7 @@
 #include <functional>
 #include <optional>
 
+#include "dem/io/grid_strain_output.h"
 #include "dem/io/grid_stress_output.h"
 
 #include "dem/analysis/bed_state.h"
@@ -48,6 +49,8 @@ struct DepositionResult {
   // The last grid-stress evaluation, when the output asked for one (for in-memory use).
   std::optional<GridStress> final_stress;
   RegularGrid final_grid;
+  // The last grid-strain evaluation, when the output asked for one.
+  std::optional<GridStrain> final_strain;
 };
 
 DepositionResult run_deposition(const SceneConfig& scene, const RunControl& control,

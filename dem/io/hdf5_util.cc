@@ -36,6 +36,21 @@ void write_attribute(hid_t obj, const char* name, const std::string& value) {
   H5Awrite(attr, type, value.c_str());
 }
 
+void write_attribute(hid_t obj, const char* name, const std::vector<std::string>& values) {
+  std::size_t width = 1;
+  for (const std::string& v : values) width = std::max(width, v.size());
+  std::string packed(width * values.size(), '\0');
+  for (std::size_t i = 0; i < values.size(); ++i) packed.replace(i * width, values[i].size(), values[i]);
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose, "copy a string type");
+  H5Tset_size(type, width);
+  H5Tset_strpad(type, H5T_STR_NULLPAD);
+  const hsize_t n = values.size();
+  Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose, "create a dataspace");
+  Handle attr(H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+              std::string("create attribute ") + name);
+  if (n > 0) H5Awrite(attr, type, packed.data());
+}
+
 hid_t create_group(hid_t parent, const std::string& name) {
   const hid_t g = H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   if (g < 0) throw Error("HDF5: cannot create group " + name);

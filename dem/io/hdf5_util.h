@@ -4,6 +4,7 @@
 #include <hdf5.h>
 
 #include <string>
+#include <vector>
 
 namespace upgrain::dem::io::hdf5 {
 
@@ -26,6 +27,8 @@ void write_dataset(hid_t group, const char* name, hid_t mem_type, hid_t file_typ
                    hsize_t rows, hsize_t cols);
 void write_attribute(hid_t obj, const char* name, double value);
 void write_attribute(hid_t obj, const char* name, const std::string& value);
+// A 1-D attribute of fixed-length strings (each padded to the longest).
+void write_attribute(hid_t obj, const char* name, const std::vector<std::string>& values);
 hid_t create_group(hid_t parent, const std::string& name);
 
 }  // namespace upgrain::dem::io::hdf5

@@ -9,6 +9,7 @@
 
 #include "dem/io/hdf5_snapshot.h"
 #include "dem/simulation.h"
+#include "dem/strain/grid_strain.h"
 #include "dem/stress/grid_stress.h"
 
 namespace upgrain::dem::io {
@@ -30,11 +31,22 @@ struct GridStressOptions {
 // the highest grain.
 RegularGrid stress_grid(const GridStressOptions& options, const ParticleStore& p, const BoxContainer& box);
 
+// Which grid strain a run writes (docs/strain.md). Evaluated with the grid stress, on its
+// grid (Stress/grid cells and box), so it needs the grid stress enabled.
+struct GridStrainOutputOptions {
+  bool enabled = false;
+  // t0 (s): the reference state is the initial state when 0, otherwise the first grid-stress
+  // evaluation at or after t0. No strain is written before it.
+  double reference_time = 0.0;
+  GridStrainOptions kernel;  // set (Lagrangian or Eulerian) and definitions
+};
+
 struct OutputOptions {
   std::filesystem::path folder = "upgrain-output";
   double snapshot_interval = 0.05;  // s of simulated time; 0 = only first and last
   double series_interval = 0.005;   // s of simulated time between time-series rows
   GridStressOptions grid_stress;
+  GridStrainOutputOptions grid_strain;
 };
 
 class RunRecorder {

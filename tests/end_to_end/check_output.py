@@ -69,3 +69,65 @@ leftovers = [f for root, _, files in os.walk(".") for f in files if ".tmp." in f
 assert not leftovers, f"temporary files left: {leftovers}"
 print(f"output ok: {items} XDMF items, {len(data)} time-series rows, {grid_items} grid-stress items, "
       f"{len(files)} grid-stress evaluations")
+# Grid strain (tiny_scene.prm enables it, Lagrangian, t0 = 0, both definitions): every XDMF
+# item resolves; no NaN anywhere; one file per grid-stress evaluation plus the reference
+# state; every valid cell of the first evaluation (t0) has F = 1, J = 1 to round-off;
+# invalid cells are zero and carry a reason code; the CSV agrees with the HDF5 files.
+strain_items = 0
+for item in ET.parse("grid_strain.xdmf").iter("DataItem"):
+    if item.get("Format") != "HDF":
+        continue
+    name, path = item.text.split(":")
+    dims = [int(x) for x in item.get("Dimensions").split()]
+    with h5py.File(name, "r") as h:
+        shape = list(h[path].shape)
+        assert int(np.prod(shape)) == int(np.prod(dims)), (name, path, shape, dims)
+    strain_items += 1
+strain_files = sorted(os.listdir("grid_strain"))
+assert len(strain_files) == len(files) + 1, (len(strain_files), len(files))
+definitions = ("best_fit", "tessellation")
+for k, f in enumerate(strain_files):
+    with h5py.File(os.path.join("grid_strain", f), "r") as h:
+        assert h.attrs["set"] in (b"lagrangian", "lagrangian"), h.attrs["set"]
+        assert h.attrs["reference_time"] == 0.0
+        names = [n.decode() if isinstance(n, bytes) else n for n in h.attrs["reason_names"]]
+        assert names[0] == "valid" and "too few particles" in names, names
+        cells = int(np.prod(h["/grid/n"][:]))
+        assert h["/cells/particles"].shape == (cells,)
+        for d in definitions:
+            g = h[d]
+            for key in g:
+                data = g[key][:]
+                assert np.all(np.isfinite(data)), (f, d, key)
+                assert data.shape[0] == cells, (f, d, key, data.shape)
+            for prefix in ("F", "L", "increment"):
+                valid, reason = g[prefix + "_valid"][:], g[prefix + "_reason"][:]
+                assert np.array_equal(valid == 1, reason == 0), (f, d, prefix)
+                assert np.all((reason >= 0) & (reason < len(names)))
+            valid = g["F_valid"][:] == 1
+            F = g["F"][:]
+            assert np.all(F[~valid] == 0.0) and np.all(g["J"][:][~valid] == 0.0), (f, d)
+            too_few = h["/cells/particles"][:] < 4
+            assert np.all(g["F_reason"][:][too_few] == names.index("too few particles")), (f, d)
+            if k == 0:
+                assert h.attrs["time"] == 0.0 and valid.sum() > 0, (f, d, valid.sum())
+                err = np.abs(F[valid] - np.eye(3).reshape(9)).max()
+                assert err <= 1e-12, (f, d, err)
+                assert np.abs(g["J"][:][valid] - 1.0).max() <= 1e-12, (f, d)
+                assert np.abs(g["ln_J"][:][valid]).max() <= 1e-12, (f, d)
+with open("grid_strain.csv") as f:
+    rows = [r for r in csv.reader(l for l in f if not l.startswith("#"))]
+sheader, sdata = rows[0], rows[1:]
+assert all(len(r) == len(sheader) for r in sdata), "grid strain CSV malformed"
+with h5py.File(os.path.join("grid_strain", strain_files[-1]), "r") as h:
+    step = int(h.attrs["step"])
+    F = h["/tessellation/F"][:]
+    last = [r for r in sdata if int(r[1]) == step and r[sheader.index("definition")] == "tessellation"]
+    assert len(last) == F.shape[0], (len(last), F.shape)
+    for r in last:
+        c = int(r[sheader.index("cell")])
+        csv_f = np.array([float(v) for v in r[sheader.index("F_xx"):sheader.index("F_zz") + 1]])
+        assert np.array_equal(csv_f, F[c]), (c, csv_f, F[c])
+leftovers = [f for root, _, files in os.walk(".") for f in files if ".tmp." in f]
+assert not leftovers, f"temporary files left: {leftovers}"
+print(f"strain ok: {strain_items} grid-strain items, {len(strain_files)} grid-strain evaluations")

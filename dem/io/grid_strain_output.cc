@@ -1,0 +1,209 @@
+#include "dem/io/grid_strain_output.h"
+
+#include <cstdint>
+#include <cstdio>
+#include <sstream>
+
+#include "dem/core/error.h"
+#include "dem/io/atomic_file.h"
+#include "dem/io/hdf5_util.h"
+
+namespace upgrain::dem::io {
+
+namespace {
+
+constexpr const char* kConvention =
+    "F maps reference (t0) to current positions, L current positions to velocities; tensors row-major "
+    "T_ij at 3 i + j; invalid cells are zero with a reason code (reason_names)";
+
+void write_tensors(hid_t g, const char* name, const std::vector<Mat3>& t) {
+  std::vector<double> flat(9 * t.size());
+  for (std::size_t c = 0; c < t.size(); ++c)
+    for (int e = 0; e < 9; ++e) flat[9 * c + e] = t[c](e / 3, e % 3);
+  hdf5::write_dataset(g, name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, flat.data(), t.size(), 9);
+}
+
+void write_scalars(hid_t g, const char* name, const std::vector<double>& s) {
+  hdf5::write_dataset(g, name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, s.data(), s.size(), 1);
+}
+
+void write_reasons(hid_t g, const std::string& prefix, const std::vector<StrainReason>& r) {
+  std::vector<std::int32_t> valid(r.size()), code(r.size());
+  for (std::size_t c = 0; c < r.size(); ++c) {
+    code[c] = static_cast<std::int32_t>(r[c]);
+    valid[c] = r[c] == StrainReason::valid ? 1 : 0;
+  }
+  hdf5::write_dataset(g, (prefix + "_valid").c_str(), H5T_NATIVE_INT32, H5T_STD_I32LE, valid.data(), r.size(),
+                      1);
+  hdf5::write_dataset(g, (prefix + "_reason").c_str(), H5T_NATIVE_INT32, H5T_STD_I32LE, code.data(), r.size(),
+                      1);
+}
+
+std::vector<std::string> reason_names() {
+  std::vector<std::string> names;
+  for (int r = 0; r < kStrainReasonCount; ++r) names.emplace_back(name_of(static_cast<StrainReason>(r)));
+  return names;
+}
+
+}  // namespace
+
+std::string field_name(StrainDefinition d) {
+  std::string s(name_of(d));
+  for (char& c : s)
+    if (c == ' ') c = '_';
+  return s;
+}
+
+void write_grid_strain(const std::filesystem::path& path, const GridStrain& strain) {
+  using namespace hdf5;
+  const RegularGrid& grid = strain.grid;
+  const auto cells = static_cast<hsize_t>(grid.num_cells());
+  AtomicFile target(path);
+  {
+    Handle file(H5Fcreate(target.temporary_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
+                "create " + target.temporary_path().string());
+    write_attribute(file, "time", strain.time);
+    write_attribute(file, "step", static_cast<double>(strain.step));
+    write_attribute(file, "reference_time", strain.reference_time);
+    write_attribute(file, "reference_step", static_cast<double>(strain.reference_step));
+    write_attribute(file, "set", std::string(name_of(strain.set)));
+    write_attribute(file, "untracked", static_cast<double>(strain.untracked));
+    write_attribute(file, "convention", kConvention);
+    write_attribute(file, "reason_names", reason_names());
+    {
+      Handle g(create_group(file, "grid"), H5Gclose, "create group grid");
+      write_dataset(g, "lo", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, grid.lo.data(), 3, 1);
+      write_dataset(g, "hi", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, grid.hi.data(), 3, 1);
+      write_dataset(g, "n", H5T_NATIVE_INT, H5T_STD_I32LE, grid.n, 3, 1);
+    }
+    {
+      Handle g(create_group(file, "cells"), H5Gclose, "create group cells");
+      write_dataset(g, "particles", H5T_NATIVE_LONG, H5T_STD_I64LE, strain.particles.data(), cells, 1);
+    }
+    for (int d = 0; d < kStrainDefinitionCount; ++d) {
+      if (!strain.computed[d]) continue;
+      const CellStrainFields& f = strain.fields[d];
+      const std::string name = field_name(static_cast<StrainDefinition>(d));
+      Handle g(create_group(file, name), H5Gclose, "create group " + name);
+      write_tensors(g, "F", f.deformation_gradient);
+      write_tensors(g, "L", f.velocity_gradient);
+      write_tensors(g, "F_increment", f.increment);
+      write_tensors(g, "E", f.green_lagrange);
+      write_tensors(g, "e", f.euler_almansi);
+      write_tensors(g, "hencky", f.hencky);
+      write_tensors(g, "R", f.rotation);
+      write_tensors(g, "D", f.rate_of_deformation);
+      write_tensors(g, "W", f.spin);
+      write_scalars(g, "J", f.jacobian);
+      write_scalars(g, "ln_J", f.log_jacobian);
+      write_scalars(g, "equivalent_shear_strain", f.equivalent_shear_strain);
+      write_scalars(g, "equivalent_shear_rate", f.equivalent_shear_rate);
+      write_scalars(g, "increment_ln_J", f.increment_log_jacobian);
+      write_scalars(g, "increment_equivalent_shear_strain", f.increment_equivalent_shear_strain);
+      write_scalars(g, "residual_rms", f.residual_rms);
+      write_reasons(g, "F", f.f_reason);
+      write_reasons(g, "L", f.l_reason);
+      write_reasons(g, "increment", f.increment_reason);
+    }
+  }
+  target.commit();
+}
+
+GridStrainRecorder::GridStrainRecorder(std::filesystem::path folder) : folder_(std::move(folder)) {
+  std::error_code ec;
+  std::filesystem::create_directories(folder_ / "grid_strain", ec);
+  if (ec) throw Error("cannot create " + (folder_ / "grid_strain").string() + ": " + ec.message());
+}
+
+void GridStrainRecorder::record(const GridStrain& strain) {
+  char name[64];
+  std::snprintf(name, sizeof name, "grid_strain_%09ld.h5", strain.step);
+  const std::string rel = (std::filesystem::path("grid_strain") / name).string();
+  write_grid_strain(folder_ / rel, strain);
+  entries_.push_back({rel, strain.time, strain.step, strain.grid, strain.computed});
+  const RegularGrid& grid = strain.grid;
+  for (int c = 0; c < grid.num_cells(); ++c) {
+    const int i = c % grid.n[0], j = (c / grid.n[0]) % grid.n[1], k = c / (grid.n[0] * grid.n[1]);
+    const Vec3 x = grid.cell_centre(c);
+    for (int d = 0; d < kStrainDefinitionCount; ++d) {
+      if (!strain.computed[d]) continue;
+      const CellStrainFields& f = strain.fields[d];
+      std::ostringstream row;
+      row.precision(17);
+      row << strain.time << ',' << strain.step << ',' << strain.reference_time << ',' << name_of(strain.set)
+          << ',' << c << ',' << i << ',' << j << ',' << k << ',' << x.x() << ',' << x.y() << ',' << x.z()
+          << ',' << field_name(static_cast<StrainDefinition>(d)) << ',' << strain.particles[c] << ','
+          << static_cast<int>(f.f_reason[c]);
+      for (int e = 0; e < 9; ++e) row << ',' << f.deformation_gradient[c](e / 3, e % 3);
+      row << ',' << f.jacobian[c] << ',' << f.log_jacobian[c] << ',' << f.equivalent_shear_strain[c] << ','
+          << static_cast<int>(f.l_reason[c]);
+      for (int e = 0; e < 9; ++e) row << ',' << f.velocity_gradient[c](e / 3, e % 3);
+      row << ',' << f.equivalent_shear_rate[c] << ',' << static_cast<int>(f.increment_reason[c]) << ','
+          << f.increment_log_jacobian[c] << ',' << f.increment_equivalent_shear_strain[c] << ','
+          << f.residual_rms[c] << '\n';
+      rows_.push_back(row.str());
+    }
+  }
+  flush();
+}
+
+void GridStrainRecorder::flush() const {
+  std::ostringstream csv;
+  csv << "# Upgrain grid strain. " << kConvention << ". Reason codes:";
+  for (int r = 0; r < kStrainReasonCount; ++r)
+    csv << ' ' << r << " = " << name_of(static_cast<StrainReason>(r));
+  csv << ".\ntime,step,reference_time,set,cell,i,j,k,x,y,z,definition,particles,F_reason,"
+         "F_xx,F_xy,F_xz,F_yx,F_yy,F_yz,F_zx,F_zy,F_zz,J,ln_J,equivalent_shear_strain,L_reason,"
+         "L_xx,L_xy,L_xz,L_yx,L_yy,L_yz,L_zx,L_zy,L_zz,equivalent_shear_rate,increment_reason,"
+         "increment_ln_J,increment_equivalent_shear_strain,residual_rms\n";
+  for (const auto& r : rows_) csv << r;
+  write_text_atomically(folder_ / "grid_strain.csv", csv.str());
+
+  // XDMF: a 3DCoRectMesh per evaluation (dimensions, origin and spacing in z, y, x order),
+  // cell-centred fields, as grid_stress.xdmf.
+  std::ostringstream x;
+  x.precision(17);
+  x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
+    << "  <Grid Name=\"grid_strain\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (const GridStrainEntry& e : entries_) {
+    const RegularGrid& g = e.grid;
+    const Vec3 h = (g.hi - g.lo).cwiseQuotient(Vec3(g.n[0], g.n[1], g.n[2]));
+    auto attribute = [&](const std::string& name, const char* kind, const std::string& path, int comps,
+                         const char* type, int precision) {
+      x << "    <Attribute Name=\"" << name << "\" AttributeType=\"" << kind << "\" Center=\"Cell\">"
+        << "<DataItem Dimensions=\"" << g.n[2] << " " << g.n[1] << " " << g.n[0];
+      if (comps > 1) x << " " << comps;
+      x << "\" NumberType=\"" << type << "\" Precision=\"" << precision << "\" Format=\"HDF\">" << e.file
+        << ":" << path << "</DataItem></Attribute>\n";
+    };
+    x << "   <Grid Name=\"step_" << e.step << "\" GridType=\"Uniform\">\n"
+      << "    <Time Value=\"" << e.time << "\"/>\n"
+      << "    <Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"" << g.n[2] + 1 << " " << g.n[1] + 1 << " "
+      << g.n[0] + 1 << "\"/>\n"
+      << "    <Geometry GeometryType=\"ORIGIN_DXDYDZ\">\n"
+      << "     <DataItem Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">" << g.lo.z()
+      << " " << g.lo.y() << " " << g.lo.x() << "</DataItem>\n"
+      << "     <DataItem Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">" << h.z()
+      << " " << h.y() << " " << h.x() << "</DataItem>\n"
+      << "    </Geometry>\n";
+    attribute("particles", "Scalar", "/cells/particles", 1, "Int", 8);
+    for (int d = 0; d < kStrainDefinitionCount; ++d) {
+      if (!e.computed[d]) continue;
+      const std::string n = field_name(static_cast<StrainDefinition>(d));
+      attribute(n + "_ln_J", "Scalar", "/" + n + "/ln_J", 1, "Float", 8);
+      attribute(n + "_equivalent_shear_strain", "Scalar", "/" + n + "/equivalent_shear_strain", 1, "Float",
+                8);
+      attribute(n + "_F_valid", "Scalar", "/" + n + "/F_valid", 1, "Int", 4);
+      attribute(n + "_F_reason", "Scalar", "/" + n + "/F_reason", 1, "Int", 4);
+      attribute(n + "_F", "Tensor", "/" + n + "/F", 9, "Float", 8);
+      attribute(n + "_increment_equivalent_shear_strain", "Scalar",
+                "/" + n + "/increment_equivalent_shear_strain", 1, "Float", 8);
+      attribute(n + "_L", "Tensor", "/" + n + "/L", 9, "Float", 8);
+    }
+    x << "   </Grid>\n";
+  }
+  x << "  </Grid>\n </Domain>\n</Xdmf>\n";
+  write_text_atomically(folder_ / "grid_strain.xdmf", x.str());
+}
+
+}  // namespace upgrain::dem::io

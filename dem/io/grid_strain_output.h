@@ -1,0 +1,54 @@
+#pragma once
+// Grid strain output, beside the grid stress: one HDF5 file per evaluation under
+// grid_strain/ (every tensor at full precision, validity flags and reason codes per cell),
+// an XDMF temporal collection grid_strain.xdmf so ParaView shows ln J, the equivalent
+// shear strain, the validity and F as cell data on the grid, and one CSV table
+// grid_strain.csv (a row per evaluation, cell and definition). docs/strain.md.
+#include <array>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "dem/strain/grid_strain.h"
+
+namespace upgrain::dem::io {
+
+struct GridStrainEntry {
+  std::string file;  // relative to the output folder
+  double time = 0.0;
+  long step = 0;
+  RegularGrid grid;
+  std::array<bool, kStrainDefinitionCount> computed = {false, false};
+};
+
+class GridStrainRecorder {
+ public:
+  // Creates folder/grid_strain/.
+  explicit GridStrainRecorder(std::filesystem::path folder);
+
+  void record(const GridStrain& strain);
+  [[nodiscard]] const std::vector<GridStrainEntry>& entries() const { return entries_; }
+
+ private:
+  void flush() const;
+
+  std::filesystem::path folder_;
+  std::vector<GridStrainEntry> entries_;
+  std::vector<std::string> rows_;
+};
+
+// Layout of each file (cells in the order (k ny + j) nx + i, x fastest):
+//   attributes time, step, reference_time, reference_step, set ("lagrangian" or
+//     "eulerian"), untracked, reason_names (string list: the name of each reason code);
+//   /grid/{lo, hi, n}: the grid whose cells define the sets; /cells/particles;
+//   /<definition>/ for best_fit and tessellation (those computed):
+//     cells x 9 (row-major, T_ij at 3 i + j): F, L, F_increment, E, e, hencky (ln V), R, D, W;
+//     cells: J, ln_J, equivalent_shear_strain, equivalent_shear_rate, increment_ln_J,
+//     increment_equivalent_shear_strain, residual_rms;
+//     int32 per cell: F_valid, F_reason, L_valid, L_reason, increment_valid, increment_reason.
+void write_grid_strain(const std::filesystem::path& path, const GridStrain& strain);
+
+// "best fit" -> "best_fit": the name used for groups, columns and fields.
+std::string field_name(StrainDefinition d);
+
+}  // namespace upgrain::dem::io
