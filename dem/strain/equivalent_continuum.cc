@@ -4,9 +4,13 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <cmath>
 #include <utility>
 #include <vector>
+
+#include "dem/strain/deformation_fit.h"
 
 namespace upgrain::dem {
 
@@ -40,6 +44,22 @@ TessellationGradient equivalent_continuum_deformation(std::span<const Vec3> refe
   if (reference.size() < 4) return invalid("fewer than 4 particles: no tetrahedron");
   for (std::size_t k = 0; k < reference.size(); ++k)
     if (!reference[k].allFinite() || !current[k].allFinite()) return invalid("a position is not finite");
+  // The same degeneracy rule as the best fit (deformation_fit.h): CGAL tessellates a set
+  // that is flat only to round-off, and its slivers then give a gradient of noise normal to
+  // the set.
+  {
+    Vec3 mean = Vec3::Zero();
+    for (const Vec3& x : reference) mean += x - reference[0];
+    mean /= static_cast<double>(reference.size());
+    Mat3 moment = Mat3::Zero();
+    for (const Vec3& x : reference) {
+      const Vec3 d = x - reference[0] - mean;
+      moment += d * d.transpose();
+    }
+    const Vec3 m = Eigen::SelfAdjointEigenSolver<Mat3>(moment, Eigen::EigenvaluesOnly).eigenvalues();
+    if (!(m[0] >= kMinSecondMomentRatio * m[2]))
+      return invalid("the particles span less than three dimensions (coplanar or nearly so)");
+  }
   // Work about the first point of each set: the tessellation and the edge vectors then
   // carry no digits of the distance to the origin.
   const Vec3 x0 = reference[0], y0 = current[0];
@@ -50,7 +70,8 @@ TessellationGradient equivalent_continuum_deformation(std::span<const Vec3> refe
     points.emplace_back(Kernel::Point_3(r.x(), r.y(), r.z()), static_cast<int>(k));
   }
   const Delaunay tessellation(points.begin(), points.end());
-  if (tessellation.dimension() < 3) return invalid("the particles span less than three dimensions (coplanar)");
+  if (tessellation.dimension() < 3)
+    return invalid("the particles span less than three dimensions (coplanar)");
 
   Mat3 weighted = Mat3::Zero();  // sum_t dx_t adj(dX_t)
   double det_sum = 0.0;          // sum_t det(dX_t) = 6 V
