@@ -76,6 +76,12 @@ const std::vector<ParameterSpec>& parameter_schema() {
        "Coulomb coefficient at the wall y = 0."},
       {"Container", "wall y max friction", "0.5", K::real, 0.0, 10.0, "", "-",
        "Coulomb coefficient at the wall y = length y."},
+      {"Container", "gate x", "0", K::real, 0.0, 1e4, "", "m",
+       "Constrained collapse (paper): a gate wall at x = gate x holds the grains in [0, gate x] during "
+       "deposition and is removed at 'gate open time', so the bed collapses into the rest of the box. "
+       "0 = no gate."},
+      {"Container", "gate open time", "0", K::real, 0.0, 1e6, "", "s",
+       "Simulated time at which the gate is removed (with 'gate x' > 0)."},
 
       {"Fill", "method", "lattice", K::selection, 0, 0, "lattice|random", "-",
        "Initial placement: a jittered cubic lattice, or random sequential addition."},

@@ -133,6 +133,8 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   s.container.friction[2] = prm.get_double("wall x max friction");
   s.container.friction[3] = prm.get_double("wall y min friction");
   s.container.friction[4] = prm.get_double("wall y max friction");
+  s.container.gate_x = prm.get_double("gate x");
+  s.container.gate_open_time = prm.get_double("gate open time");
   prm.leave_subsection();
 
   prm.enter_subsection("Fill");

@@ -67,6 +67,20 @@ void validate_scene(SceneInput& in) {
       << " m, length y = " << s.container.ly << " m)";
     throw Error(m.str());
   }
+  if (s.container.has_gate()) {
+    if (s.container.gate_x >= s.container.lx || 2.0 * r_max >= s.container.gate_x) {
+      std::ostringstream m;
+      m << where << "Container/gate x = " << s.container.gate_x << " m must lie between the largest grain's "
+        << "diameter (" << 2 * r_max << " m) and Container/length x = " << s.container.lx << " m";
+      throw Error(m.str());
+    }
+    if (!(s.container.gate_open_time > 0.0) || s.container.gate_open_time >= s.end_time) {
+      std::ostringstream m;
+      m << where << "Container/gate open time = " << s.container.gate_open_time
+        << " s must lie in (0, Simulation/end time = " << s.end_time << " s)";
+      throw Error(m.str());
+    }
+  }
   try {
     (void)dem::plan_fill(s);
   } catch (const Error& e) {

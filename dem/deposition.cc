@@ -75,17 +75,25 @@ DepositionResult run_deposition(const SceneConfig& scene, const RunControl& cont
     if (strain_on) evaluate_strain(r.final_grid);
   };
 
+  // The constrained collapse: the gate opens at its time (boundary/plane_wall.h); the bed
+  // is not "at rest" before that.
+  bool gate_closed = scene.container.has_gate();
   const auto t0 = Clock::now();
   auto last_report = t0;
   const double pe0 = sim.initial_energy().potential;
   for (long s = 1; s <= total; ++s) {
+    if (gate_closed && sim.time() >= scene.container.gate_open_time) {
+      sim.remove_wall(kGateWallName);
+      gate_closed = false;
+    }
     if (stress_due(s)) sim.request_contacts();
     sim.step();
     if (stress_due(s)) evaluate_stress();
     const bool series_now = (s % series_every == 0) || s == total;
     if (series_now) {
       if (recorder) recorder->record_series(sim);
-      if (control.rest_ratio > 0.0 && s > total / 10 && sim.kinetic_to_released() < control.rest_ratio)
+      if (control.rest_ratio > 0.0 && s > total / 10 && !gate_closed &&
+          sim.kinetic_to_released() < control.rest_ratio)
         r.stopped_at_rest = true;
     }
     if (recorder && ((s % snapshot_every == 0) || s == total || r.stopped_at_rest)) {

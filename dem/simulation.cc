@@ -95,6 +95,18 @@ void Simulation::step() {
   time_ = step_ * dt_;
 }
 
+void Simulation::remove_wall(const std::string& name) {
+  for (PlaneWall& w : walls_) {
+    if (w.name != name) continue;
+    // Far along its own normal's opposite side: every grain is then at a distance of order
+    // 1e100 inside the domain, and no contact can form (distance() stays finite).
+    w.point -= 1e100 * w.normal;
+    rebuild_neighbors();
+    return;
+  }
+  throw Error("no wall named '" + name + "' to remove");
+}
+
 void Simulation::set_gravity(const Vec3& g) {
   g_ = g;
   e0_ = energy();

@@ -62,6 +62,11 @@ class Simulation {
   [[nodiscard]] double kinetic_to_released() const;
   [[nodiscard]] StepDiagnostics diagnostics() const;
 
+  // Takes a wall out of the scene (the constrained collapse's gate): it is moved out of
+  // reach, so its contacts end at the next force evaluation and its list empties at the
+  // next rebuild. Throws when no wall has that name.
+  void remove_wall(const std::string& name);
+
   // Throws upgrain::Error naming the particle when a position or velocity is not finite.
   void check_finite() const;
 

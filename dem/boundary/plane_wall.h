@@ -24,16 +24,30 @@ struct BoxContainer {
   double height = 0.1;  // nominal wall height (m); the planes themselves are unbounded
   // floor, x-, x+, y-, y+
   double friction[5] = {0.5, 0.5, 0.5, 0.5, 0.5};
+  // The paper's constrained collapse: a gate at x = gate_x (0 = none) holds the grains in
+  // [0, gate_x] while they are deposited; at gate_open_time it is removed and the bed
+  // collapses into the rest of the box. The gate has the x+ wall's friction.
+  double gate_x = 0.0;
+  double gate_open_time = 0.0;
+
+  [[nodiscard]] bool has_gate() const { return gate_x > 0.0; }
+  // The length along x the grains are filled into.
+  [[nodiscard]] double fill_length_x() const { return has_gate() ? gate_x : lx; }
 };
 
+inline constexpr const char* kGateWallName = "gate";
+
 inline std::vector<PlaneWall> make_open_box(const BoxContainer& box) {
-  return {
+  std::vector<PlaneWall> walls = {
       {"floor", Vec3(0, 0, 0), Vec3(0, 0, 1), box.friction[0]},
       {"wall_x_min", Vec3(0, 0, 0), Vec3(1, 0, 0), box.friction[1]},
       {"wall_x_max", Vec3(box.lx, 0, 0), Vec3(-1, 0, 0), box.friction[2]},
       {"wall_y_min", Vec3(0, 0, 0), Vec3(0, 1, 0), box.friction[3]},
       {"wall_y_max", Vec3(0, box.ly, 0), Vec3(0, -1, 0), box.friction[4]},
   };
+  if (box.has_gate())
+    walls.push_back({kGateWallName, Vec3(box.gate_x, 0, 0), Vec3(-1, 0, 0), box.friction[2]});
+  return walls;
 }
 
 }  // namespace upgrain::dem

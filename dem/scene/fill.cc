@@ -23,17 +23,17 @@ LatticeShape lattice_shape(const SceneConfig& s, double r_max) {
   LatticeShape l{};
   l.pitch = s.fill.lattice_spacing * 2.0 * r_max;
   const double gap = l.pitch - 2.0 * r_max;
-  const double usable_x = s.container.lx - 2.0 * r_max - gap;
+  const double usable_x = s.container.fill_length_x() - 2.0 * r_max - gap;
   const double usable_y = s.container.ly - 2.0 * r_max - gap;
   l.nx = usable_x >= 0.0 ? static_cast<long>(std::floor(usable_x / l.pitch)) + 1 : 0;
   l.ny = usable_y >= 0.0 ? static_cast<long>(std::floor(usable_y / l.pitch)) + 1 : 0;
   if (l.nx < 1 || l.ny < 1) {
     std::ostringstream m;
-    m << "Fill: the container (" << s.container.lx << " x " << s.container.ly
+    m << "Fill: the container (" << s.container.fill_length_x() << " x " << s.container.ly
       << " m) is narrower than one lattice pitch (" << l.pitch << " m)";
     throw Error(m.str());
   }
-  l.margin_x = 0.5 * (s.container.lx - (l.nx - 1) * l.pitch);
+  l.margin_x = 0.5 * (s.container.fill_length_x() - (l.nx - 1) * l.pitch);
   l.margin_y = 0.5 * (s.container.ly - (l.ny - 1) * l.pitch);
   l.layers = (s.particles.count + l.nx * l.ny - 1) / (l.nx * l.ny);
   return l;
@@ -43,7 +43,7 @@ double random_fill_height(const SceneConfig& s, const std::vector<double>& radii
   double volume = 0.0;
   for (double r : radii) volume += 4.0 / 3.0 * std::numbers::pi * r * r * r;
   const double r_max = *std::max_element(radii.begin(), radii.end());
-  return std::max(volume / (s.fill.solid_fraction * s.container.lx * s.container.ly), 2.0 * r_max);
+  return std::max(volume / (s.fill.solid_fraction * s.container.fill_length_x() * s.container.ly), 2.0 * r_max);
 }
 
 }  // namespace
@@ -106,7 +106,7 @@ ParticleStore fill_container(const SceneConfig& s) {
   // already placed.
   const double height = random_fill_height(s, radii);
   const Vec3 lo(0.0, 0.0, s.fill.bottom_gap);
-  const Vec3 hi(s.container.lx, s.container.ly, s.fill.bottom_gap + height);
+  const Vec3 hi(s.container.fill_length_x(), s.container.ly, s.fill.bottom_gap + height);
   CellGrid grid(lo, hi, 2.0 * r_max);
   std::vector<std::vector<int>> cells(static_cast<std::size_t>(grid.num_cells()));
   std::vector<long> order(static_cast<std::size_t>(n));
@@ -120,7 +120,7 @@ ParticleStore fill_container(const SceneConfig& s) {
     const double r = radii[k];
     bool placed = false;
     for (int attempt = 0; attempt < kMaxAttempts && !placed; ++attempt) {
-      const Vec3 x(r + (s.container.lx - 2 * r) * u01(rng), r + (s.container.ly - 2 * r) * u01(rng),
+      const Vec3 x(r + (s.container.fill_length_x() - 2 * r) * u01(rng), r + (s.container.ly - 2 * r) * u01(rng),
                    lo.z() + r + (height - 2 * r) * u01(rng));
       const auto c = grid.cell_coords(x);
       bool free = true;
