@@ -19,11 +19,13 @@
 #include <cstdlib>
 #include <fstream>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <string>
 
 #include <memory>
 
+#include "bench/dense_bed_scene.h"
 #include "dem/deposition.h"
 #include "dem/io/grid_stress_output.h"
 #include "dem/scene/fill.h"
@@ -33,18 +35,7 @@ using namespace upgrain::dem;
 
 namespace {
 
-SceneConfig benchmark_scene(double side) {
-  SceneConfig s;
-  s.particles.radius = 1.5e-3;
-  s.particles.material = {2650.0, 29e9, 0.25};
-  s.container.lx = s.container.ly = side;
-  s.friction = 0.5;
-  s.damping_ratio = 0.5;
-  s.time_step = 1e-6;
-  s.neighbor_skin = 0.05;  // 0.1 diameters in total, as the LIGGGHTS deck
-  s.effects.energy_tracking = false;
-  return s;
-}
+using upgrain::bench::benchmark_scene;
 
 double peak_rss_bytes() {
   rusage u{};
@@ -131,27 +122,12 @@ int settle(long n, const std::string& path) {
 
 // Reads a bed written by `settle` into a simulation with the benchmark material.
 std::unique_ptr<Simulation> load_bed(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) {
+  std::optional<upgrain::bench::Bed> bed = upgrain::bench::read_bed(path);
+  if (!bed) {
     std::fprintf(stderr, "cannot open %s\n", path.c_str());
     return nullptr;
   }
-  std::string line;
-  long n = 0;
-  double side = 0.0;
-  while (std::getline(in, line)) {
-    if (line.find("atoms") != std::string::npos) n = std::stol(line);
-    if (line.find("xlo xhi") != std::string::npos) side = std::stod(line.substr(line.find(' ') + 1));
-    if (line.rfind("Atoms", 0) == 0) break;
-  }
-  SceneConfig s = benchmark_scene(side);
-  ParticleStore p;
-  p.reserve(static_cast<std::size_t>(n));
-  long id, type;
-  double d, rho, x, y, z;
-  while (in >> id >> type >> d >> rho >> x >> y >> z)
-    p.add_sphere(id - 1, 0.5 * d, rho, Vec3(x, y, z), Vec3::Zero(), Vec3::Zero());
-  return std::make_unique<Simulation>(s, std::move(p));
+  return std::make_unique<Simulation>(bed->scene, std::move(bed->particles));
 }
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {

@@ -3,6 +3,7 @@
 // arrived in earlier stages reaches the 12 edge and 8 corner neighbours without messages
 // to them (Plimpton 1995, J. Comput. Phys. 117:1, sec. 4).
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <sstream>
 
@@ -43,7 +44,9 @@ void ParallelSimulation::migrate() {
       message = m.str();
     }
   }
+  std::chrono::steady_clock::time_point t = std::chrono::steady_clock::now();
   throw_if_any(comm_, message);
+  timings_.rebuild_messages += seconds_since(t);
 
   std::array<std::vector<GlobalId>, 2> leaving;
   for (int d = 0; d < 3; ++d) {
@@ -107,8 +110,10 @@ void ParallelSimulation::migrate() {
       }
     }
     const std::array<int, 2> nb{dec.neighbor(d, 0), dec.neighbor(d, 1)};
+    t = std::chrono::steady_clock::now();
     exchange_along_axis(comm_, nb, state_out_, state_in_, false, kTagMigrate + 10 * d);
     exchange_along_axis(comm_, nb, spring_out_, spring_in_, false, kTagSprings + 10 * d);
+    timings_.rebuild_messages += seconds_since(t);
     for (int s = 0; s < 2; ++s) {
       migrated_out_ += static_cast<long>(state_out_[s].size());
       for (const StateRecord& r : state_in_[s]) append(r);
@@ -146,8 +151,10 @@ void ParallelSimulation::build_ghosts() {
         ghost_out_[s].push_back(r);
       }
     }
+    const std::chrono::steady_clock::time_point t = std::chrono::steady_clock::now();
     exchange_along_axis(comm_, {dec.neighbor(d, 0), dec.neighbor(d, 1)}, ghost_out_, ghost_in_, false,
                         kTagGhosts + 10 * d);
+    timings_.rebuild_messages += seconds_since(t);
     for (int s = 0; s < 2; ++s) {
       ghost_recv_start_[d][s] = static_cast<int>(p_.size());
       ghost_recv_count_[d][s] = static_cast<int>(ghost_in_[s].size());

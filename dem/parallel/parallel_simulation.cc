@@ -1,6 +1,7 @@
 #include "dem/parallel/parallel_simulation.h"
 
 #include <algorithm>
+#include <chrono>
 #include <sstream>
 
 #include "dem/core/error.h"
@@ -95,6 +96,7 @@ ParallelSimulation::ParallelSimulation(const SceneConfig& scene, const ParticleS
   n_owned_ = static_cast<int>(p_.size());
   rebuild();
   evaluate_forces();
+  timings_ = {};  // step() only
 }
 
 void ParallelSimulation::append(const StateRecord& r) {
@@ -110,6 +112,8 @@ void ParallelSimulation::append(const StateRecord& r) {
 }
 
 void ParallelSimulation::step() {
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point t0 = Clock::now();
   const int n = n_owned_;
   const double half = 0.5 * dt_;
   const double limit2 = 0.25 * skin_ * skin_;
@@ -135,7 +139,9 @@ void ParallelSimulation::step() {
   // same steps), and the runaway-overlap check of the previous evaluation.
   double local[2] = {moved ? 1.0 : 0.0, last_overlap_ratio_};
   double global[2] = {0.0, 0.0};
+  const Clock::time_point t1 = Clock::now();
   MPI_Allreduce(local, global, 2, MPI_DOUBLE, MPI_MAX, comm_);
+  const Clock::time_point t2 = Clock::now();
   if (global[1] > kRunawayOverlapRatio) {
     std::ostringstream m;
     m << "runaway overlap at step " << last_overlap_step_ << " (t = " << last_overlap_step_ * dt_
@@ -144,16 +150,28 @@ void ParallelSimulation::step() {
       << " s is too large for this scene or a particle was placed inside another";
     throw Error(m.str());
   }
-  if (global[0] > 0.0)
+  const bool rebuilding = global[0] > 0.0;
+  if (rebuilding)
     rebuild();
   else
     refresh_ghosts();
+  const Clock::time_point t3 = Clock::now();
   evaluate_forces();
+  const Clock::time_point t4 = Clock::now();
   for (int i = 0; i < n_owned_; ++i) p_.v[i] += half * (p_.force[i] * p_.inv_mass[i] + g_);
   if (rotation_) {
     for (int i = 0; i < n_owned_; ++i) p_.omega[i] += half * p_.inv_inertia[i] * p_.torque[i];
   }
   ++step_;
+  const Clock::time_point t5 = Clock::now();
+  auto seconds = [](Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double>(b - a).count();
+  };
+  timings_.integrate += seconds(t0, t1) + seconds(t4, t5);
+  timings_.reduction += seconds(t1, t2);
+  (rebuilding ? timings_.rebuild : timings_.ghost_refresh) += seconds(t2, t3);
+  timings_.forces += seconds(t3, t4);
+  ++timings_.steps;
 }
 
 void ParallelSimulation::run(long steps) {
@@ -161,7 +179,9 @@ void ParallelSimulation::run(long steps) {
 }
 
 void ParallelSimulation::rebuild() {
+  std::chrono::steady_clock::time_point t = std::chrono::steady_clock::now();
   check_finite_collective();
+  timings_.rebuild_messages += seconds_since(t);
   // Springs of touching contacts, keyed by global ids, before local indices change.
   history_.clear();
   lists_.collect_springs(p_, history_);
@@ -179,7 +199,9 @@ void ParallelSimulation::rebuild() {
   migrate();
   long count = n_owned_;
   long total = 0;
+  t = std::chrono::steady_clock::now();
   MPI_Allreduce(&count, &total, 1, MPI_LONG, MPI_SUM, comm_);
+  timings_.rebuild_messages += seconds_since(t);
   if (total != n_global_) {
     std::ostringstream m;
     m << "parallel run: " << total << " particles after the migration at step " << step_ << ", expected "
@@ -400,6 +422,28 @@ ParallelDiagnostics ParallelSimulation::diagnostics() const {
   d.migrated_out = migrated_out_;
   d.max_overlap_ratio = last_overlap_ratio_;
   return d;
+}
+
+LoadImbalance ParallelSimulation::load_imbalance() const {
+  const double mine[3] = {static_cast<double>(n_owned_), static_cast<double>(lists_.num_pairs()),
+                          timings_.compute()};
+  double max[3] = {0, 0, 0}, sum[3] = {0, 0, 0};
+  MPI_Allreduce(mine, max, 3, MPI_DOUBLE, MPI_MAX, comm_);
+  MPI_Allreduce(mine, sum, 3, MPI_DOUBLE, MPI_SUM, comm_);
+  LoadImbalance b;
+  b.ranks = decomp_->size();
+  const double k = static_cast<double>(b.ranks);
+  auto ratio = [](double hi, double mean) { return mean > 0.0 ? hi / mean : 1.0; };
+  b.owned_max = static_cast<long>(max[0]);
+  b.owned_mean = sum[0] / k;
+  b.owned_ratio = ratio(max[0], b.owned_mean);
+  b.pairs_max = static_cast<long>(max[1]);
+  b.pairs_mean = sum[1] / k;
+  b.pairs_ratio = ratio(max[1], b.pairs_mean);
+  b.compute_max = max[2];
+  b.compute_mean = sum[2] / k;
+  b.compute_ratio = ratio(max[2], b.compute_mean);
+  return b;
 }
 
 }  // namespace upgrain::dem

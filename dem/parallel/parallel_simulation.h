@@ -7,6 +7,7 @@
 #include <mpi.h>
 
 #include <array>
+#include <chrono>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -39,6 +40,38 @@ struct ParallelDiagnostics {
   long rebuilds = 0;               // neighbour-list rebuilds (identical on every rank)
   long migrated_out = 0;           // particles this rank sent away, cumulative
   double max_overlap_ratio = 0.0;  // of the last evaluation, on this rank
+};
+
+// Wall-clock seconds spent by this rank in the parts of step(), accumulated since the end
+// of construction (or reset_timings()): steady_clock reads, six per step and two per
+// message phase of a rebuild, so the overhead is a few hundred nanoseconds per step.
+struct ParallelTimings {
+  long steps = 0;
+  double integrate = 0.0;         // half kicks and drift of the owned particles
+  double reduction = 0.0;         // the per-step MPI_Allreduce; includes waiting for the slowest rank
+  double ghost_refresh = 0.0;     // ghost motion: packing, the three exchanges, unpacking
+  double rebuild = 0.0;           // whole rebuilds: migration, ghosts, lists (compute and messages)
+  double rebuild_messages = 0.0;  // the messages and reductions inside those rebuilds
+  double forces = 0.0;            // force evaluation
+  [[nodiscard]] double total() const { return integrate + reduction + ghost_refresh + rebuild + forces; }
+  [[nodiscard]] double communication() const { return reduction + ghost_refresh + rebuild_messages; }
+  [[nodiscard]] double compute() const { return total() - communication(); }
+};
+
+// Load balance over the ranks (collective; every rank receives the same numbers), for a
+// log line: max/mean of the owned particles, of the pair slots (ghost pairs included),
+// and of the compute seconds of ParallelTimings. A ratio is 1 for a perfect balance.
+struct LoadImbalance {
+  int ranks = 1;
+  long owned_max = 0;
+  double owned_mean = 0.0;
+  double owned_ratio = 1.0;
+  long pairs_max = 0;
+  double pairs_mean = 0.0;
+  double pairs_ratio = 1.0;
+  double compute_max = 0.0;
+  double compute_mean = 0.0;
+  double compute_ratio = 1.0;
 };
 
 class ParallelSimulation {
@@ -95,6 +128,10 @@ class ParallelSimulation {
   [[nodiscard]] double time() const { return step_ * dt_; }
   [[nodiscard]] double interaction_range() const { return range_; }
   [[nodiscard]] ParallelDiagnostics diagnostics() const;
+  [[nodiscard]] const ParallelTimings& timings() const { return timings_; }
+  void reset_timings() { timings_ = {}; }
+  // Collective.
+  [[nodiscard]] LoadImbalance load_imbalance() const;
 
  private:
   void rebuild();
@@ -105,6 +142,9 @@ class ParallelSimulation {
   void evaluate_forces();
   void check_finite_collective() const;
   void append(const StateRecord& r);
+  static double seconds_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
 
   SceneConfig scene_;
   std::vector<PlaneWall> walls_;
@@ -124,6 +164,7 @@ class ParallelSimulation {
   long migrated_out_ = 0;
   double last_overlap_ratio_ = 0.0;
   long last_overlap_step_ = 0;
+  ParallelTimings timings_;
 
   ContactLists lists_;
   DeterministicForceKernels kernels_{};

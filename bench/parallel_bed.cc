@@ -1,0 +1,180 @@
+// MPI benchmark (issue 5, item 9): the settled dense bed of bench_dense_bed, stepped by
+// ParallelSimulation on the ranks it is started with.
+//   mpiexec -n K bench_parallel_bed bed.data [steps] [--no-serial] [--blocks PXxPYxPZ]
+// (blocks: default chosen by the decomposition rule, docs/parallel.md).
+// Rank 0 prints one line of `key value` pairs: particles, steps, wall seconds, particle-
+// steps/s, the share of time in communication (per-step reduction, ghost refresh, messages
+// of rebuilds; mean over ranks of ParallelTimings), the imbalance (max/mean of owned
+// particles, pair slots and compute seconds), neighbour rebuilds, and a hash of the final
+// state sorted by id (bitwise rank-independent, so equal for every K). With K = 1 it also
+// times the serial Simulation on the same bed in the same process, before the parallel
+// run: the ratio is the cost of the deterministic force sum on one rank. One `rank` line
+// per rank follows on stderr. bench/parallel_scaling.py runs K = 1 and 2 and compares.
+#include <mpi.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bench/dense_bed_scene.h"
+#include "dem/parallel/parallel_simulation.h"
+#include "dem/simulation.h"
+
+using namespace upgrain::dem;
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// FNV-1a over the bytes of x, v and omega, in id order.
+std::uint64_t state_hash(const ParticleStore& p) {
+  std::uint64_t h = 1469598103934665603ull;
+  auto add = [&h](const Vec3& a) {
+    unsigned char bytes[3 * sizeof(double)];
+    for (int d = 0; d < 3; ++d) {
+      const double c = a[d];
+      std::memcpy(bytes + d * sizeof(double), &c, sizeof(double));
+    }
+    for (unsigned char b : bytes) {
+      h ^= b;
+      h *= 1099511628211ull;
+    }
+  };
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    add(p.x[i]);
+    add(p.v[i]);
+    add(p.omega[i]);
+  }
+  return h;
+}
+
+int run(const std::string& path, long steps, bool serial, const ParallelOptions& options) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  // Every rank reads the scene; rank 0's particles are the bed (ParallelSimulation
+  // broadcasts them).
+  std::optional<upgrain::bench::Bed> bed = upgrain::bench::read_bed(path);
+  int ok = bed ? 1 : 0, all_ok = 0;
+  MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  if (!all_ok) {
+    if (rank == 0) std::fprintf(stderr, "cannot open %s\n", path.c_str());
+    return 1;
+  }
+  if (rank != 0) bed->particles = ParticleStore{};
+  const long n = static_cast<long>(bed->particles.size());
+
+  double serial_seconds = 0.0;
+  if (serial && size == 1) {
+    Simulation sim(bed->scene, bed->particles);
+    const auto t0 = std::chrono::steady_clock::now();
+    sim.run(steps);
+    serial_seconds = seconds_since(t0);
+  }
+
+  ParallelSimulation sim(bed->scene, bed->particles, MPI_COMM_WORLD, options);
+  const long rebuilds_before = sim.diagnostics().rebuilds;
+  MPI_Barrier(MPI_COMM_WORLD);
+  const auto t0 = std::chrono::steady_clock::now();
+  sim.run(steps);
+  MPI_Barrier(MPI_COMM_WORLD);
+  const double wall = seconds_since(t0);
+
+  const ParallelDiagnostics diag = sim.diagnostics();
+  const LoadImbalance imbalance = sim.load_imbalance();
+  const ParallelTimings& t = sim.timings();
+  // Per rank: owned, ghosts, pair slots, then the timing parts.
+  constexpr int kFields = 10;
+  const double mine[kFields] = {static_cast<double>(diag.owned),
+                                static_cast<double>(diag.ghosts),
+                                static_cast<double>(diag.pair_slots),
+                                t.integrate,
+                                t.forces,
+                                t.reduction,
+                                t.ghost_refresh,
+                                t.rebuild,
+                                t.rebuild_messages,
+                                t.total()};
+  std::vector<double> every(rank == 0 ? kFields * size : 0);
+  MPI_Gather(mine, kFields, MPI_DOUBLE, every.data(), kFields, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  const ParticleStore final_state = sim.gather_sorted_by_id();
+  if (rank != 0) return 0;
+
+  double share = 0.0, share_reduction = 0.0, share_refresh = 0.0, share_rebuild = 0.0;
+  double ghosts_max = 0.0;
+  for (int r = 0; r < size; ++r) {
+    const double* f = every.data() + kFields * r;
+    const double total = f[9] > 0.0 ? f[9] : 1.0;
+    share += (f[5] + f[6] + f[8]) / total / size;
+    share_reduction += f[5] / total / size;
+    share_refresh += f[6] / total / size;
+    share_rebuild += f[8] / total / size;
+    ghosts_max = std::max(ghosts_max, f[1]);
+    std::fprintf(
+        stderr,
+        "rank %d owned %.0f ghosts %.0f pair_slots %.0f integrate_s %.4f forces_s %.4f reduction_s %.4f "
+        "ghost_refresh_s %.4f rebuild_s %.4f rebuild_messages_s %.4f total_s %.4f\n",
+        r, f[0], f[1], f[2], f[3], f[4], f[5], f[6], f[7], f[8], f[9]);
+  }
+  const std::array<int, 3>& b = sim.decomposition().blocks();
+  std::printf(
+      "parallel ranks %d blocks %dx%dx%d particles %ld steps %ld seconds %.4f particle_steps_per_second %.4e "
+      "comm_share %.4f reduction_share %.4f ghost_refresh_share %.4f rebuild_messages_share %.4f "
+      "owned_imbalance %.4f pairs_imbalance %.4f compute_imbalance %.4f rebuilds %ld ghosts_max %.0f "
+      "state_hash %016llx",
+      size, b[0], b[1], b[2], n, steps, wall, static_cast<double>(n) * steps / wall, share, share_reduction,
+      share_refresh, share_rebuild, imbalance.owned_ratio, imbalance.pairs_ratio, imbalance.compute_ratio,
+      diag.rebuilds - rebuilds_before, ghosts_max, static_cast<unsigned long long>(state_hash(final_state)));
+  if (serial_seconds > 0.0)
+    std::printf(" serial_seconds %.4f serial_particle_steps_per_second %.4e parallel_over_serial %.4f",
+                serial_seconds, static_cast<double>(n) * steps / serial_seconds, wall / serial_seconds);
+  std::printf("\n");
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  std::vector<std::string> args(argv + 1, argv + argc);
+  bool serial = true;
+  bool usage = false;
+  ParallelOptions options;
+  std::vector<std::string> positional;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--no-serial") {
+      serial = false;
+    } else if (args[i] == "--blocks" && i + 1 < args.size()) {
+      std::array<int, 3>& b = options.blocks;
+      usage = usage || std::sscanf(args[++i].c_str(), "%dx%dx%d", &b[0], &b[1], &b[2]) != 3;
+    } else {
+      positional.push_back(args[i]);
+    }
+  }
+  int code = 2;
+  if (!usage && (positional.size() == 1 || positional.size() == 2)) {
+    try {
+      code = run(positional[0], positional.size() > 1 ? std::atol(positional[1].c_str()) : 1000, serial,
+                 options);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "bench_parallel_bed: %s\n", e.what());
+      MPI_Abort(MPI_COMM_WORLD, 1);
+    }
+  } else {
+    std::fprintf(
+        stderr,
+        "usage: mpiexec -n K bench_parallel_bed bed.data [steps] [--no-serial] [--blocks PXxPYxPZ]\n");
+  }
+  MPI_Finalize();
+  return code;
+}
