@@ -28,4 +28,27 @@ struct Effects {
   static constexpr bool energy = Energy;
 };
 
+// Turns the run-time effect set into the matching Effects<...> type, once per run: calls
+// make.template operator()<Effects<...>>() and returns its result. Every force loop that
+// is a template on Effects picks its instantiation through this one ladder.
+template <class Make>
+auto with_effects(const EffectSet& e, Make make) {
+  auto energy = [&]<bool F, bool D, bool W, bool R>() {
+    return e.energy_tracking ? make.template operator()<Effects<F, D, W, R, true>>()
+                             : make.template operator()<Effects<F, D, W, R, false>>();
+  };
+  auto rotation = [&]<bool F, bool D, bool W>() {
+    return e.rotation ? energy.template operator()<F, D, W, true>()
+                      : energy.template operator()<F, D, W, false>();
+  };
+  auto wall = [&]<bool F, bool D>() {
+    return e.wall_friction ? rotation.template operator()<F, D, true>()
+                           : rotation.template operator()<F, D, false>();
+  };
+  auto damping = [&]<bool F>() {
+    return e.damping ? wall.template operator()<F, true>() : wall.template operator()<F, false>();
+  };
+  return e.friction ? damping.template operator()<true>() : damping.template operator()<false>();
+}
+
 }  // namespace upgrain::dem

@@ -146,31 +146,12 @@ void compute_forces(ForceContext& ctx) {
   ctx.max_overlap_ratio = max_ratio;
 }
 
-template <bool F, bool D, bool W, bool R>
-ForceKernels pick_energy(bool energy) {
-  using On = Effects<F, D, W, R, true>;
-  using Off = Effects<F, D, W, R, false>;
-  return energy ? ForceKernels{&compute_forces<On, false>, &compute_forces<On, true>}
-                : ForceKernels{&compute_forces<Off, false>, &compute_forces<Off, true>};
-}
-template <bool F, bool D, bool W>
-ForceKernels pick_rotation(const EffectSet& e) {
-  return e.rotation ? pick_energy<F, D, W, true>(e.energy_tracking)
-                    : pick_energy<F, D, W, false>(e.energy_tracking);
-}
-template <bool F, bool D>
-ForceKernels pick_wall(const EffectSet& e) {
-  return e.wall_friction ? pick_rotation<F, D, true>(e) : pick_rotation<F, D, false>(e);
-}
-template <bool F>
-ForceKernels pick_damping(const EffectSet& e) {
-  return e.damping ? pick_wall<F, true>(e) : pick_wall<F, false>(e);
-}
-
 }  // namespace
 
 ForceKernels select_force_kernels(const EffectSet& e) {
-  return e.friction ? pick_damping<true>(e) : pick_damping<false>(e);
+  return with_effects(e, []<class E>() {
+    return ForceKernels{&compute_forces<E, false>, &compute_forces<E, true>};
+  });
 }
 
 }  // namespace upgrain::dem

@@ -6,6 +6,7 @@
 
 #include "dem/core/error.h"
 #include "dem/io/atomic_file.h"
+#include "dem/io/grid_xdmf.h"
 #include "dem/io/hdf5_util.h"
 
 namespace upgrain::dem::io {
@@ -159,51 +160,26 @@ void GridStrainRecorder::flush() const {
   for (const auto& r : rows_) csv << r;
   write_text_atomically(folder_ / "grid_strain.csv", csv.str());
 
-  // XDMF: a 3DCoRectMesh per evaluation (dimensions, origin and spacing in z, y, x order),
-  // cell-centred fields, as grid_stress.xdmf.
-  std::ostringstream x;
-  x.precision(17);
-  x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
-    << "  <Grid Name=\"grid_strain\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  std::vector<GridXdmfStep> steps;
   for (const GridStrainEntry& e : entries_) {
-    const RegularGrid& g = e.grid;
-    const Vec3 h = (g.hi - g.lo).cwiseQuotient(Vec3(g.n[0], g.n[1], g.n[2]));
-    auto attribute = [&](const std::string& name, const char* kind, const std::string& path, int comps,
-                         const char* type, int precision) {
-      x << "    <Attribute Name=\"" << name << "\" AttributeType=\"" << kind << "\" Center=\"Cell\">"
-        << "<DataItem Dimensions=\"" << g.n[2] << " " << g.n[1] << " " << g.n[0];
-      if (comps > 1) x << " " << comps;
-      x << "\" NumberType=\"" << type << "\" Precision=\"" << precision << "\" Format=\"HDF\">" << e.file
-        << ":" << path << "</DataItem></Attribute>\n";
-    };
-    x << "   <Grid Name=\"step_" << e.step << "\" GridType=\"Uniform\">\n"
-      << "    <Time Value=\"" << e.time << "\"/>\n"
-      << "    <Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"" << g.n[2] + 1 << " " << g.n[1] + 1 << " "
-      << g.n[0] + 1 << "\"/>\n"
-      << "    <Geometry GeometryType=\"ORIGIN_DXDYDZ\">\n"
-      << "     <DataItem Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">" << g.lo.z()
-      << " " << g.lo.y() << " " << g.lo.x() << "</DataItem>\n"
-      << "     <DataItem Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">" << h.z()
-      << " " << h.y() << " " << h.x() << "</DataItem>\n"
-      << "    </Geometry>\n";
-    attribute("particles", "Scalar", "/cells/particles", 1, "Int", 8);
+    GridXdmfStep step{e.file, e.time, e.step, e.grid, {}};
+    step.attributes.push_back({"particles", "Scalar", "/cells/particles", 1, "Int", 8});
     for (int d = 0; d < kStrainDefinitionCount; ++d) {
       if (!e.computed[d]) continue;
       const std::string n = field_name(static_cast<StrainDefinition>(d));
-      attribute(n + "_ln_J", "Scalar", "/" + n + "/ln_J", 1, "Float", 8);
-      attribute(n + "_equivalent_shear_strain", "Scalar", "/" + n + "/equivalent_shear_strain", 1, "Float",
-                8);
-      attribute(n + "_F_valid", "Scalar", "/" + n + "/F_valid", 1, "Int", 4);
-      attribute(n + "_F_reason", "Scalar", "/" + n + "/F_reason", 1, "Int", 4);
-      attribute(n + "_F", "Tensor", "/" + n + "/F", 9, "Float", 8);
-      attribute(n + "_increment_equivalent_shear_strain", "Scalar",
-                "/" + n + "/increment_equivalent_shear_strain", 1, "Float", 8);
-      attribute(n + "_L", "Tensor", "/" + n + "/L", 9, "Float", 8);
+      step.attributes.push_back({n + "_ln_J", "Scalar", "/" + n + "/ln_J"});
+      step.attributes.push_back(
+          {n + "_equivalent_shear_strain", "Scalar", "/" + n + "/equivalent_shear_strain"});
+      step.attributes.push_back({n + "_F_valid", "Scalar", "/" + n + "/F_valid", 1, "Int", 4});
+      step.attributes.push_back({n + "_F_reason", "Scalar", "/" + n + "/F_reason", 1, "Int", 4});
+      step.attributes.push_back({n + "_F", "Tensor", "/" + n + "/F", 9});
+      step.attributes.push_back({n + "_increment_equivalent_shear_strain", "Scalar",
+                                 "/" + n + "/increment_equivalent_shear_strain"});
+      step.attributes.push_back({n + "_L", "Tensor", "/" + n + "/L", 9});
     }
-    x << "   </Grid>\n";
+    steps.push_back(std::move(step));
   }
-  x << "  </Grid>\n </Domain>\n</Xdmf>\n";
-  write_text_atomically(folder_ / "grid_strain.xdmf", x.str());
+  write_grid_xdmf(folder_ / "grid_strain.xdmf", "grid_strain", steps);
 }
 
 }  // namespace upgrain::dem::io

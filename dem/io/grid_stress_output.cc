@@ -5,6 +5,7 @@
 
 #include "dem/core/error.h"
 #include "dem/io/atomic_file.h"
+#include "dem/io/grid_xdmf.h"
 #include "dem/io/hdf5_util.h"
 #include "dem/stress/asymmetry.h"
 
@@ -119,50 +120,20 @@ void GridStressRecorder::flush() const {
   for (const auto& r : rows_) csv << r;
   write_text_atomically(folder_ / "grid_stress.csv", csv.str());
 
-  // XDMF: a 3DCoRectMesh per evaluation (dimensions, origin and spacing in z, y, x order),
-  // cell-centred fields.
-  std::ostringstream x;
-  x.precision(17);
-  x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
-    << "  <Grid Name=\"grid_stress\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  std::vector<GridXdmfStep> steps;
   for (const GridStressEntry& e : entries_) {
-    const RegularGrid& g = e.grid;
-    const Vec3 h = (g.hi - g.lo).cwiseQuotient(Vec3(g.n[0], g.n[1], g.n[2]));
-    auto item = [&](const std::string& path, int comps, const char* type = "Float") {
-      std::ostringstream i;
-      i << "<DataItem Dimensions=\"" << g.n[2] << " " << g.n[1] << " " << g.n[0];
-      if (comps > 1) i << " " << comps;
-      i << "\" NumberType=\"" << type << "\" Precision=\"8\" Format=\"HDF\">" << e.file << ":" << path
-        << "</DataItem>";
-      return i.str();
-    };
-    auto attribute = [&](const std::string& name, const char* kind, const std::string& path, int comps,
-                         const char* type = "Float") {
-      x << "    <Attribute Name=\"" << name << "\" AttributeType=\"" << kind << "\" Center=\"Cell\">"
-        << item(path, comps, type) << "</Attribute>\n";
-    };
-    x << "   <Grid Name=\"step_" << e.step << "\" GridType=\"Uniform\">\n"
-      << "    <Time Value=\"" << e.time << "\"/>\n"
-      << "    <Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"" << g.n[2] + 1 << " " << g.n[1] + 1 << " "
-      << g.n[0] + 1 << "\"/>\n"
-      << "    <Geometry GeometryType=\"ORIGIN_DXDYDZ\">\n"
-      << "     <DataItem Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">" << g.lo.z()
-      << " " << g.lo.y() << " " << g.lo.x() << "</DataItem>\n"
-      << "     <DataItem Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">" << h.z()
-      << " " << h.y() << " " << h.x() << "</DataItem>\n"
-      << "    </Geometry>\n";
-    attribute("particles", "Scalar", "/cells/particles", 1, "Int");
-    attribute("solid_fraction", "Scalar", "/cells/solid_fraction", 1);
+    GridXdmfStep step{e.file, e.time, e.step, e.grid, {}};
+    step.attributes.push_back({"particles", "Scalar", "/cells/particles", 1, "Int", 8});
+    step.attributes.push_back({"solid_fraction", "Scalar", "/cells/solid_fraction"});
     for (StressFormula f : formulas_) {
       const std::string n = field_name(f);
-      attribute(n, "Tensor", "/stress/" + n + "/tensor", 9);
-      attribute(n + "_sigma_zz", "Scalar", "/stress/" + n + "/sigma_zz", 1);
-      attribute(n + "_rai", "Scalar", "/stress/" + n + "/rai", 1);
+      step.attributes.push_back({n, "Tensor", "/stress/" + n + "/tensor", 9});
+      step.attributes.push_back({n + "_sigma_zz", "Scalar", "/stress/" + n + "/sigma_zz"});
+      step.attributes.push_back({n + "_rai", "Scalar", "/stress/" + n + "/rai"});
     }
-    x << "   </Grid>\n";
+    steps.push_back(std::move(step));
   }
-  x << "  </Grid>\n </Domain>\n</Xdmf>\n";
-  write_text_atomically(folder_ / "grid_stress.xdmf", x.str());
+  write_grid_xdmf(folder_ / "grid_stress.xdmf", "grid_stress", steps);
 }
 
 }  // namespace upgrain::dem::io

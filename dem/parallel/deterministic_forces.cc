@@ -185,31 +185,12 @@ DeterministicForceResult compute(const DeterministicForceInput& in) {
   return out;
 }
 
-template <bool F, bool D, bool W, bool R>
-DeterministicForceKernels pick_energy(bool energy) {
-  using On = Effects<F, D, W, R, true>;
-  using Off = Effects<F, D, W, R, false>;
-  return energy ? DeterministicForceKernels{&compute<On, false>, &compute<On, true>}
-                : DeterministicForceKernels{&compute<Off, false>, &compute<Off, true>};
-}
-template <bool F, bool D, bool W>
-DeterministicForceKernels pick_rotation(const EffectSet& e) {
-  return e.rotation ? pick_energy<F, D, W, true>(e.energy_tracking)
-                    : pick_energy<F, D, W, false>(e.energy_tracking);
-}
-template <bool F, bool D>
-DeterministicForceKernels pick_wall(const EffectSet& e) {
-  return e.wall_friction ? pick_rotation<F, D, true>(e) : pick_rotation<F, D, false>(e);
-}
-template <bool F>
-DeterministicForceKernels pick_damping(const EffectSet& e) {
-  return e.damping ? pick_wall<F, true>(e) : pick_wall<F, false>(e);
-}
-
 }  // namespace
 
 DeterministicForceKernels select_deterministic_forces(const EffectSet& e) {
-  return e.friction ? pick_damping<true>(e) : pick_damping<false>(e);
+  return with_effects(e, []<class E>() {
+    return DeterministicForceKernels{&compute<E, false>, &compute<E, true>};
+  });
 }
 
 }  // namespace upgrain::dem

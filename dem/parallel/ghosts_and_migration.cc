@@ -61,16 +61,7 @@ void ParallelSimulation::migrate() {
       const int c = dec.block_of(p_.x[i])[d];
       if (c != me[d]) {
         const int s = c < me[d] ? 0 : 1;
-        StateRecord r{};
-        r.gid = p_.id[i];
-        r.radius = p_.radius[i];
-        r.inv_mass = p_.inv_mass[i];
-        r.inv_inertia = p_.inv_inertia[i];
-        put(r.x, p_.x[i]);
-        put(r.v, p_.v[i]);
-        put(r.omega, p_.omega[i]);
-        put(r.force, p_.force[i]);
-        put(r.torque, p_.torque[i]);
+        const StateRecord r = pack_state(p_, static_cast<std::size_t>(i));
         state_out_[s].push_back(r);
         leaving[s].push_back(r.gid);
         continue;
@@ -116,7 +107,7 @@ void ParallelSimulation::migrate() {
     timings_.rebuild_messages += seconds_since(t);
     for (int s = 0; s < 2; ++s) {
       migrated_out_ += static_cast<long>(state_out_[s].size());
-      for (const StateRecord& r : state_in_[s]) append(r);
+      for (const StateRecord& r : state_in_[s]) append_state(p_, r);
       history_.insert(history_.end(), spring_in_[s].begin(), spring_in_[s].end());
     }
     n_owned_ = static_cast<int>(p_.size());

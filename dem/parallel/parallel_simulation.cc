@@ -13,20 +13,6 @@ namespace upgrain::dem {
 
 namespace {
 
-StateRecord pack_state(const ParticleStore& p, std::size_t i) {
-  StateRecord r{};
-  r.gid = p.id[i];
-  r.radius = p.radius[i];
-  r.inv_mass = p.inv_mass[i];
-  r.inv_inertia = p.inv_inertia[i];
-  put(r.x, p.x[i]);
-  put(r.v, p.v[i]);
-  put(r.omega, p.omega[i]);
-  put(r.force, p.force[i]);
-  put(r.torque, p.torque[i]);
-  return r;
-}
-
 // Rank 0's particles on every rank, so that every rank derives the same box and radii.
 std::vector<StateRecord> broadcast_particles(const ParticleStore& p, MPI_Comm comm) {
   int rank = 0;
@@ -92,23 +78,11 @@ ParallelSimulation::ParallelSimulation(const SceneConfig& scene, const ParticleS
   decomp_ = std::make_unique<Decomposition>(comm, box, range_, options.blocks);
   comm_ = decomp_->comm();
   for (const StateRecord& r : all)
-    if (decomp_->owner_of(get(r.x)) == decomp_->rank()) append(r);
+    if (decomp_->owner_of(get(r.x)) == decomp_->rank()) append_state(p_, r);
   n_owned_ = static_cast<int>(p_.size());
   rebuild();
   evaluate_forces();
   timings_ = {};  // step() only
-}
-
-void ParallelSimulation::append(const StateRecord& r) {
-  p_.id.push_back(r.gid);
-  p_.radius.push_back(r.radius);
-  p_.inv_mass.push_back(r.inv_mass);
-  p_.inv_inertia.push_back(r.inv_inertia);
-  p_.x.push_back(get(r.x));
-  p_.v.push_back(get(r.v));
-  p_.omega.push_back(get(r.omega));
-  p_.force.push_back(get(r.force));
-  p_.torque.push_back(get(r.torque));
 }
 
 void ParallelSimulation::step() {
@@ -291,17 +265,7 @@ ParticleStore ParallelSimulation::gather_sorted_by_id() const {
   std::sort(all.begin(), all.end(), [](const StateRecord& a, const StateRecord& b) { return a.gid < b.gid; });
   ParticleStore out;
   out.reserve(all.size());
-  for (const StateRecord& r : all) {
-    out.id.push_back(r.gid);
-    out.radius.push_back(r.radius);
-    out.inv_mass.push_back(r.inv_mass);
-    out.inv_inertia.push_back(r.inv_inertia);
-    out.x.push_back(get(r.x));
-    out.v.push_back(get(r.v));
-    out.omega.push_back(get(r.omega));
-    out.force.push_back(get(r.force));
-    out.torque.push_back(get(r.torque));
-  }
+  for (const StateRecord& r : all) append_state(out, r);
   return out;
 }
 

@@ -141,7 +141,6 @@ class ParallelSimulation {
   void sort_owned_by_cell();
   void evaluate_forces();
   void check_finite_collective() const;
-  void append(const StateRecord& r);
   static double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }

@@ -3,6 +3,7 @@
 // (MPI_BYTE), so no MPI datatype has to be kept in step with them.
 #include <type_traits>
 
+#include "dem/core/particle_store.h"
 #include "dem/core/types.h"
 
 namespace upgrain::dem {
@@ -50,5 +51,32 @@ static_assert(std::is_trivially_copyable_v<GhostRecord> && std::is_trivially_cop
 
 inline void put(double* out, const Vec3& v) { out[0] = v[0], out[1] = v[1], out[2] = v[2]; }
 inline Vec3 get(const double* in) { return Vec3(in[0], in[1], in[2]); }
+
+// Particle i of a store as a whole-particle record, and back (migration, gathering).
+inline StateRecord pack_state(const ParticleStore& p, std::size_t i) {
+  StateRecord r{};
+  r.gid = p.id[i];
+  r.radius = p.radius[i];
+  r.inv_mass = p.inv_mass[i];
+  r.inv_inertia = p.inv_inertia[i];
+  put(r.x, p.x[i]);
+  put(r.v, p.v[i]);
+  put(r.omega, p.omega[i]);
+  put(r.force, p.force[i]);
+  put(r.torque, p.torque[i]);
+  return r;
+}
+
+inline void append_state(ParticleStore& p, const StateRecord& r) {
+  p.id.push_back(r.gid);
+  p.radius.push_back(r.radius);
+  p.inv_mass.push_back(r.inv_mass);
+  p.inv_inertia.push_back(r.inv_inertia);
+  p.x.push_back(get(r.x));
+  p.v.push_back(get(r.v));
+  p.omega.push_back(get(r.omega));
+  p.force.push_back(get(r.force));
+  p.torque.push_back(get(r.torque));
+}
 
 }  // namespace upgrain::dem

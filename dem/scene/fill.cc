@@ -43,7 +43,8 @@ double random_fill_height(const SceneConfig& s, const std::vector<double>& radii
   double volume = 0.0;
   for (double r : radii) volume += 4.0 / 3.0 * std::numbers::pi * r * r * r;
   const double r_max = *std::max_element(radii.begin(), radii.end());
-  return std::max(volume / (s.fill.solid_fraction * s.container.fill_length_x() * s.container.ly), 2.0 * r_max);
+  return std::max(volume / (s.fill.solid_fraction * s.container.fill_length_x() * s.container.ly),
+                  2.0 * r_max);
 }
 
 }  // namespace
@@ -120,8 +121,8 @@ ParticleStore fill_container(const SceneConfig& s) {
     const double r = radii[k];
     bool placed = false;
     for (int attempt = 0; attempt < kMaxAttempts && !placed; ++attempt) {
-      const Vec3 x(r + (s.container.fill_length_x() - 2 * r) * u01(rng), r + (s.container.ly - 2 * r) * u01(rng),
-                   lo.z() + r + (height - 2 * r) * u01(rng));
+      const Vec3 x(r + (s.container.fill_length_x() - 2 * r) * u01(rng),
+                   r + (s.container.ly - 2 * r) * u01(rng), lo.z() + r + (height - 2 * r) * u01(rng));
       const auto c = grid.cell_coords(x);
       bool free = true;
       for (int z = std::max(c[2] - 1, 0); free && z <= std::min(c[2] + 1, dims[2] - 1); ++z)

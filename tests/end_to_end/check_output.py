@@ -11,6 +11,23 @@ import xml.etree.ElementTree as ET
 import h5py
 import numpy as np
 
+
+def check_cell_xdmf(xdmf):
+    """Every HDF data item of a grid XDMF file resolves to a dataset of the stated size;
+    returns the number of items."""
+    count = 0
+    for item in ET.parse(xdmf).iter("DataItem"):
+        if item.get("Format") != "HDF":
+            continue
+        name, path = item.text.split(":")
+        dims = [int(x) for x in item.get("Dimensions").split()]
+        with h5py.File(name, "r") as h:
+            shape = list(h[path].shape)
+            assert int(np.prod(shape)) == int(np.prod(dims)), (name, path, shape, dims)
+        count += 1
+    return count
+
+
 folder = sys.argv[1]
 expected = int(sys.argv[2])
 os.chdir(folder)
@@ -36,16 +53,7 @@ assert summary["particles"] == expected
 # Grid stress: every XDMF item resolves to a dataset of the stated shape; the CSV holds
 # one row per evaluation, cell and formula and agrees with the HDF5 tensors; the modified
 # forms are symmetric in every cell (an exact property in any state, docs/stress.md).
-grid_items = 0
-for item in ET.parse("grid_stress.xdmf").iter("DataItem"):
-    if item.get("Format") != "HDF":
-        continue
-    name, path = item.text.split(":")
-    dims = [int(x) for x in item.get("Dimensions").split()]
-    with h5py.File(name, "r") as h:
-        shape = list(h[path].shape)
-        assert int(np.prod(shape)) == int(np.prod(dims)), (name, path, shape, dims)
-    grid_items += 1
+grid_items = check_cell_xdmf("grid_stress.xdmf")
 with open("grid_stress.csv") as f:
     rows = [r for r in csv.reader(l for l in f if not l.startswith("#"))]
 gheader, gdata = rows[0], rows[1:]
@@ -73,16 +81,7 @@ print(f"output ok: {items} XDMF items, {len(data)} time-series rows, {grid_items
 # item resolves; no NaN anywhere; one file per grid-stress evaluation plus the reference
 # state; every valid cell of the first evaluation (t0) has F = 1, J = 1 to round-off;
 # invalid cells are zero and carry a reason code; the CSV agrees with the HDF5 files.
-strain_items = 0
-for item in ET.parse("grid_strain.xdmf").iter("DataItem"):
-    if item.get("Format") != "HDF":
-        continue
-    name, path = item.text.split(":")
-    dims = [int(x) for x in item.get("Dimensions").split()]
-    with h5py.File(name, "r") as h:
-        shape = list(h[path].shape)
-        assert int(np.prod(shape)) == int(np.prod(dims)), (name, path, shape, dims)
-    strain_items += 1
+strain_items = check_cell_xdmf("grid_strain.xdmf")
 strain_files = sorted(os.listdir("grid_strain"))
 assert len(strain_files) == len(files) + 1, (len(strain_files), len(files))
 definitions = ("best_fit", "tessellation")

@@ -1,6 +1,7 @@
-// GoogleTest main for the fem tests: the same binary runs as a plain process (an MPI
-// singleton) and under mpiexec. Only rank 0 prints the test log; every rank runs every
-// test, so a failure on any rank still fails the run through its exit code.
+// GoogleTest main for the MPI test binaries (parallel DEM, fem): the same binary runs as a
+// plain process (an MPI singleton) and under mpiexec. Only rank 0 prints the test log;
+// every rank runs every test, so a failure on any rank still fails the run through its
+// exit code.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
