@@ -9,6 +9,7 @@
 #include <string>
 
 #include "coupling/scene_input.h"
+#include "coupling/strain_report.h"
 #include "coupling/study.h"
 #include "dem/core/error.h"
 #include "dem/deposition.h"
@@ -58,6 +59,15 @@ void print_deposition(const upgrain::coupling::SceneInput& in, const upgrain::de
               r.bed.particles_outside);
   std::printf("  energy: kinetic/released %.3e, balance error %.3e\n", r.kinetic_to_released,
               r.energy_balance_error);
+  const dem::ContactSolverStats& cs = r.diagnostics.contact_solver;
+  if (cs.calls > 0)
+    std::printf(
+        "  ellipsoid contacts: %lld solver calls (%lld warm, %.2f Newton steps per call), %lld proven "
+        "apart before the solver, %lld fallbacks, %lld uncertified, %lld not converged\n",
+        static_cast<long long>(cs.calls), static_cast<long long>(cs.warm_starts),
+        static_cast<double>(cs.newton_iterations) / static_cast<double>(cs.calls),
+        static_cast<long long>(cs.proven_apart), static_cast<long long>(cs.fallbacks),
+        static_cast<long long>(cs.uncertified), static_cast<long long>(cs.failures));
   if (r.final_stress) {
     const dem::GridStress& g = *r.final_stress;
     const dem::RegularGrid& grid = r.final_grid;
@@ -126,8 +136,10 @@ int run(int argc, char** argv) {
   MPI_Barrier(MPI_COMM_WORLD);
   const dem::TimeStepEstimate ts = dem::estimate_time_step(in.scene);
   if (rank == 0) {
-    std::printf("upgrain: %s\n  %ld spheres, time step %.3g s (safe %.3g s, %s-limited), end time %.3g s\n",
-                in.source.c_str(), in.scene.particles.count, in.scene.time_step, ts.safe_step,
+    std::printf("upgrain: %s\n  %ld %s, time step %.3g s (safe %.3g s, %s-limited), end time %.3g s\n",
+                in.source.c_str(), in.scene.particles.count,
+                dem::has_ellipsoids(in.scene.particles.shapes) ? "grains (ellipsoids)" : "spheres", in.scene.time_step,
+                ts.safe_step,
                 ts.limiting.c_str(), in.scene.end_time);
     if (in.study.compare_with_continuum)
       std::printf(
@@ -150,7 +162,15 @@ int run(int argc, char** argv) {
       return coupling::run_study(in, MPI_COMM_WORLD, progress,
                                  [&](const dem::DepositionResult& r) { print_deposition(in, r); });
     }
-    if (rank == 0) print_deposition(in, dem::run_deposition(in.scene, in.control, in.output, progress));
+    if (rank == 0) {
+      const dem::DepositionResult r = dem::run_deposition(in.scene, in.control, in.output, progress);
+      print_deposition(in, r);
+      if (r.final_strain) {  // the strain on the mesh; report.md with the strain section and plots
+        (void)coupling::write_strain_mesh(in.output.folder);
+        coupling::write_run_report(in.output.folder, in, r, coupling::plot_strain(in.output.folder));
+        std::printf("  report: %s\n", (in.output.folder / "report.md").c_str());
+      }
+    }
   } catch (const Error& e) {
     throw Error(in.source + ": " + e.what());
   }

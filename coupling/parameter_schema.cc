@@ -43,12 +43,17 @@ const std::vector<ParameterSpec>& parameter_schema() {
       {"Effects", "energy tracking", "true", K::boolean, 0, 0, "", "-",
        "Accumulate elastic energy and dissipation per contact for the energy balance."},
 
-      {"Particles", "count", "2000", K::integer, 1, 1e9, "", "-", "Number of spheres."},
+      {"Particles", "count", "2000", K::integer, 1, 1e9, "", "-", "Number of grains."},
       {"Particles", "radius", "1.5e-3", K::real, 1e-9, 10.0, "", "m",
        "Radius of monodisperse spheres (used when 'gradation' is empty)."},
       {"Particles", "gradation", "", K::text, 0, 0, "", "m : -",
        "Gradation curve as comma-separated 'radius:fraction passing' points by mass, e.g. "
        "'1.0e-3:0, 1.5e-3:0.4, 2.5e-3:1'. Empty: monodisperse."},
+      {"Particles", "shapes", "", K::text, 0, 0, "", "-",
+       "Grain shapes as comma-separated aspect ratios 1:b/a:c/a, each with an optional number fraction "
+       "after '@' (equal shares without), e.g. '1:1:1, 1:0.8:0.6, 1:0.8:0.4, 1:0.6:0.4' (the paper's four). "
+       "Empty: spheres. The radius (or gradation) is each grain's major semi-axis a; orientations are "
+       "uniformly random. Ellipsoid scenes run on one rank."},
       {"Particles", "density", "2650", K::real, 1.0, 1e5, "", "kg/m^3",
        "Grain density (specific gravity 2.65 in the paper)."},
       {"Particles", "youngs modulus", "5e9", K::real, 1e3, 1e13, "", "Pa",
@@ -82,6 +87,13 @@ const std::vector<ParameterSpec>& parameter_schema() {
        "0 = no gate."},
       {"Container", "gate open time", "0", K::real, 0.0, 1e6, "", "s",
        "Simulated time at which the gate is removed (with 'gate x' > 0)."},
+      {"Container", "collapse", "none", K::selection, 0, 0, "none|constrained|unconstrained", "-",
+       "Collapse scene (docs/scenes.md). constrained: the gate at 'gate x' is removed at 'gate open "
+       "time'. unconstrained: all four side walls are removed at 'side walls open time' and the bed "
+       "spreads on the (unbounded) floor; needs 'Study/compare with continuum = false'. none: a plain box "
+       "(a 'gate x' > 0 still selects the constrained collapse)."},
+      {"Container", "side walls open time", "0", K::real, 0.0, 1e6, "", "s",
+       "Simulated time at which all side walls are removed (with 'collapse = unconstrained')."},
 
       {"Fill", "method", "lattice", K::selection, 0, 0, "lattice|random", "-",
        "Initial placement: a jittered cubic lattice, or random sequential addition."},
@@ -137,6 +149,11 @@ const std::vector<ParameterSpec>& parameter_schema() {
        "best fit|tessellation", "-",
        "How F and L are taken from a cell's particles: best fit = least-squares affine map; tessellation = "
        "volume average over the Delaunay tessellation of the centroids (Bagi 1996), comma-separated."},
+      {"Strain", "rate formula", "bagi", K::selection, 0, 0,
+       "weber|drescher|bagi|de saxce|nicot|modified nicot|modified de saxce", "-",
+       "Grid-stress formula whose cell series gives the Jaumann, Green-Naghdi, Truesdell and Oldroyd "
+       "rates written with the strain (backward differences over the last outputs; docs/strain.md). "
+       "Must be in Stress/formulas."},
 
       {"Study", "compare with continuum", "true", K::boolean, 0, 0, "", "-",
        "After the DEM run, solve the elastic column of the same container on a mesh matching the stress grid "

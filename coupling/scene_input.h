@@ -17,6 +17,7 @@ struct SceneInput {
   dem::RunControl control;
   bool overwrite = false;
   std::string stress_box = "auto";  // Stress/box as written; applied by validate_scene
+  std::string collapse = "none";    // Container/collapse: none, constrained or unconstrained
   StudyOptions study;
 };
 

@@ -85,6 +85,38 @@ std::vector<dem::GradationPoint> parse_gradation(const std::string& text) {
   return curve;
 }
 
+// "1:0.8:0.6@0.5, 1:0.6:0.4" -> shapes with aspect ratios and number fractions.
+std::vector<dem::GrainShape> parse_shapes(const std::string& text) {
+  std::vector<dem::GrainShape> shapes;
+  std::istringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    if (item.find_first_not_of(" \t") == std::string::npos) continue;
+    const auto at = item.find('@');
+    std::string ratios = item.substr(0, at);
+    for (char& c : ratios)
+      if (c == ':') c = ' ';
+    std::istringstream r(ratios);
+    double a = 0.0;
+    dem::GrainShape shape;
+    std::string rest;
+    bool ok = static_cast<bool>(r >> a >> shape.b_over_a >> shape.c_over_a) && !(r >> rest) && a > 0.0;
+    if (ok && at != std::string::npos) {
+      std::istringstream f(item.substr(at + 1));
+      ok = static_cast<bool>(f >> shape.number_fraction) && !(f >> rest);
+    }
+    if (!ok)
+      throw Error("Particles/shapes: cannot read the shape '" + item +
+                  "'; write aspect ratios 'a:b:c' with an optional '@fraction', separated by commas, "
+                  "e.g. '1:0.8:0.6, 1:0.6:0.4@2'");
+    // Ratios to a (a:b:c may be given in any unit, e.g. 10:8:6).
+    shape.b_over_a /= a;
+    shape.c_over_a /= a;
+    shapes.push_back(shape);
+  }
+  return shapes;
+}
+
 SceneInput extract(ParameterHandler& prm, const std::string& source) {
   SceneInput in;
   in.source = source;
@@ -114,6 +146,7 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   s.particles.count = prm.get_integer("count");
   s.particles.radius = prm.get_double("radius");
   s.particles.gradation = parse_gradation(prm.get("gradation"));
+  s.particles.shapes = parse_shapes(prm.get("shapes"));
   s.particles.material.density = prm.get_double("density");
   s.particles.material.youngs_modulus = prm.get_double("youngs modulus");
   s.particles.material.poisson_ratio = prm.get_double("poisson ratio");
@@ -135,6 +168,8 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   s.container.friction[4] = prm.get_double("wall y max friction");
   s.container.gate_x = prm.get_double("gate x");
   s.container.gate_open_time = prm.get_double("gate open time");
+  in.collapse = prm.get("collapse");
+  s.container.side_walls_open_time = prm.get_double("side walls open time");
   prm.leave_subsection();
 
   prm.enter_subsection("Fill");
@@ -181,6 +216,7 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
     st.enabled = prm.get_bool("enabled");
     st.reference_time = prm.get_double("reference time");
     st.kernel.set = prm.get("set") == "eulerian" ? dem::StrainSet::eulerian : dem::StrainSet::lagrangian;
+    if (const auto f = dem::stress_formula_from_name(prm.get("rate formula"))) st.rate_formula = *f;
     st.kernel.definitions = {false, false};
     for (const std::string& name : dealii::Utilities::split_string_list(prm.get("definitions"), ','))
       st.kernel.definitions[static_cast<int>(name == "tessellation" ? dem::StrainDefinition::tessellation

@@ -47,6 +47,47 @@ void apply_stress_box(SceneInput& in, const std::string& where) {
                   ": the upper bound must exceed the lower");
 }
 
+// Container/collapse against the entries of the other scene: the gate belongs to the
+// constrained collapse (a 'gate x' > 0 alone also selects it, as before 'collapse'
+// existed), 'side walls open time' to the unconstrained one, and no entry of the other
+// scene may be set.
+void validate_collapse(const SceneInput& in, const std::string& where) {
+  const dem::BoxContainer& c = in.scene.container;
+  const std::string& mode = in.collapse;
+  if (mode != "none" && mode != "constrained" && mode != "unconstrained")
+    throw Error(where + "Container/collapse = '" + mode + "': give none, constrained or unconstrained");
+  std::ostringstream m;
+  m << where;
+  if (mode == "constrained" && !c.has_gate()) {
+    m << "Container/collapse = constrained needs a gate: set Container/gate x (> 0, inside the box) and "
+         "'gate open time'";
+    throw Error(m.str());
+  }
+  if (mode != "unconstrained" && c.opens_side_walls()) {
+    m << "Container/side walls open time = " << c.side_walls_open_time
+      << " s is for the unconstrained collapse, but Container/collapse = " << mode
+      << "; set 'collapse = unconstrained' or remove the entry";
+    throw Error(m.str());
+  }
+  if (mode != "unconstrained") return;
+  if (c.has_gate()) {
+    m << "Container/gate x = " << c.gate_x
+      << " m is for the constrained collapse, but Container/collapse = unconstrained (all side walls "
+         "open at 'side walls open time'); set 'gate x = 0' or 'collapse = constrained'";
+    throw Error(m.str());
+  }
+  if (!(c.side_walls_open_time > 0.0) || c.side_walls_open_time >= in.scene.end_time) {
+    m << "Container/side walls open time = " << c.side_walls_open_time
+      << " s must lie in (0, Simulation/end time = " << in.scene.end_time
+      << " s) for Container/collapse = unconstrained";
+    throw Error(m.str());
+  }
+  if (in.study.compare_with_continuum)
+    throw Error(where +
+                "Container/collapse = unconstrained removes the side walls that the continuum column "
+                "needs; set 'Study/compare with continuum = false'");
+}
+
 }  // namespace
 
 void validate_scene(SceneInput& in) {
@@ -58,6 +99,11 @@ void validate_scene(SceneInput& in) {
   } catch (const Error& e) {
     throw Error(where + "Particles/gradation: " + e.what());
   }
+  try {
+    dem::validate_shapes(s.particles.shapes);
+  } catch (const Error& e) {
+    throw Error(where + "Particles/shapes: " + e.what());
+  }
   const double r_max =
       s.particles.gradation.empty() ? s.particles.radius : s.particles.gradation.back().radius;
   if (2.0 * r_max >= std::min(s.container.lx, s.container.ly)) {
@@ -67,6 +113,7 @@ void validate_scene(SceneInput& in) {
       << " m, length y = " << s.container.ly << " m)";
     throw Error(m.str());
   }
+  validate_collapse(in, where);
   if (s.container.has_gate()) {
     if (s.container.gate_x >= s.container.lx || 2.0 * r_max >= s.container.gate_x) {
       std::ostringstream m;
@@ -110,6 +157,11 @@ void validate_scene(SceneInput& in) {
                   "'Strain/enabled = false'");
     if (!st.kernel.definitions[0] && !st.kernel.definitions[1])
       throw Error(where + "Strain/definitions is empty; name 'best fit', 'tessellation' or both");
+    if (const auto& written = in.output.grid_stress.formulas;
+        std::find(written.begin(), written.end(), st.rate_formula) == written.end())
+      throw Error(where + "Strain/rate formula = '" + std::string(dem::name_of(st.rate_formula)) +
+                  "' is not in Stress/formulas: the stress rates need its grid stress; add it there or "
+                  "choose one of the formulas written");
     if (st.reference_time > s.end_time) {
       std::ostringstream m;
       m << where << "Strain/reference time = " << st.reference_time

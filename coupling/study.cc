@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "coupling/dem_fem_comparison.h"
+#include "coupling/strain_report.h"
 #include "dem/core/error.h"
 #include "dem/io/atomic_file.h"
 #include "dem/io/grid_stress_output.h"
@@ -117,7 +118,8 @@ std::string fmt(double v, int digits = 4) {
 void write_report(const std::filesystem::path& folder, const SceneInput& in, const dem::DepositionResult& r,
                   const DemOutcome& d, const fem::ColumnProblem& problem, const fem::ColumnSolution& sol,
                   const DemFemComparison& c, const std::vector<std::pair<std::string, double>>& timings,
-                  const std::vector<std::string>& plots, int ranks) {
+                  const std::vector<std::string>& plots, const std::vector<std::string>& strain_plots,
+                  int ranks) {
   const dem::SceneConfig& s = in.scene;
   const double area = s.container.lx * s.container.ly;
   const double weight = d.total_mass * s.gravity;
@@ -196,6 +198,7 @@ void write_report(const std::filesystem::path& folder, const SceneInput& in, con
     << "- `mesh/dem_fem.pvtu`: DEM (per formula), FEM and their difference as cell data on one mesh, with "
        "Q1 projections (ParaView).\n- `fem/column.pvtu`: the continuum solution.\n"
     << "- `grid_stress.xdmf`, `particles.xdmf`: the DEM grid stress and particles over time.\n\n";
+  if (r.final_strain) m << strain_section(in, *r.final_strain, folder, strain_plots);
   m << "## Timings (wall clock, rank 0)\n\n| stage | s |\n|---|---|\n";
   for (const auto& [stage, secs] : timings) m << "| " << stage << " | " << fmt(secs, 3) << " |\n";
   dem::io::write_text_atomically(folder / "report.md", m.str());
@@ -305,9 +308,14 @@ int run_study(const SceneInput& in, MPI_Comm comm,
         for (const char* p : {"profiles_szz.png", "lateral_ratio.png", "level_spread.png"})
           if (std::filesystem::exists(folder / p)) plots.emplace_back(p);
     }
+    std::vector<std::string> strain_plots;
+    if (r.final_strain) {
+      (void)write_strain_mesh(folder);
+      strain_plots = plot_strain(folder);
+    }
     timings.emplace_back("tables and plots", since(t0));
     timings.emplace_back("whole study", since(t_all));
-    write_report(folder, in, r, d, problem, sol, c, timings, plots, ranks);
+    write_report(folder, in, r, d, problem, sol, c, timings, plots, strain_plots, ranks);
     write_study_json(folder, in, d, problem, sol, c, ranks);
     std::printf("  study: %d x %d x %d grid, continuum Q%u with %llu dofs (%.2f s), %d rank(s)\n",
                 d.grid.n[0], d.grid.n[1], d.grid.n[2], problem.degree,

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "dem/boundary/wall_release.h"
 #include "dem/scene/fill.h"
 
 namespace upgrain::dem {
@@ -53,7 +54,11 @@ DepositionResult run_deposition(const SceneConfig& scene, const RunControl& cont
   const bool strain_on = stress_on && output->grid_strain.enabled;
   if (strain_on) strain_out.emplace(output->folder);
   std::optional<StrainReference> strain_reference;
-  auto evaluate_strain = [&](const RegularGrid& grid) {
+  // The objective stress rates of each strain output with a stress (all but a t0 = 0
+  // reference), by backward differences over the last outputs (strain/grid_stress_rates.h).
+  std::optional<StressRateHistory> rate_history;
+  if (strain_on) rate_history.emplace(output->grid_strain.rate_formula);
+  auto evaluate_strain = [&](const RegularGrid& grid, const GridStress* stress) {
     const ParticleStore& p = sim.particles();
     if (!strain_reference) {
       const double t0 = output->grid_strain.reference_time;
@@ -62,37 +67,48 @@ DepositionResult run_deposition(const SceneConfig& scene, const RunControl& cont
     }
     GridStrain g = grid_strain(*strain_reference, grid, {p.id, p.x, p.v}, sim.time(), sim.step_count(),
                                output->grid_strain.kernel, r.final_strain ? &*r.final_strain : nullptr);
-    strain_out->record(g);
+    if (stress) {
+      const GridStressRates rates = rate_history->push((*stress)[output->grid_strain.rate_formula], g);
+      strain_out->record(g, &rates);
+    } else {
+      strain_out->record(g);
+    }
     r.final_strain = std::move(g);
   };
   if (strain_on && output->grid_strain.reference_time <= 0.0)
-    evaluate_strain(stress_grid(output->grid_stress, sim.particles(), scene.container));
+    evaluate_strain(stress_grid(output->grid_stress, sim.particles(), scene.container), nullptr);
   auto evaluate_stress = [&] {
     r.final_grid = stress_grid(output->grid_stress, sim.particles(), scene.container);
     r.final_stress = grid_stress(sim.particles(), sim.contacts(), r.final_grid,
                                  {sim.gravity(), sim.integrates_rotation()});
     stress_out->record(r.final_grid, *r.final_stress, sim.time(), sim.step_count());
-    if (strain_on) evaluate_strain(r.final_grid);
+    if (strain_on) evaluate_strain(r.final_grid, &*r.final_stress);
   };
 
-  // The constrained collapse: the gate opens at its time (boundary/plane_wall.h); the bed
-  // is not "at rest" before that.
-  bool gate_closed = scene.container.has_gate();
+  // The collapse scenes: the gate (constrained) or the side walls (unconstrained) are
+  // removed at their time (boundary/wall_release.h). The bed is not "at rest" before that,
+  // nor in the first tenth of the time left after the last release: just after it the bed
+  // is still as still as it was behind the walls.
+  const std::vector<WallRelease> releases = wall_releases(scene.container);
+  std::size_t next_release = 0;
+  long rest_check_from = total / 10;
   const auto t0 = Clock::now();
   auto last_report = t0;
   const double pe0 = sim.initial_energy().potential;
   for (long s = 1; s <= total; ++s) {
-    if (gate_closed && sim.time() >= scene.container.gate_open_time) {
-      sim.remove_wall(kGateWallName);
-      gate_closed = false;
+    while (next_release < releases.size() && sim.time() >= releases[next_release].time) {
+      for (const std::string& wall : releases[next_release].walls) sim.remove_wall(wall);
+      ++next_release;
+      rest_check_from = std::max(rest_check_from, s + (total - s) / 10);
     }
+    const bool walls_pending = next_release < releases.size();
     if (stress_due(s)) sim.request_contacts();
     sim.step();
     if (stress_due(s)) evaluate_stress();
     const bool series_now = (s % series_every == 0) || s == total;
     if (series_now) {
       if (recorder) recorder->record_series(sim);
-      if (control.rest_ratio > 0.0 && s > total / 10 && !gate_closed &&
+      if (control.rest_ratio > 0.0 && s > rest_check_from && !walls_pending &&
           sim.kinetic_to_released() < control.rest_ratio)
         r.stopped_at_rest = true;
     }

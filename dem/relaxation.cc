@@ -64,7 +64,7 @@ RelaxationResult relax_to_equilibrium(Simulation& sim, const RelaxationOptions& 
         p.v[i] = v;
         if (rotation) {
           const Vec3 w = (1.0 - alpha) * p.omega[i] + cw * p.torque[i];
-          kinetic_change += 0.5 * (p.omega[i].squaredNorm() - w.squaredNorm()) / p.inv_inertia[i];
+          kinetic_change += p.rotational_energy(i) - p.rotational_energy(i, w);
           p.omega[i] = w;
         }
       }
@@ -78,7 +78,7 @@ RelaxationResult relax_to_equilibrium(Simulation& sim, const RelaxationOptions& 
         kinetic += 0.5 * p.mass(i) * p.v[i].squaredNorm();
         p.v[i].setZero();
         if (rotation) {
-          kinetic += 0.5 * p.omega[i].squaredNorm() / p.inv_inertia[i];
+          kinetic += p.rotational_energy(i);
           p.omega[i].setZero();
         }
       }

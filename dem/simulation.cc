@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "dem/core/error.h"
+#include "dem/motion/rigid_rotation.h"
 
 namespace upgrain::dem {
 
@@ -18,10 +19,16 @@ Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, std::v
       neighbors_(std::max(p_.max_radius(), 1e-12), scene.neighbor_skin * 2.0 * p_.max_radius(),
                  scene.effects.friction),
       wall_neighbors_(scene.neighbor_skin * 2.0 * p_.max_radius(), scene.effects.wall_friction),
-      kernels_(select_force_kernels(scene.effects)),
+      kernels_(select_force_kernels(scene.effects, p_.has_shapes())),
       g_(scene.effects.gravity ? Vec3(0, 0, -scene.gravity) : Vec3::Zero()),
       dt_(scene.time_step),
-      rotation_(scene.effects.rotation && (scene.effects.friction || scene.effects.wall_friction)) {
+      // Spheres turn only under friction; ellipsoids under normal forces as well.
+      rotation_(scene.effects.rotation &&
+                (scene.effects.friction || scene.effects.wall_friction || p_.has_shapes())) {
+  if (p_.has_shapes()) {
+    neighbors_.keep_contact_memory();
+    wall_neighbors_.keep_contact_radii();
+  }
   if (!scene.effects.wall_friction) {
     for (auto& w : walls_) w.friction = 0.0;
   }
@@ -74,25 +81,56 @@ void Simulation::step() {
     p_.x[i] += dt_ * p_.v[i];
     rebuild = rebuild || (p_.x[i] - x_built[i]).squaredNorm() > limit2;
   }
-  if (rotation_) {
-    for (std::size_t i = 0; i < n; ++i) p_.omega[i] += half * p_.inv_inertia[i] * p_.torque[i];
-  }
+  if (rotation_) first_rotation_half(half);
   // Second half of the work of the previous step's damping forces, with v(k+1/2). Damping
   // acts along the normal through the centroids of spheres: no torque, no rotational work.
   if (!ctx_.damping_force.empty()) {
     double work = 0.0;
     for (std::size_t i = 0; i < n; ++i) work += ctx_.damping_force[i].dot(p_.v[i]);
+    // Ellipsoids: the damping force misses the centroid and works on the rotation too.
+    for (std::size_t i = 0; i < ctx_.damping_torque.size(); ++i)
+      work += ctx_.damping_torque[i].dot(p_.omega[i]);
     dissipated_damping_ -= half * work;
   }
   if (rebuild) rebuild_neighbors();
   evaluate_forces();
   // Second half kick with the new forces.
   for (std::size_t i = 0; i < n; ++i) p_.v[i] += half * (p_.force[i] * p_.inv_mass[i] + g_);
-  if (rotation_) {
-    for (std::size_t i = 0; i < n; ++i) p_.omega[i] += half * p_.inv_inertia[i] * p_.torque[i];
-  }
+  if (rotation_) second_rotation_half(half);
   ++step_;
   time_ = step_ * dt_;
+}
+
+// Rotation in two halves around the force evaluation, as the translation. Spheres: the
+// kick w += (h/2) T / I. Ellipsoids: the symplectic splitting of rigid_rotation.h, with
+// the angular momentum L_b = J Q^T w rebuilt from w (exact up to round-off), so that w
+// stays the one angular state that contacts, relaxation and stress read.
+void Simulation::first_rotation_half(double half) {
+  const std::size_t n = p_.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!p_.is_ellipsoid(i)) {
+      p_.omega[i] += half * p_.inv_inertia[i] * p_.torque[i];
+      continue;
+    }
+    const Vec3& j = p_.inertia_body[i];
+    RigidRotationState s{p_.orientation[i], j.cwiseProduct(p_.orientation[i].conjugate() * p_.omega[i])};
+    s.angular_momentum_body += s.orientation.conjugate() * (half * p_.torque[i]);
+    free_rotation_step(s, j, dt_);
+    p_.orientation[i] = s.orientation;
+    p_.omega[i] = angular_velocity_world(s, j);
+  }
+}
+
+void Simulation::second_rotation_half(double half) {
+  const std::size_t n = p_.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!p_.is_ellipsoid(i)) {
+      p_.omega[i] += half * p_.inv_inertia[i] * p_.torque[i];
+      continue;
+    }
+    const Eigen::Quaterniond& q = p_.orientation[i];
+    p_.omega[i] += q * ((q.conjugate() * (half * p_.torque[i])).cwiseQuotient(p_.inertia_body[i]));
+  }
 }
 
 void Simulation::remove_wall(const std::string& name) {
@@ -120,7 +158,7 @@ EnergyBalance Simulation::energy() const {
   EnergyBalance e;
   for (std::size_t i = 0; i < p_.size(); ++i) {
     e.kinetic_translational += 0.5 * p_.mass(i) * p_.v[i].squaredNorm();
-    if (rotation_) e.kinetic_rotational += 0.5 * p_.omega[i].squaredNorm() / p_.inv_inertia[i];
+    if (rotation_) e.kinetic_rotational += p_.rotational_energy(i);
     e.potential -= p_.mass(i) * g_.dot(p_.x[i]);
   }
   e.elastic_normal = ctx_.energy.elastic_normal;
@@ -146,14 +184,16 @@ double Simulation::kinetic_to_released() const {
 }
 
 StepDiagnostics Simulation::diagnostics() const {
-  return {ctx_.particle_contacts, ctx_.wall_contacts, ctx_.max_overlap_ratio, neighbors_.builds()};
+  return {ctx_.particle_contacts, ctx_.wall_contacts, ctx_.max_overlap_ratio, neighbors_.builds(),
+          ctx_.solver_stats};
 }
 
 void Simulation::check_finite() const {
   for (std::size_t i = 0; i < p_.size(); ++i) {
-    if (!p_.x[i].allFinite() || !p_.v[i].allFinite() || !p_.omega[i].allFinite()) {
+    const bool orientation_ok = !p_.has_shapes() || p_.orientation[i].coeffs().allFinite();
+    if (!p_.x[i].allFinite() || !p_.v[i].allFinite() || !p_.omega[i].allFinite() || !orientation_ok) {
       std::ostringstream m;
-      m << "particle " << p_.id[i] << " has a non-finite position or velocity at step " << step_
+      m << "particle " << p_.id[i] << " has a non-finite position, velocity or orientation at step " << step_
         << " (t = " << time_ << " s)";
       throw Error(m.str());
     }

@@ -17,6 +17,7 @@ struct StepDiagnostics {
   long wall_contacts = 0;
   double max_overlap_ratio = 0.0;
   long neighbor_builds = 0;
+  ContactSolverStats contact_solver;  // ellipsoid contact solver, cumulative (zero for spheres)
 };
 
 class Simulation {
@@ -61,6 +62,8 @@ class Simulation {
   // bed at rest. Infinity while no potential energy has been released.
   [[nodiscard]] double kinetic_to_released() const;
   [[nodiscard]] StepDiagnostics diagnostics() const;
+  // Ellipsoid contact solver counters since the start (zero in sphere scenes).
+  [[nodiscard]] const ContactSolverStats& contact_solver_stats() const { return ctx_.solver_stats; }
 
   // Takes a wall out of the scene (the constrained collapse's gate): it is moved out of
   // reach, so its contacts end at the next force evaluation and its list empties at the
@@ -73,6 +76,8 @@ class Simulation {
  private:
   void evaluate_forces();
   void rebuild_neighbors();
+  void first_rotation_half(double half);
+  void second_rotation_half(double half);
 
   SceneConfig scene_;
   ParticleStore p_;

@@ -9,12 +9,14 @@
 #include "dem/io/grid_stress_output.h"
 #include "dem/io/hdf5_util.h"
 #include "dem/stress/asymmetry.h"
+#include "upscale/h5_reader.h"
 
 namespace upgrain::upscale {
 
 namespace {
 
-namespace hdf5 = dem::io::hdf5;
+using detail::QuietHdf5;
+using detail::Reader;
 
 constexpr const char* kComponents[9] = {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"};
 constexpr const char* kCounts[4] = {"particles", "internal_contacts", "external_contacts", "wall_contacts"};
@@ -24,106 +26,6 @@ std::string list_names(const std::vector<std::string>& names) {
   for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
   return s.empty() ? "(none)" : s;
 }
-
-// HDF5 prints its error stack to stderr on every failed call; our errors say what went
-// wrong, so the printing is switched off while a file is read.
-class QuietHdf5 {
- public:
-  QuietHdf5() {
-    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  ~QuietHdf5() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
-  QuietHdf5(const QuietHdf5&) = delete;
-  QuietHdf5& operator=(const QuietHdf5&) = delete;
-
- private:
-  H5E_auto2_t func_ = nullptr;
-  void* data_ = nullptr;
-};
-
-// Reads datasets and attributes of one open file; every error names the file and the
-// object.
-class Reader {
- public:
-  explicit Reader(const std::filesystem::path& path)
-      : path_(path), file_(open(path), H5Fclose, "open " + path.string()) {}
-
-  // True when every component of the absolute path `name` exists.
-  [[nodiscard]] bool exists(const std::string& name) const {
-    std::size_t pos = 0;
-    while ((pos = name.find('/', pos + 1)) != std::string::npos)
-      if (H5Lexists(file_, name.substr(0, pos).c_str(), H5P_DEFAULT) <= 0) return false;
-    return H5Lexists(file_, name.c_str(), H5P_DEFAULT) > 0;
-  }
-
-  // A dataset of `rows` x `cols` values (rows only when cols == 1), converted to `mem_type`.
-  template <class T>
-  std::vector<T> read(const std::string& name, hid_t mem_type, hsize_t rows, hsize_t cols = 1) const {
-    if (!exists(name)) throw Error(where() + "missing dataset " + name);
-    hdf5::Handle set(H5Dopen2(file_, name.c_str(), H5P_DEFAULT), H5Dclose,
-                     "open dataset " + name + where(true));
-    hdf5::Handle space(H5Dget_space(set), H5Sclose, "get the dataspace of " + name + where(true));
-    const int rank = H5Sget_simple_extent_ndims(space);
-    hsize_t dims[2] = {0, 1};
-    if (rank < 1 || rank > 2 || H5Sget_simple_extent_dims(space, dims, nullptr) < 0 || dims[0] != rows ||
-        dims[1] != cols)
-      throw Error(where() + "dataset " + name + " has shape " + shape(rank, dims) + ", expected " +
-                  std::to_string(rows) + (cols == 1 ? "" : " x " + std::to_string(cols)));
-    std::vector<T> v(rows * cols);
-    if (!v.empty() && H5Dread(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0)
-      throw Error(where() + "cannot read dataset " + name);
-    return v;
-  }
-
-  [[nodiscard]] double attribute(const char* name) const {
-    if (H5Aexists(file_, name) <= 0) throw Error(where() + "missing attribute " + name);
-    hdf5::Handle a(H5Aopen(file_, name, H5P_DEFAULT), H5Aclose,
-                   std::string("open attribute ") + name + where(true));
-    double v = 0.0;
-    if (H5Aread(a, H5T_NATIVE_DOUBLE, &v) < 0) throw Error(where() + "cannot read attribute " + name);
-    return v;
-  }
-
-  // Names of the links in group `name`, by name.
-  [[nodiscard]] std::vector<std::string> members(const std::string& name) const {
-    if (!exists(name)) throw Error(where() + "missing group " + name);
-    hdf5::Handle g(H5Gopen2(file_, name.c_str(), H5P_DEFAULT), H5Gclose, "open group " + name + where(true));
-    H5G_info_t info;
-    if (H5Gget_info(g, &info) < 0) throw Error(where() + "cannot list group " + name);
-    std::vector<std::string> out;
-    for (hsize_t i = 0; i < info.nlinks; ++i) {
-      const ssize_t len = H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
-      if (len < 0) throw Error(where() + "cannot list group " + name);
-      std::string s(static_cast<std::size_t>(len) + 1, '\0');
-      H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_INC, i, s.data(), s.size(), H5P_DEFAULT);
-      s.resize(static_cast<std::size_t>(len));
-      out.push_back(std::move(s));
-    }
-    return out;
-  }
-
- private:
-  static hid_t open(const std::filesystem::path& path) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec))
-      throw Error("grid-stress file " + path.string() + ": no such file");
-    if (H5Fis_hdf5(path.c_str()) <= 0)
-      throw Error("grid-stress file " + path.string() + ": not an HDF5 file");
-    return H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  }
-  [[nodiscard]] std::string where(bool suffix = false) const {
-    return suffix ? " in " + path_.string() : "grid-stress file " + path_.string() + ": ";
-  }
-  static std::string shape(int rank, const hsize_t* dims) {
-    std::string s;
-    for (int d = 0; d < rank; ++d) s += (d ? " x " : "") + std::to_string(dims[d]);
-    return rank < 1 ? "(scalar)" : s;
-  }
-
-  std::filesystem::path path_;
-  hdf5::Handle file_;
-};
 
 // Order of the formula groups in a file: the known ones as dem::StressFormula, then others.
 int formula_rank(const std::string& group) {
@@ -184,7 +86,7 @@ GridFields grid_fields_from_stress(const dem::RegularGrid& grid, const dem::Grid
 
 GridFields read_grid_fields(const std::filesystem::path& h5_file) {
   QuietHdf5 quiet;
-  Reader in(h5_file);
+  Reader in(h5_file, "grid-stress file");
   GridFields g;
   const auto n = in.read<int>("/grid/n", H5T_NATIVE_INT, 3);
   const auto lo = in.read<double>("/grid/lo", H5T_NATIVE_DOUBLE, 3);

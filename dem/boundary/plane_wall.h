@@ -29,21 +29,28 @@ struct BoxContainer {
   // collapses into the rest of the box. The gate has the x+ wall's friction.
   double gate_x = 0.0;
   double gate_open_time = 0.0;
+  // The paper's unconstrained collapse: at side_walls_open_time (0 = never) all four side
+  // walls are removed and the bed spreads freely on the floor. The floor is an unbounded
+  // plane, so a spreading pile never runs off it.
+  double side_walls_open_time = 0.0;
 
   [[nodiscard]] bool has_gate() const { return gate_x > 0.0; }
+  [[nodiscard]] bool opens_side_walls() const { return side_walls_open_time > 0.0; }
   // The length along x the grains are filled into.
   [[nodiscard]] double fill_length_x() const { return has_gate() ? gate_x : lx; }
 };
 
 inline constexpr const char* kGateWallName = "gate";
+// The side walls of make_open_box, by name (the unconstrained collapse removes them all).
+inline constexpr const char* kSideWallNames[4] = {"wall_x_min", "wall_x_max", "wall_y_min", "wall_y_max"};
 
 inline std::vector<PlaneWall> make_open_box(const BoxContainer& box) {
   std::vector<PlaneWall> walls = {
       {"floor", Vec3(0, 0, 0), Vec3(0, 0, 1), box.friction[0]},
-      {"wall_x_min", Vec3(0, 0, 0), Vec3(1, 0, 0), box.friction[1]},
-      {"wall_x_max", Vec3(box.lx, 0, 0), Vec3(-1, 0, 0), box.friction[2]},
-      {"wall_y_min", Vec3(0, 0, 0), Vec3(0, 1, 0), box.friction[3]},
-      {"wall_y_max", Vec3(0, box.ly, 0), Vec3(0, -1, 0), box.friction[4]},
+      {kSideWallNames[0], Vec3(0, 0, 0), Vec3(1, 0, 0), box.friction[1]},
+      {kSideWallNames[1], Vec3(box.lx, 0, 0), Vec3(-1, 0, 0), box.friction[2]},
+      {kSideWallNames[2], Vec3(0, 0, 0), Vec3(0, 1, 0), box.friction[3]},
+      {kSideWallNames[3], Vec3(0, box.ly, 0), Vec3(0, -1, 0), box.friction[4]},
   };
   if (box.has_gate())
     walls.push_back({kGateWallName, Vec3(box.gate_x, 0, 0), Vec3(-1, 0, 0), box.friction[2]});

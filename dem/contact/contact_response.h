@@ -1,6 +1,6 @@
 #pragma once
 // Force of one Hertz-Mindlin contact with Coulomb friction and normal viscous damping,
-// given the contact geometry (unit normal from i towards j, overlap, branch lengths) and
+// given the contact geometry (unit normal from i towards j, overlap, lever arms) and
 // the kinematics of both bodies. Templated on the effect set: what a scene switches off
 // is not computed. Equations and sign conventions: docs/contact-law.md.
 #include <cmath>
@@ -23,8 +23,8 @@ struct ContactParameters {
 struct ContactKinematics {
   Vec3 normal;     // unit normal, from body i towards body j
   double overlap;  // delta > 0
-  double arm_i;    // distance from centroid i to the contact point along +normal
-  double arm_j;    // distance from centroid j to the contact point along -normal
+  Vec3 lever_i;    // from centroid i to the contact point (spheres: (r_i - delta/2) n)
+  Vec3 lever_j;    // from centroid j to the contact point (spheres: -(r_j - delta/2) n)
   Vec3 v_i, v_j, omega_i, omega_j;
 };
 
@@ -32,6 +32,18 @@ struct ContactKinematics {
 struct TangentialSpring {
   Vec3 force = Vec3::Zero();  // tangential force on body i
   double stiffness = 0.0;     // k_t when the force was last updated (0: new contact)
+};
+
+// What an ellipsoid contact keeps between steps besides its spring: the last normal (the
+// contact solver's warm start; zero when none) and the Hertz radius frozen at first touch
+// (0 while apart). A radius that followed the contact point would make the normal force
+// non-conservative: static equilibria then stop being attracting (docs/ellipsoids.md).
+struct ShapedContactMemory {
+  Vec3 normal = Vec3::Zero();
+  double r_star = 0.0;
+
+  [[nodiscard]] bool empty() const { return r_star == 0.0 && normal == Vec3::Zero(); }
+  [[nodiscard]] ShapedContactMemory reversed() const { return {-normal, r_star}; }
 };
 
 struct ContactEnergy {
@@ -68,7 +80,7 @@ template <bool Tangential, bool Damping, bool Rotation, bool Energy>
   // Relative velocity of i with respect to j at the contact point.
   Vec3 v_rel = k.v_i - k.v_j;
   if constexpr (Rotation) {
-    v_rel += k.omega_i.cross(k.arm_i * n) + k.omega_j.cross(k.arm_j * n);
+    v_rel += k.omega_i.cross(k.lever_i) - k.omega_j.cross(k.lever_j);
   }
   const double v_n = v_rel.dot(n);  // > 0 while approaching
 

@@ -25,6 +25,8 @@ struct Effects {
   static constexpr bool wall_friction = WallFriction;
   // Spheres only feel torque from tangential forces: no friction, no rotation work.
   static constexpr bool rotation = Rotation && (Friction || WallFriction);
+  // Non-spherical grains turn under normal forces too (dem/contact/force_kernel.cc).
+  static constexpr bool rotation_requested = Rotation;
   static constexpr bool energy = Energy;
 };
 

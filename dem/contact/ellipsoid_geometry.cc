@@ -39,6 +39,24 @@ Mat3 shape_matrix(const Mat3& rot, const Vec3& axes) {
   return m;
 }
 
+PairFrame make_frame(const PosedEllipsoid& e1, const PosedEllipsoid& e2) {
+  PairFrame p;
+  const double c_min = std::min(e1.semi_axes.minCoeff(), e2.semi_axes.minCoeff());
+  p.scale = std::ldexp(1.0, -std::ilogb(c_min));
+  const double scale2 = p.scale * p.scale;
+  p.d = (e1.centre - e2.centre) * p.scale;
+  p.rot1 = e1.rot;
+  p.rot2 = e2.rot;
+  p.ax1 = e1.semi_axes * p.scale;
+  p.ax2 = e2.semi_axes * p.scale;
+  p.m1 = e1.shape * scale2;  // exact: equal to shape_matrix(rot1, ax1)
+  p.m2 = e2.shape * scale2;
+  p.size = p.d.norm() + p.ax1.maxCoeff() + p.ax2.maxCoeff();
+  p.certify = p.ax1.minCoeff() * p.ax1.minCoeff() / p.ax1.maxCoeff() +
+              p.ax2.minCoeff() * p.ax2.minCoeff() / p.ax2.maxCoeff();
+  return p;
+}
+
 PairFrame make_frame(const Ellipsoid& e1, const Ellipsoid& e2) {
   PairFrame p;
   const double c_min = std::min(e1.semi_axes.minCoeff(), e2.semi_axes.minCoeff());
@@ -126,10 +144,10 @@ struct NewtonResult {
 // H3 = M1/h1 - u u^T/h1^3 + M2/h2 - v v^T/h2^3. Far from a minimum H may be indefinite: it is
 // shifted to positive definite (Levenberg), the step is capped at 0.5 rad and backtracked
 // until f decreases (Armijo), so every run descends and cannot cycle.
-NewtonResult newton_on_sphere(const PairFrame& p, const Vec3& start) {
+NewtonResult newton_on_sphere(const PairFrame& p, const Vec3& start, const Eval* at_start = nullptr) {
   NewtonResult r;
   r.n = start.normalized();
-  r.e = evaluate(p, r.n);
+  r.e = at_start ? *at_start : evaluate(p, r.n);
   const double tol_g = 16.0 * kEps * p.size;    // round-off level of the gradient
   const double noise_f = 64.0 * kEps * p.size;  // round-off level of f
   for (;;) {
@@ -270,8 +288,8 @@ NewtonResult fallback(const PairFrame& p, const std::array<Vec3, 11>& cands, int
   return best;
 }
 
-ContactGeometry assemble(const PairFrame& p, const Ellipsoid& e1, const Ellipsoid& e2,
-                         const NewtonResult& r) {
+ContactGeometry assemble(const PairFrame& p, const Vec3& centre1, const Vec3& centre2, const NewtonResult& r,
+                         bool curvatures = true) {
   ContactGeometry g;
   const double inv = 1.0 / p.scale;  // exact: a power of two
   g.depth = r.e.f * inv;
@@ -279,10 +297,10 @@ ContactGeometry assemble(const PairFrame& p, const Ellipsoid& e1, const Ellipsoi
   g.normal = r.n;
   const Vec3 arm1 = r.e.u / r.e.h1;   // p1 - c1, scaled (support point of body 1 along n)
   const Vec3 arm2 = -r.e.v / r.e.h2;  // p2 - c2, scaled (support point of body 2 along -n)
-  g.point1 = e1.centre + arm1 * inv;
-  g.point2 = e2.centre + arm2 * inv;
-  g.point = e1.centre + (arm1 - 0.5 * r.e.f * r.n) * inv;
-  if (g.touching) {  // curvatures feed the contact law only: skipped for gaps
+  g.point1 = centre1 + arm1 * inv;
+  g.point2 = centre2 + arm2 * inv;
+  g.point = centre1 + (arm1 - 0.5 * r.e.f * r.n) * inv;
+  if (g.touching && curvatures) {  // curvatures feed the contact law only: skipped for gaps
     const PrincipalCurvatures k1 = curvatures_body(p.rot1, p.ax1, p.rot1.transpose() * arm1);
     const PrincipalCurvatures k2 = curvatures_body(p.rot2, p.ax2, p.rot2.transpose() * arm2);
     for (int i = 0; i < 2; ++i) {
@@ -327,18 +345,22 @@ ContactGeometry ellipsoid_contact(const Ellipsoid& e1, const Ellipsoid& e2, Cont
   return support_function_contact(e1, e2, stats, initial_normal);
 }
 
-ContactGeometry support_function_contact(const Ellipsoid& e1, const Ellipsoid& e2, ContactSolverStats& stats,
-                                         const std::optional<Vec3>& initial_normal) {
-  ++stats.calls;
-  const PairFrame p = make_frame(e1, e2);
+namespace {
+
+// The solver on a pair frame (D3, D4): warm start, cold start from the best candidate, and the
+// multi-start fallback when the result is not certified.
+// `at_initial`: f at the initial normal when the caller has it (it must be the normalised one).
+ContactGeometry solve_frame(const PairFrame& p, const Vec3& centre1, const Vec3& centre2,
+                            ContactSolverStats& stats, const std::optional<Vec3>& initial_normal,
+                            bool curvatures, const Eval* at_initial = nullptr) {
   int iterations = 0;
   if (initial_normal && initial_normal->squaredNorm() > 0.5) {
     ++stats.warm_starts;
-    const NewtonResult r = newton_on_sphere(p, *initial_normal);
+    const NewtonResult r = newton_on_sphere(p, *initial_normal, at_initial);
     iterations += r.iterations;
     if (r.converged && r.e.f < p.certify * (1.0 - 1e-9)) {
       stats.newton_iterations += iterations;
-      return assemble(p, e1, e2, r);
+      return assemble(p, centre1, centre2, r, curvatures);
     }
     ++stats.warm_rejected;
   }
@@ -363,13 +385,72 @@ ContactGeometry support_function_contact(const Ellipsoid& e1, const Ellipsoid& e
     if ((wide.converged && !r.converged) || (wide.converged == r.converged && wide.e.f < r.e.f)) r = wide;
   }
   stats.newton_iterations += iterations;
-  ContactGeometry g = assemble(p, e1, e2, r);
+  ContactGeometry g = assemble(p, centre1, centre2, r, curvatures);
   g.iterations = iterations;
   if (!g.converged)
     ++stats.failures;
   else if (!g.certified)
     ++stats.uncertified;
   return g;
+}
+
+// proven_separated() on a frame.
+bool separated_frame(const PairFrame& p, double margin) {
+  const double dn = p.d.norm();
+  if (!(dn > 0.0)) return false;
+  const Vec3 u0 = -p.d / dn;
+  const double bound = -margin * p.scale;
+  if (evaluate(p, u0).f < bound) return true;
+  const Vec3 n1 = inverse_shape_times(p.rot1, p.ax1, u0).normalized();
+  if (evaluate(p, n1).f < bound) return true;
+  const Vec3 n2 = inverse_shape_times(p.rot2, p.ax2, u0).normalized();
+  return evaluate(p, n2).f < bound;
+}
+
+}  // namespace
+
+ContactGeometry support_function_contact(const Ellipsoid& e1, const Ellipsoid& e2, ContactSolverStats& stats,
+                                         const std::optional<Vec3>& initial_normal) {
+  ++stats.calls;
+  return solve_frame(make_frame(e1, e2), e1.centre, e2.centre, stats, initial_normal, true);
+}
+
+PosedEllipsoid PosedEllipsoid::from(const Ellipsoid& e) {
+  PosedEllipsoid q;
+  q.centre = e.centre;
+  q.rot = e.orientation.toRotationMatrix();
+  q.semi_axes = e.semi_axes;
+  q.shape = shape_matrix(q.rot, e.semi_axes);
+  return q;
+}
+
+std::optional<ContactGeometry> posed_contact(const PosedEllipsoid& e1, const PosedEllipsoid& e2,
+                                             ContactSolverStats& stats,
+                                             const std::optional<Vec3>& initial_normal, bool curvatures) {
+  if (e1.is_sphere() && e2.is_sphere()) {
+    ++stats.calls;
+    return sphere_sphere_contact(e1.centre, e1.semi_axes.x(), e2.centre, e2.semi_axes.x());
+  }
+  const PairFrame p = make_frame(e1, e2);
+  // f(n) >= depth for every unit n: f < 0 at the pair's last normal proves a gap with one
+  // evaluation, the tightest bound for a pair that was near at the last step.
+  const bool warm = initial_normal && initial_normal->squaredNorm() > 0.5;
+  if (!warm) {
+    if (separated_frame(p, 0.0)) {
+      ++stats.proven_apart;
+      return std::nullopt;
+    }
+    ++stats.calls;
+    return solve_frame(p, e1.centre, e2.centre, stats, initial_normal, curvatures);
+  }
+  const Vec3 n = initial_normal->normalized();
+  const Eval at_n = evaluate(p, n);
+  if (at_n.f < 0.0) {
+    ++stats.proven_apart;
+    return std::nullopt;
+  }
+  ++stats.calls;
+  return solve_frame(p, e1.centre, e2.centre, stats, n, curvatures, &at_n);
 }
 
 ContactGeometry ellipsoid_sphere_contact(const Ellipsoid& e, const Vec3& centre, double radius,
@@ -379,10 +460,14 @@ ContactGeometry ellipsoid_sphere_contact(const Ellipsoid& e, const Vec3& centre,
 }
 
 ContactGeometry ellipsoid_plane_contact(const Ellipsoid& e, const Plane& plane) {
+  return posed_plane_contact(PosedEllipsoid::from(e), plane, true);
+}
+
+ContactGeometry posed_plane_contact(const PosedEllipsoid& e, const Plane& plane, bool curvatures) {
   ContactGeometry g;
-  const Mat3 rot = e.orientation.toRotationMatrix();
+  const Mat3& rot = e.rot;
   const Vec3 m = plane.normal;
-  const Vec3 mm = shape_matrix(rot, e.semi_axes) * m;
+  const Vec3 mm = e.shape * m;
   const double h = std::sqrt(m.dot(mm));
   const Vec3 arm = -mm / h;  // lowest point of the ellipsoid along -m, relative to its centre
   g.depth = h - m.dot(e.centre - plane.point);
@@ -391,6 +476,7 @@ ContactGeometry ellipsoid_plane_contact(const Ellipsoid& e, const Plane& plane) 
   g.point1 = e.centre + arm;
   g.point2 = e.centre + (arm + g.depth * m);
   g.point = e.centre + (arm + 0.5 * g.depth * m);
+  if (!curvatures) return g;
   const PrincipalCurvatures k = curvatures_body(rot, e.semi_axes, rot.transpose() * arm);
   g.curvature1[0] = k.k[0];
   g.curvature1[1] = k.k[1];
@@ -405,16 +491,7 @@ double support_gap_function(const Ellipsoid& e1, const Ellipsoid& e2, const Vec3
 }
 
 bool proven_separated(const Ellipsoid& e1, const Ellipsoid& e2, double margin) {
-  const PairFrame p = make_frame(e1, e2);
-  const double dn = p.d.norm();
-  if (!(dn > 0.0)) return false;
-  const Vec3 u0 = -p.d / dn;
-  const double bound = -margin * p.scale;
-  if (evaluate(p, u0).f < bound) return true;
-  const Vec3 n1 = inverse_shape_times(p.rot1, p.ax1, u0).normalized();
-  if (evaluate(p, n1).f < bound) return true;
-  const Vec3 n2 = inverse_shape_times(p.rot2, p.ax2, u0).normalized();
-  return evaluate(p, n2).f < bound;
+  return separated_frame(make_frame(e1, e2), margin);
 }
 
 PrincipalCurvatures principal_curvatures(const Ellipsoid& e, const Vec3& surface_point) {

@@ -60,10 +60,51 @@ struct ContactSolverStats {
   std::int64_t warm_starts = 0;    // calls given an initial normal
   std::int64_t warm_rejected = 0;  // warm result not certified: solved again from cold
   std::int64_t newton_iterations = 0;
-  std::int64_t fallbacks = 0;    // the multi-start fallback ran
-  std::int64_t failures = 0;     // no start converged: best point returned, converged = false
-  std::int64_t uncertified = 0;  // converged but deeper than the certificate covers
+  std::int64_t fallbacks = 0;     // the multi-start fallback ran
+  std::int64_t failures = 0;      // no start converged: best point returned, converged = false
+  std::int64_t uncertified = 0;   // converged but deeper than the certificate covers
+  std::int64_t proven_apart = 0;  // pairs rejected by proven_separated() before the solver
+
+  ContactSolverStats& operator+=(const ContactSolverStats& o) {
+    calls += o.calls;
+    warm_starts += o.warm_starts;
+    warm_rejected += o.warm_rejected;
+    newton_iterations += o.newton_iterations;
+    fallbacks += o.fallbacks;
+    failures += o.failures;
+    uncertified += o.uncertified;
+    proven_apart += o.proven_apart;
+    return *this;
+  }
 };
+
+// An ellipsoid with its rotation matrix R and shape matrix M = R diag(a^2, b^2, c^2) R^T
+// computed once: the force loop poses every grain once per step instead of once per pair
+// and call. Results are bitwise those of the Ellipsoid overloads (the pair frame's scaling
+// is a power of two, so scaling M afterwards is exact).
+struct PosedEllipsoid {
+  Vec3 centre = Vec3::Zero();
+  Mat3 rot = Mat3::Identity();
+  Vec3 semi_axes = Vec3::Ones();
+  Mat3 shape = Mat3::Identity();
+
+  static PosedEllipsoid from(const Ellipsoid& e);
+  [[nodiscard]] bool is_sphere() const {
+    return semi_axes.x() == semi_axes.y() && semi_axes.y() == semi_axes.z();
+  }
+};
+
+// The force loop's call, on one pair frame: a conservative separation proof and, unless it
+// succeeds (then nullopt, counted in stats.proven_apart), the solver of ellipsoid_contact().
+// The proof is f(n) < 0 at `initial_normal` when one is given (f bounds the depth from above),
+// else proven_separated()'s three directions. `curvatures` false skips the principal
+// curvatures (the contact law needs them only at a contact's first touch).
+std::optional<ContactGeometry> posed_contact(const PosedEllipsoid& e1, const PosedEllipsoid& e2,
+                                             ContactSolverStats& stats,
+                                             const std::optional<Vec3>& initial_normal, bool curvatures);
+
+// Ellipsoid-plane on a posed ellipsoid, optionally without curvatures.
+ContactGeometry posed_plane_contact(const PosedEllipsoid& e, const Plane& plane, bool curvatures);
 
 // Ellipsoid-ellipsoid (either may be a sphere). `initial_normal`: the previous step's normal
 // of a persisting pair (warm start); without it, a cold start from a few candidate normals.

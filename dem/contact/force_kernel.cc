@@ -3,11 +3,52 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dem/contact/ellipsoid_geometry.h"
+
 namespace upgrain::dem {
 
 namespace {
 
-template <class E, bool Record>
+Ellipsoid ellipsoid_of(const ParticleStore& p, std::size_t i) {
+  return {p.x[i], p.orientation[i], p.semi_axes[i]};
+}
+
+// Geometry of a pair with at least one ellipsoid (docs/ellipsoids.md): bounding spheres
+// (already tested by the caller), then on one pair frame a conservative separation proof and
+// the support-function solver warm-started from the pair's previous normal. Returns false
+// when apart. `memory` keeps the last normal of a near pair (the next step's warm start) and
+// the Hertz radius of a touching one.
+bool shaped_pair_geometry(const ParticleStore& p, const std::vector<PosedEllipsoid>& posed, std::size_t i,
+                          std::size_t j, ShapedContactMemory& memory, ContactSolverStats& stats,
+                          ContactKinematics& kin, double& r_star) {
+  const bool first_touch = memory.r_star == 0.0;  // curvatures are needed only then
+  const std::optional<ContactGeometry> found = posed_contact(
+      posed[i], posed[j], stats,
+      memory.normal != Vec3::Zero() ? std::optional<Vec3>(memory.normal) : std::nullopt, first_touch);
+  if (!found) {  // proven apart: a pair's last normal stays its warm start and its proof
+    memory.r_star = 0.0;
+    return false;
+  }
+  const ContactGeometry& g = *found;
+  memory.normal = g.normal;
+  if (!g.touching) {
+    memory.r_star = 0.0;
+    return false;
+  }
+  kin.normal = g.normal;
+  kin.overlap = g.depth;
+  kin.lever_i = g.point - p.x[i];
+  kin.lever_j = g.point - p.x[j];
+  // Elliptic Hertz through the Gaussian-curvature radius (Johnson 1985, eq. 4.25), taken at
+  // first touch and held while the contact lasts: the normal force is then the gradient of
+  // the Hertz potential (8/15) E* sqrt(R*) delta^(5/2), since d(delta) is the normal at the
+  // contact point (envelope theorem), and the contact law is conservative.
+  if (first_touch) memory.r_star = gaussian_curvature_radius(g);
+  r_star = memory.r_star;
+  return true;
+}
+
+template <class E, bool Record, bool Shapes>
 void compute_forces(ForceContext& ctx) {
   ParticleStore& p = *ctx.particles;
   const std::size_t n = p.size();
@@ -16,13 +57,22 @@ void compute_forces(ForceContext& ctx) {
   std::vector<TangentialSpring>& springs = ctx.neighbors->springs();
   const ContactMaterial& mat = ctx.material;
   constexpr bool kTangential = E::friction;
+  // Ellipsoids: normal forces off the line of centres make torques, so rotation does not
+  // need friction (Effects::rotation assumes spheres).
+  constexpr bool kRotation = Shapes ? E::rotation_requested : E::rotation;
+  std::vector<ShapedContactMemory>* memory = Shapes ? &ctx.neighbors->contact_memory() : nullptr;
 
   constexpr bool kDampingWork = E::damping && E::energy;
   for (std::size_t i = 0; i < n; ++i) {
     p.force[i].setZero();
-    if constexpr (E::rotation) p.torque[i].setZero();
+    if constexpr (kRotation) p.torque[i].setZero();
   }
   if constexpr (kDampingWork) ctx.damping_force.assign(n, Vec3::Zero());
+  if constexpr (kDampingWork && Shapes) ctx.damping_torque.assign(n, Vec3::Zero());
+  if constexpr (Shapes) {
+    ctx.posed.resize(n);
+    for (std::size_t i = 0; i < n; ++i) ctx.posed[i] = PosedEllipsoid::from(ellipsoid_of(p, i));
+  }
   if constexpr (Record) ctx.contacts.clear();
   ContactEnergy energy;
   long contacts = 0;
@@ -46,45 +96,70 @@ void compute_forces(ForceContext& ctx) {
           // Most pairs in the list are not touching: write only when a contact just ended.
           if (springs[k].stiffness != 0.0) springs[k] = TangentialSpring{};
         }
+        if constexpr (Shapes) (*memory)[k] = ShapedContactMemory{};
         continue;
       }
-      const double dist = std::sqrt(dist2);
-      const double delta = rsum - dist;
       ContactKinematics kin;
-      kin.normal = d * (1.0 / dist);
-      kin.overlap = delta;
-      kin.arm_i = ri - 0.5 * delta;
-      kin.arm_j = p.radius[j] - 0.5 * delta;
+      double arm_i = 0.0, arm_j = 0.0;  // sphere pairs: lever lengths along the normal
+      bool shaped = false;
+      if constexpr (Shapes) shaped = p.is_ellipsoid(i) || p.is_ellipsoid(j);
+      if (shaped) {
+        if (!shaped_pair_geometry(p, ctx.posed, i, j, (*memory)[k], ctx.solver_stats, kin, cp.r_star)) {
+          if constexpr (kTangential) {
+            if (springs[k].stiffness != 0.0) springs[k] = TangentialSpring{};
+          }
+          continue;
+        }
+      } else {
+        const double dist = std::sqrt(dist2);
+        const double delta = rsum - dist;
+        kin.normal = d * (1.0 / dist);
+        kin.overlap = delta;
+        arm_i = ri - 0.5 * delta;
+        arm_j = p.radius[j] - 0.5 * delta;
+        kin.lever_i = arm_i * kin.normal;
+        kin.lever_j = -arm_j * kin.normal;
+        cp.r_star = ri * p.radius[j] / rsum;
+      }
       kin.v_i = p.v[i];
       kin.v_j = p.v[j];
-      if constexpr (E::rotation) {
+      if constexpr (kRotation) {
         kin.omega_i = p.omega[i];
         kin.omega_j = p.omega[j];
       }
-      cp.r_star = ri * p.radius[j] / rsum;
       cp.m_star = 1.0 / (inv_mi + p.inv_mass[j]);  // m_i m_j / (m_i + m_j)
       TangentialSpring& spring = kTangential ? springs[k] : dummy_spring;
       const ContactForce cf =
-          contact_response<kTangential, E::damping, E::rotation, E::energy>(cp, kin, spring, energy);
+          contact_response<kTangential, E::damping, kRotation, E::energy>(cp, kin, spring, energy);
       fi += cf.on_i;
       p.force[j] -= cf.on_i;
-      if constexpr (Record)
-        ctx.contacts.push_back({static_cast<int>(i), j, xi + kin.arm_i * kin.normal, cf.on_i});
+      if constexpr (Record) ctx.contacts.push_back({static_cast<int>(i), j, xi + kin.lever_i, cf.on_i});
       if constexpr (kDampingWork) {
         ctx.damping_force[i] -= cf.damping * kin.normal;
         ctx.damping_force[j] += cf.damping * kin.normal;
+        if constexpr (Shapes) {
+          ctx.damping_torque[i] -= kin.lever_i.cross(cf.damping * kin.normal);
+          ctx.damping_torque[j] += kin.lever_j.cross(cf.damping * kin.normal);
+        }
       }
-      if constexpr (E::rotation) {
-        const Vec3 arm_x_f = kin.normal.cross(cf.on_i);
-        ti += kin.arm_i * arm_x_f;
-        p.torque[j] += kin.arm_j * arm_x_f;
+      if constexpr (kRotation) {
+        if (shaped) {
+          ti += kin.lever_i.cross(cf.on_i);
+          p.torque[j] -= kin.lever_j.cross(cf.on_i);
+        } else {
+          const Vec3 arm_x_f = kin.normal.cross(cf.on_i);
+          ti += arm_i * arm_x_f;
+          p.torque[j] += arm_j * arm_x_f;
+        }
       }
       ++contacts;
-      const double r_min = std::min(ri, p.radius[j]);
+      const double delta = kin.overlap;
+      const double r_min =
+          Shapes ? std::min(p.min_semi_axis(i), p.min_semi_axis(j)) : std::min(ri, p.radius[j]);
       if (delta > max_ratio * r_min) max_ratio = delta / r_min;  // divides only on a new maximum
     }
     p.force[i] += fi;
-    if constexpr (E::rotation) p.torque[i] += ti;
+    if constexpr (kRotation) p.torque[i] += ti;
   }
 
   // Particle-wall contacts: the wall is a rigid plane of the particles' own material, so
@@ -111,31 +186,60 @@ void compute_forces(ForceContext& ctx) {
         if constexpr (kWallTangential) {
           if (spring.stiffness != 0.0) spring = TangentialSpring{};
         }
+        if constexpr (Shapes) near.r_star[k] = 0.0;
         continue;
       }
       ContactKinematics kin;
       kin.normal = -wall.normal;
-      kin.overlap = ri - gap;
-      kin.arm_i = gap;
-      kin.arm_j = 0.0;
+      bool shaped = false;
+      if constexpr (Shapes) shaped = p.is_ellipsoid(i);
+      if (shaped) {
+        // Closed form: the ellipsoid's lowest point along -normal (docs/ellipsoid-contact.md).
+        double& r_held = near.r_star[k];
+        const ContactGeometry g =
+            posed_plane_contact(ctx.posed[i], Plane{wall.point, wall.normal}, r_held == 0.0);
+        if (!g.touching) {
+          if constexpr (kWallTangential) {
+            if (spring.stiffness != 0.0) spring = TangentialSpring{};
+          }
+          r_held = 0.0;
+          continue;
+        }
+        kin.overlap = g.depth;
+        kin.lever_i = g.point - p.x[i];
+        if (r_held == 0.0) r_held = gaussian_curvature_radius(g);  // held while touching, as for pairs
+        wp.r_star = r_held;
+      } else {
+        kin.overlap = ri - gap;
+        kin.lever_i = gap * kin.normal;
+        wp.r_star = ri;
+      }
+      kin.lever_j = Vec3::Zero();
       kin.v_i = p.v[i];
       kin.v_j = Vec3::Zero();
-      if constexpr (E::rotation) {
+      if constexpr (kRotation) {
         kin.omega_i = p.omega[i];
         kin.omega_j = Vec3::Zero();
       }
-      wp.r_star = ri;
       wp.m_star = p.mass(i);
       const ContactForce cf =
-          contact_response<kWallTangential, E::damping, E::rotation, E::energy>(wp, kin, spring, energy);
+          contact_response<kWallTangential, E::damping, kRotation, E::energy>(wp, kin, spring, energy);
       p.force[i] += cf.on_i;
       wall_total -= cf.on_i;
       if constexpr (Record)
-        ctx.contacts.push_back({i, -static_cast<int>(w) - 1, p.x[i] + gap * kin.normal, cf.on_i});
-      if constexpr (kDampingWork) ctx.damping_force[i] -= cf.damping * kin.normal;
-      if constexpr (E::rotation) p.torque[i] += gap * kin.normal.cross(cf.on_i);
+        ctx.contacts.push_back({i, -static_cast<int>(w) - 1, p.x[i] + kin.lever_i, cf.on_i});
+      if constexpr (kDampingWork) {
+        ctx.damping_force[i] -= cf.damping * kin.normal;
+        if constexpr (Shapes) ctx.damping_torque[i] -= kin.lever_i.cross(cf.damping * kin.normal);
+      }
+      if constexpr (kRotation) {
+        if (shaped)
+          p.torque[i] += kin.lever_i.cross(cf.on_i);
+        else
+          p.torque[i] += gap * kin.normal.cross(cf.on_i);
+      }
       ++wall_contacts;
-      max_ratio = std::max(max_ratio, kin.overlap / ri);
+      max_ratio = std::max(max_ratio, kin.overlap / (Shapes ? p.min_semi_axis(i) : ri));
     }
     ctx.wall_force[w] = wall_total;
   }
@@ -148,9 +252,14 @@ void compute_forces(ForceContext& ctx) {
 
 }  // namespace
 
-ForceKernels select_force_kernels(const EffectSet& e) {
+ForceKernels select_force_kernels(const EffectSet& e, bool shapes) {
+  if (shapes) {
+    return with_effects(e, []<class E>() {
+      return ForceKernels{&compute_forces<E, false, true>, &compute_forces<E, true, true>};
+    });
+  }
   return with_effects(e, []<class E>() {
-    return ForceKernels{&compute_forces<E, false>, &compute_forces<E, true>};
+    return ForceKernels{&compute_forces<E, false, false>, &compute_forces<E, true, false>};
   });
 }
 

@@ -8,6 +8,7 @@
 #include "dem/contact/contact_response.h"
 #include "dem/contact/contact_sample.h"
 #include "dem/contact/effects.h"
+#include "dem/contact/ellipsoid_geometry.h"
 #include "dem/core/material.h"
 #include "dem/core/particle_store.h"
 #include "dem/neighbor/verlet_list.h"
@@ -32,6 +33,12 @@ struct ForceContext {
   // Viscous part of the contact force on each particle (energy tracking with damping),
   // for the second half of the damping work (docs/integrator.md).
   std::vector<Vec3> damping_force;
+  // Its torque about the centroids (ellipsoid scenes: the normal misses the centroid).
+  std::vector<Vec3> damping_torque;
+  // Ellipsoid contact solver counters, cumulative over the run (reported in the log).
+  ContactSolverStats solver_stats;
+  // Every grain posed once per evaluation (rotation and shape matrices; ellipsoid scenes).
+  std::vector<PosedEllipsoid> posed;
   // Every contact of the evaluation, in the loop's order (recording kernels only).
   std::vector<ContactSample> contacts;
 };
@@ -45,6 +52,8 @@ struct ForceKernels {
   ForceKernel recording;
 };
 
-ForceKernels select_force_kernels(const EffectSet& effects);
+// `shapes`: the store holds ellipsoids (ParticleStore::has_shapes()); the sphere-only
+// loops carry no shape branch at all.
+ForceKernels select_force_kernels(const EffectSet& effects, bool shapes = false);
 
 }  // namespace upgrain::dem

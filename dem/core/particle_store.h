@@ -1,6 +1,7 @@
 #pragma once
 // Particle state as structure-of-arrays indexed by local index, with a persistent global
 // id that survives reordering (and, later, migration between ranks). DESIGN.md.
+#include <Eigen/Geometry>
 #include <cstddef>
 #include <vector>
 
@@ -19,14 +20,41 @@ struct ParticleStore {
   std::vector<Vec3> force;          // contact force of the current step (N)
   std::vector<Vec3> torque;         // contact torque about the centroid (N m)
 
+  // Shapes of three-axis ellipsoids (docs/ellipsoids.md). Empty while every grain is a
+  // sphere, so sphere scenes carry and compute nothing for them; once an ellipsoid is
+  // added they hold every grain, spheres as a = b = c. For an ellipsoid, radius[i] is its
+  // bounding radius a (neighbour lists, broad phase) and inv_inertia[i] is not used.
+  std::vector<Vec3> semi_axes;                  // a >= b >= c along the body x, y, z axes (m)
+  std::vector<Eigen::Quaterniond> orientation;  // body -> world, unit
+  std::vector<Vec3> inertia_body;               // principal moments of inertia (kg m^2)
+
   [[nodiscard]] std::size_t size() const { return id.size(); }
   [[nodiscard]] double mass(std::size_t i) const { return 1.0 / inv_mass[i]; }
 
   void reserve(std::size_t n);
   void add_sphere(GlobalId gid, double r, double density, const Vec3& pos, const Vec3& vel,
                   const Vec3& ang_vel);
+  // A three-axis ellipsoid, semi-axes a >= b >= c (checked), uniform density.
+  void add_ellipsoid(GlobalId gid, const Vec3& semi_axes, double density, const Vec3& pos,
+                     const Eigen::Quaterniond& orientation, const Vec3& vel, const Vec3& ang_vel);
   // Applies new[k] = old[perm[k]] to every array.
   void permute(const std::vector<int>& perm);
+
+  [[nodiscard]] bool has_shapes() const { return !semi_axes.empty(); }
+  // a >= b >= c, so a == c means a sphere.
+  [[nodiscard]] bool is_ellipsoid(std::size_t i) const {
+    return has_shapes() && semi_axes[i].x() != semi_axes[i].z();
+  }
+  // Smallest semi-axis: the length overlaps are measured against.
+  [[nodiscard]] double min_semi_axis(std::size_t i) const {
+    return has_shapes() ? semi_axes[i].z() : radius[i];
+  }
+  [[nodiscard]] double volume(std::size_t i) const;
+  // Inertia tensor about the centroid in the world frame, Q J_body Q^T.
+  [[nodiscard]] Mat3 inertia_world(std::size_t i) const;
+  // (1/2) w^T I w for an angular velocity w of grain i (its own by default).
+  [[nodiscard]] double rotational_energy(std::size_t i, const Vec3& w) const;
+  [[nodiscard]] double rotational_energy(std::size_t i) const { return rotational_energy(i, omega[i]); }
 
   [[nodiscard]] double max_radius() const;
   [[nodiscard]] double min_radius() const;

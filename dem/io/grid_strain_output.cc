@@ -6,6 +6,7 @@
 
 #include "dem/core/error.h"
 #include "dem/io/atomic_file.h"
+#include "dem/io/grid_stress_output.h"
 #include "dem/io/grid_xdmf.h"
 #include "dem/io/hdf5_util.h"
 
@@ -40,6 +41,13 @@ void write_reasons(hid_t g, const std::string& prefix, const std::vector<StrainR
                       1);
 }
 
+// How sigma_dot was taken at an output that used n outputs (grid_stress_rates.h).
+std::string difference_name(int outputs_used) {
+  if (outputs_used >= 3) return "backward, 3 outputs, second order (docs/strain.md eq. (10), last output)";
+  if (outputs_used == 2) return "backward, 2 outputs, first order";
+  return "none (first output)";
+}
+
 std::vector<std::string> reason_names() {
   std::vector<std::string> names;
   for (int r = 0; r < kStrainReasonCount; ++r) names.emplace_back(name_of(static_cast<StrainReason>(r)));
@@ -55,7 +63,8 @@ std::string field_name(StrainDefinition d) {
   return s;
 }
 
-void write_grid_strain(const std::filesystem::path& path, const GridStrain& strain) {
+void write_grid_strain(const std::filesystem::path& path, const GridStrain& strain,
+                       const GridStressRates* rates) {
   using namespace hdf5;
   const RegularGrid& grid = strain.grid;
   const auto cells = static_cast<hsize_t>(grid.num_cells());
@@ -105,6 +114,24 @@ void write_grid_strain(const std::filesystem::path& path, const GridStrain& stra
       write_reasons(g, "F", f.f_reason);
       write_reasons(g, "L", f.l_reason);
       write_reasons(g, "increment", f.increment_reason);
+      if (rates && rates->computed[d]) {
+        const CellStressRates& r = rates->fields[d];
+        write_tensors(g, "stress_rate", r.stress_rate);
+        write_tensors(g, "jaumann_rate", r.jaumann);
+        write_tensors(g, "green_naghdi_rate", r.green_naghdi);
+        write_tensors(g, "truesdell_rate", r.truesdell);
+        write_tensors(g, "oldroyd_rate", r.oldroyd);
+        write_reasons(g, "rate", r.reason);
+        write_reasons(g, "green_naghdi", r.green_naghdi_reason);
+      }
+    }
+    if (rates) {
+      Handle g(create_group(file, "rates"), H5Gclose, "create group rates");
+      write_attribute(g, "formula", field_name(rates->formula));
+      write_attribute(g, "outputs_used", static_cast<double>(rates->outputs_used));
+      write_attribute(g, "order", static_cast<double>(rates->order()));
+      write_attribute(g, "difference", difference_name(rates->outputs_used));
+      write_tensors(g, "stress", rates->stress);
     }
   }
   target.commit();
@@ -116,12 +143,12 @@ GridStrainRecorder::GridStrainRecorder(std::filesystem::path folder) : folder_(s
   if (ec) throw Error("cannot create " + (folder_ / "grid_strain").string() + ": " + ec.message());
 }
 
-void GridStrainRecorder::record(const GridStrain& strain) {
+void GridStrainRecorder::record(const GridStrain& strain, const GridStressRates* rates) {
   char name[64];
   std::snprintf(name, sizeof name, "grid_strain_%09ld.h5", strain.step);
   const std::string rel = (std::filesystem::path("grid_strain") / name).string();
-  write_grid_strain(folder_ / rel, strain);
-  entries_.push_back({rel, strain.time, strain.step, strain.grid, strain.computed});
+  write_grid_strain(folder_ / rel, strain, rates);
+  entries_.push_back({rel, strain.time, strain.step, strain.grid, strain.computed, rates != nullptr});
   const RegularGrid& grid = strain.grid;
   for (int c = 0; c < grid.num_cells(); ++c) {
     const int i = c % grid.n[0], j = (c / grid.n[0]) % grid.n[1], k = c / (grid.n[0] * grid.n[1]);
@@ -141,7 +168,15 @@ void GridStrainRecorder::record(const GridStrain& strain) {
       for (int e = 0; e < 9; ++e) row << ',' << f.velocity_gradient[c](e / 3, e % 3);
       row << ',' << f.equivalent_shear_rate[c] << ',' << static_cast<int>(f.increment_reason[c]) << ','
           << f.increment_log_jacobian[c] << ',' << f.increment_equivalent_shear_strain[c] << ','
-          << f.residual_rms[c] << '\n';
+          << f.residual_rms[c];
+      // The objective stress rates (zero, no_history, without them).
+      const CellStressRates* r = rates && rates->computed[d] ? &rates->fields[d] : nullptr;
+      row << ',' << static_cast<int>(r ? r->reason[c] : StrainReason::no_history) << ','
+          << static_cast<int>(r ? r->green_naghdi_reason[c] : StrainReason::no_history);
+      for (const std::vector<Mat3>* t : {r ? &r->jaumann : nullptr, r ? &r->green_naghdi : nullptr,
+                                         r ? &r->truesdell : nullptr, r ? &r->oldroyd : nullptr})
+        for (int e = 0; e < 9; ++e) row << ',' << (t ? (*t)[c](e / 3, e % 3) : 0.0);
+      row << '\n';
       rows_.push_back(row.str());
     }
   }
@@ -156,7 +191,11 @@ void GridStrainRecorder::flush() const {
   csv << ".\ntime,step,reference_time,set,cell,i,j,k,x,y,z,definition,particles,F_reason,"
          "F_xx,F_xy,F_xz,F_yx,F_yy,F_yz,F_zx,F_zy,F_zz,J,ln_J,equivalent_shear_strain,L_reason,"
          "L_xx,L_xy,L_xz,L_yx,L_yy,L_yz,L_zx,L_zy,L_zz,equivalent_shear_rate,increment_reason,"
-         "increment_ln_J,increment_equivalent_shear_strain,residual_rms\n";
+         "increment_ln_J,increment_equivalent_shear_strain,residual_rms,rate_reason,green_naghdi_reason";
+  for (const char* rate : {"jaumann", "green_naghdi", "truesdell", "oldroyd"})
+    for (const char* comp : {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"})
+      csv << ',' << rate << '_' << comp;
+  csv << '\n';
   for (const auto& r : rows_) csv << r;
   write_text_atomically(folder_ / "grid_strain.csv", csv.str());
 
@@ -176,6 +215,11 @@ void GridStrainRecorder::flush() const {
       step.attributes.push_back({n + "_increment_equivalent_shear_strain", "Scalar",
                                  "/" + n + "/increment_equivalent_shear_strain"});
       step.attributes.push_back({n + "_L", "Tensor", "/" + n + "/L", 9});
+      if (e.rates) {
+        step.attributes.push_back({n + "_rate_reason", "Scalar", "/" + n + "/rate_reason", 1, "Int", 4});
+        for (const char* rate : {"jaumann_rate", "green_naghdi_rate", "truesdell_rate", "oldroyd_rate"})
+          step.attributes.push_back({n + "_" + rate, "Tensor", "/" + n + "/" + rate, 9});
+      }
     }
     steps.push_back(std::move(step));
   }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "dem/strain/grid_strain.h"
+#include "dem/strain/grid_stress_rates.h"
 
 namespace upgrain::dem::io {
 
@@ -19,6 +20,7 @@ struct GridStrainEntry {
   long step = 0;
   RegularGrid grid;
   std::array<bool, kStrainDefinitionCount> computed = {false, false};
+  bool rates = false;  // the file holds the objective stress rates
 };
 
 class GridStrainRecorder {
@@ -26,7 +28,10 @@ class GridStrainRecorder {
   // Creates folder/grid_strain/.
   explicit GridStrainRecorder(std::filesystem::path folder);
 
-  void record(const GridStrain& strain);
+  // `rates` (optional): the objective stress rates of the same output, written beside the
+  // strain (dem/strain/grid_stress_rates.h). Without them the CSV's rate columns are zero
+  // with reason code no_history.
+  void record(const GridStrain& strain, const GridStressRates* rates = nullptr);
   [[nodiscard]] const std::vector<GridStrainEntry>& entries() const { return entries_; }
 
  private:
@@ -45,8 +50,14 @@ class GridStrainRecorder {
 //     cells x 9 (row-major, T_ij at 3 i + j): F, L, F_increment, E, e, hencky (ln V), R, D, W;
 //     cells: J, ln_J, equivalent_shear_strain, equivalent_shear_rate, increment_ln_J,
 //     increment_equivalent_shear_strain, residual_rms;
-//     int32 per cell: F_valid, F_reason, L_valid, L_reason, increment_valid, increment_reason.
-void write_grid_strain(const std::filesystem::path& path, const GridStrain& strain);
+//     int32 per cell: F_valid, F_reason, L_valid, L_reason, increment_valid, increment_reason;
+//     with rates: cells x 9 stress_rate (sigma_dot), jaumann_rate, green_naghdi_rate,
+//     truesdell_rate, oldroyd_rate; int32 rate_valid, rate_reason, green_naghdi_valid,
+//     green_naghdi_reason;
+//   with rates, /rates/stress (cells x 9, the cell stress differenced) and attributes
+//     formula, outputs_used, order, difference (how sigma_dot was taken).
+void write_grid_strain(const std::filesystem::path& path, const GridStrain& strain,
+                       const GridStressRates* rates = nullptr);
 
 // "best fit" -> "best_fit": the name used for groups, columns and fields.
 std::string field_name(StrainDefinition d);

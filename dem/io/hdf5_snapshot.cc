@@ -63,6 +63,24 @@ void write_snapshot(const std::filesystem::path& path, const ParticleStore& p,
       const std::vector<double> flat = flatten(*f.data, order);
       write_dataset(parts, f.name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, flat.data(), n, 3);
     }
+    if (p.has_shapes()) {
+      const std::vector<double> axes = flatten(p.semi_axes, order);
+      write_dataset(parts, "semi_axes", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, axes.data(), n, 3);
+      std::vector<double> quat(4 * n), tensor(9 * n);
+      for (std::size_t k = 0; k < n; ++k) {
+        const Eigen::Quaterniond& q = p.orientation[order[k]];
+        quat[4 * k] = q.w();
+        quat[4 * k + 1] = q.x();
+        quat[4 * k + 2] = q.y();
+        quat[4 * k + 3] = q.z();
+        const Mat3 r = q.toRotationMatrix();
+        const Mat3 t = r * p.semi_axes[order[k]].asDiagonal() * r.transpose();
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b < 3; ++b) tensor[9 * k + 3 * a + b] = t(a, b);
+      }
+      write_dataset(parts, "orientation", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, quat.data(), n, 4);
+      write_dataset(parts, "shape_tensor", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, tensor.data(), n, 9);
+    }
 
     Handle wg(H5Gcreate2(file, "walls", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
               "create group walls");
@@ -115,8 +133,13 @@ void write_xdmf(const std::filesystem::path& path, const std::vector<SnapshotInf
       << "    <Attribute Name=\"angular_velocity\" AttributeType=\"Vector\" Center=\"Node\">"
       << item("angular_velocity", 3) << "</Attribute>\n"
       << "    <Attribute Name=\"force\" AttributeType=\"Vector\" Center=\"Node\">" << item("force", 3)
-      << "</Attribute>\n"
-      << "   </Grid>\n";
+      << "</Attribute>\n";
+    if (s.shapes)
+      x << "    <Attribute Name=\"shape_tensor\" AttributeType=\"Tensor\" Center=\"Node\">"
+        << item("shape_tensor", 9) << "</Attribute>\n"
+        << "    <Attribute Name=\"semi_axes\" AttributeType=\"Vector\" Center=\"Node\">"
+        << item("semi_axes", 3) << "</Attribute>\n";
+    x << "   </Grid>\n";
   }
   x << "  </Grid>\n </Domain>\n</Xdmf>\n";
   write_text_atomically(path, x.str());

@@ -15,17 +15,23 @@ struct SnapshotInfo {
   double time = 0.0;
   long step = 0;
   long count = 0;
+  bool shapes = false;  // ellipsoid datasets present (ParticleStore::has_shapes())
 };
 
 // Layout: /particles/{id, radius, position, velocity, angular_velocity, force}
 // (position etc. are N x 3), /walls/{name (attribute list), point, normal, friction,
-// force}; root attributes time (s), step, units, sign_convention.
+// force}; root attributes time (s), step, units, sign_convention. Scenes with ellipsoids
+// add /particles/{semi_axes (N x 3: a, b, c), orientation (N x 4: unit quaternion w, x, y,
+// z, body -> world), shape_tensor (N x 9: Q diag(a, b, c) Q^T, row-major)}; radius is then
+// the bounding radius a.
 void write_snapshot(const std::filesystem::path& path, const ParticleStore& p,
                     const std::vector<PlaneWall>& walls, const std::vector<Vec3>& wall_force, double time,
                     long step);
 
 // An XDMF 3 temporal collection over the snapshots, for ParaView (Xdmf3 reader):
-// particles as a polyvertex grid with radius, velocity, angular velocity and force.
+// particles as a polyvertex grid with radius, velocity, angular velocity and force, and for
+// ellipsoids the shape tensor, which ParaView's Tensor Glyph filter draws as the ellipsoids
+// (sphere glyphs scaled by the eigenvalues a, b, c along the principal axes).
 void write_xdmf(const std::filesystem::path& path, const std::vector<SnapshotInfo>& snapshots);
 
 }  // namespace upgrain::dem::io

@@ -32,6 +32,14 @@ RegularGrid stress_grid(const GridStressOptions& options, const ParticleStore& p
   for (std::size_t i = 0; i < p.size(); ++i) top = std::max(top, p.x[i].z() + p.radius[i]);
   g.lo = Vec3::Zero();
   g.hi = Vec3(box.lx, box.ly, top > 0.0 ? top : box.height);
+  // The unconstrained collapse spreads past the footprint once the side walls are gone:
+  // the grid then spans the grains' horizontal extent as well.
+  if (box.opens_side_walls())
+    for (std::size_t i = 0; i < p.size(); ++i)
+      for (int d = 0; d < 2; ++d) {
+        g.lo[d] = std::min(g.lo[d], p.x[i][d] - p.radius[i]);
+        g.hi[d] = std::max(g.hi[d], p.x[i][d] + p.radius[i]);
+      }
   return g;
 }
 
@@ -60,8 +68,8 @@ void RunRecorder::write_snapshot(const Simulation& sim) {
   const std::filesystem::path rel = std::filesystem::path("snapshots") / name;
   io::write_snapshot(options_.folder / rel, sim.particles(), sim.walls(), sim.wall_forces(), sim.time(),
                      sim.step_count());
-  snapshots_.push_back(
-      {rel.string(), sim.time(), sim.step_count(), static_cast<long>(sim.particles().size())});
+  snapshots_.push_back({rel.string(), sim.time(), sim.step_count(), static_cast<long>(sim.particles().size()),
+                        sim.particles().has_shapes()});
   flush();
 }
 

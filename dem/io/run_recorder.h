@@ -28,7 +28,7 @@ struct GridStressOptions {
 };
 
 // The grid of one evaluation: the fixed box, or the container footprint up to the top of
-// the highest grain.
+// the highest grain (for the unconstrained collapse, widened to the grains' extent).
 RegularGrid stress_grid(const GridStressOptions& options, const ParticleStore& p, const BoxContainer& box);
 
 // Which grid strain a run writes (docs/strain.md). Evaluated with the grid stress, on its
@@ -39,6 +39,9 @@ struct GridStrainOutputOptions {
   // evaluation at or after t0. No strain is written before it.
   double reference_time = 0.0;
   GridStrainOptions kernel;  // set (Lagrangian or Eulerian) and definitions
+  // The grid-stress formula whose cell series gives the objective stress rates written with
+  // the strain (dem/strain/grid_stress_rates.h); it must be among the formulas written.
+  StressFormula rate_formula = StressFormula::bagi;
 };
 
 struct OutputOptions {

@@ -10,6 +10,7 @@
 // unit quaternions. Torques enter as half kicks of the world-frame angular momentum around
 // the free rotation (velocity-Verlet style), as in Simulation::step for the spheres.
 #include <Eigen/Geometry>
+#include <cmath>
 
 #include "dem/core/types.h"
 
@@ -22,11 +23,32 @@ struct RigidRotationState {
 
 // Exact free rotation about principal axis k for a time h: with L_b,k and I_k fixed, the
 // body turns by phi = h L_k / I_k about its axis k, so L_b turns by -phi about that axis.
-inline void rotate_about_principal_axis(RigidRotationState& s, const Vec3& inertia, int k, double h) {
-  const double phi = h * s.angular_momentum_body[k] / inertia[k];
-  const Eigen::AngleAxisd turn(phi, Vec3::Unit(k));
-  s.orientation = s.orientation * Eigen::Quaterniond(turn);
-  s.angular_momentum_body = turn.inverse() * s.angular_momentum_body;
+// One sine and cosine of phi/2 serve both: the quaternion factor (cos phi/2, sin phi/2 e_k)
+// and cos phi = c^2 - s^2, sin phi = 2 s c for L_b (the rotation is a fifth of an ellipsoid's
+// step cost otherwise, measured with perf).
+inline void rotate_about_principal_axis(RigidRotationState& st, const Vec3& inertia, int k, double h) {
+  const double half = 0.5 * h * st.angular_momentum_body[k] / inertia[k];
+  double s, c;
+  if (std::abs(half) < 0.03) {
+    // A DEM step turns a grain by far less than 0.03 rad: Taylor series to x^9 and x^8, whose
+    // remainders (x^11/11!, x^10/10!) are below 1e-16 of the result there, at a fifth of the
+    // cost of sincos.
+    const double x2 = half * half;
+    s = half * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0))));
+    c = 1.0 - x2 / 2.0 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0)));
+  } else {
+    s = std::sin(half);
+    c = std::cos(half);
+  }
+  Eigen::Quaterniond turn(c, 0.0, 0.0, 0.0);
+  turn.vec()[k] = s;
+  st.orientation = st.orientation * turn;
+  const double cos_phi = c * c - s * s, sin_phi = 2.0 * s * c;
+  const int i = (k + 1) % 3, j = (k + 2) % 3;  // (i, j, k) cyclic
+  Vec3& l = st.angular_momentum_body;
+  const double li = l[i], lj = l[j];
+  l[i] = cos_phi * li + sin_phi * lj;
+  l[j] = -sin_phi * li + cos_phi * lj;
 }
 
 // One step h of torque-free rotation (principal moments `inertia` in the body frame).

@@ -12,6 +12,7 @@ namespace {
 struct CarriedSpring {
   GlobalId lo, hi;
   TangentialSpring spring;
+  ShapedContactMemory memory;  // normal from lo to hi (ellipsoid scenes; else empty)
   bool operator<(const CarriedSpring& o) const { return lo < o.lo || (lo == o.lo && hi < o.hi); }
 };
 
@@ -36,21 +37,26 @@ void VerletList::rebuild(ParticleStore& p) {
   // 1. Springs of active contacts, keyed by the pair of global ids and oriented as the
   //    force on the particle with the smaller id.
   std::vector<CarriedSpring> history;
-  if (with_history_ && !partners_.empty()) {
+  const bool carry = (with_history_ || with_memory_) && !partners_.empty();
+  if (carry) {
+    auto spring_at = [&](int k) { return with_history_ ? springs_[k] : TangentialSpring{}; };
+    auto memory_at = [&](int k) { return with_memory_ ? memory_[k] : ShapedContactMemory{}; };
     std::size_t active = 0;
-    for (const TangentialSpring& s : springs_) active += s.stiffness != 0.0 ? 1 : 0;
+    for (std::size_t k = 0; k < partners_.size(); ++k)
+      active += spring_at(static_cast<int>(k)).stiffness != 0.0 || !memory_at(static_cast<int>(k)).empty();
     history.reserve(active);
     const int n_old = static_cast<int>(offsets_.size()) - 1;
     for (int i = 0; i < n_old; ++i) {
       for (int k = offsets_[i]; k < offsets_[i + 1]; ++k) {
-        const TangentialSpring& s = springs_[k];
-        if (s.stiffness == 0.0) continue;  // not in contact
+        const TangentialSpring s = spring_at(k);
+        const ShapedContactMemory m = memory_at(k);
+        if (s.stiffness == 0.0 && m.empty()) continue;  // nothing to carry
         const GlobalId a = p.id[i];
         const GlobalId b = p.id[partners_[k]];
         if (a < b)
-          history.push_back({a, b, s});
+          history.push_back({a, b, s, m});
         else
-          history.push_back({b, a, TangentialSpring{-s.force, s.stiffness}});
+          history.push_back({b, a, TangentialSpring{-s.force, s.stiffness}, m.reversed()});
       }
     }
   }
@@ -99,15 +105,18 @@ void VerletList::rebuild(ParticleStore& p) {
   // 4. Carry the springs over.
   std::sort(history.begin(), history.end());
   springs_.assign(with_history_ ? partners_.size() : 0, TangentialSpring{});
-  if (with_history_ && !history.empty()) {
+  memory_.assign(with_memory_ ? partners_.size() : 0, ShapedContactMemory{});
+  if (!history.empty()) {
     for (int i = 0; i < n; ++i) {
       for (int k = offsets_[i]; k < offsets_[i + 1]; ++k) {
         const GlobalId a = p.id[i];
         const GlobalId b = p.id[partners_[k]];
-        const CarriedSpring key{std::min(a, b), std::max(a, b), {}};
+        const CarriedSpring key{std::min(a, b), std::max(a, b), {}, {}};
         const auto it = std::lower_bound(history.begin(), history.end(), key);
-        if (it != history.end() && it->lo == key.lo && it->hi == key.hi)
+        if (it == history.end() || it->lo != key.lo || it->hi != key.hi) continue;
+        if (with_history_)
           springs_[k] = a < b ? it->spring : TangentialSpring{-it->spring.force, it->spring.stiffness};
+        if (with_memory_) memory_[k] = a < b ? it->memory : it->memory.reversed();
       }
     }
   }

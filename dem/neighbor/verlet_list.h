@@ -38,6 +38,11 @@ class VerletList {
   [[nodiscard]] const std::vector<int>& partners() const { return partners_; }
   [[nodiscard]] std::vector<TangentialSpring>& springs() { return springs_; }
   [[nodiscard]] const std::vector<TangentialSpring>& springs() const { return springs_; }
+  // Ellipsoid scenes: each slot also keeps its pair's contact memory (contact/contact_response.h:
+  // the warm-start normal and the Hertz radius frozen at first touch); carried over rebuilds
+  // like the springs.
+  void keep_contact_memory() { with_memory_ = true; }
+  [[nodiscard]] std::vector<ShapedContactMemory>& contact_memory() { return memory_; }
   [[nodiscard]] long builds() const { return builds_; }
   [[nodiscard]] double skin() const { return skin_; }
   [[nodiscard]] std::size_t num_pairs() const { return partners_.size(); }
@@ -47,10 +52,12 @@ class VerletList {
   double cell_size_;
   double skin_;
   bool with_history_;
+  bool with_memory_ = false;
   long builds_ = 0;
   std::vector<int> offsets_;               // CSR: pairs of i are partners_[offsets_[i] .. offsets_[i+1])
   std::vector<int> partners_;              // j > i in the current local order
   std::vector<TangentialSpring> springs_;  // tangential spring per pair slot
+  std::vector<ShapedContactMemory> memory_;  // per pair slot, normal from i to j
   std::vector<Vec3> x_at_build_;
 };
 

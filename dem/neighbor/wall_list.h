@@ -17,6 +17,7 @@ class WallNeighborList {
     std::vector<int> particle;             // local index
     std::vector<GlobalId> id;              // global id, for carrying springs over rebuilds
     std::vector<TangentialSpring> spring;  // empty when the scene has no wall friction
+    std::vector<double> r_star;            // Hertz radius frozen at first touch (ellipsoid scenes)
   };
 
   WallNeighborList(double skin, bool with_history) : skin_(skin), with_history_(with_history) {}
@@ -24,12 +25,15 @@ class WallNeighborList {
   // Call after every change of the particles' local order (i.e. after VerletList::rebuild).
   void rebuild(const ParticleStore& p, const std::vector<PlaneWall>& walls);
 
+  // Ellipsoid scenes: keep each entry's frozen Hertz radius (contact_response.h).
+  void keep_contact_radii() { with_radii_ = true; }
   [[nodiscard]] std::vector<Entries>& walls() { return lists_; }
   [[nodiscard]] const std::vector<Entries>& walls() const { return lists_; }
 
  private:
   double skin_;
   bool with_history_;
+  bool with_radii_ = false;
   std::vector<Entries> lists_;
 };
 

@@ -51,8 +51,8 @@ DeterministicForceResult compute(const DeterministicForceInput& in) {
     ContactKinematics kin;
     kin.normal = -wall.normal;
     kin.overlap = ri - gap;
-    kin.arm_i = gap;
-    kin.arm_j = 0.0;
+    kin.lever_i = gap * kin.normal;
+    kin.lever_j = Vec3::Zero();
     kin.v_i = p.v[i];
     kin.v_j = Vec3::Zero();
     if constexpr (E::rotation) {
@@ -105,8 +105,10 @@ DeterministicForceResult compute(const DeterministicForceInput& in) {
     ContactKinematics kin;
     kin.normal = d * (1.0 / dist);
     kin.overlap = delta;
-    kin.arm_i = ri - 0.5 * delta;
-    kin.arm_j = rj - 0.5 * delta;
+    const double arm_i = ri - 0.5 * delta;
+    const double arm_j = rj - 0.5 * delta;
+    kin.lever_i = arm_i * kin.normal;
+    kin.lever_j = -arm_j * kin.normal;
     kin.v_i = p.v[i];
     kin.v_j = p.v[j];
     if constexpr (E::rotation) {
@@ -131,11 +133,11 @@ DeterministicForceResult compute(const DeterministicForceInput& in) {
         out.dissipated.tangential_stiffness_change += ce.tangential_stiffness_change;
       }
     }
-    if constexpr (Record) in.record->push_back({i, j, p.x[i] + kin.arm_i * kin.normal, cf.on_i});
+    if constexpr (Record) in.record->push_back({i, j, p.x[i] + kin.lever_i, cf.on_i});
     if constexpr (E::rotation) {
       const Vec3 arm_x_f = kin.normal.cross(cf.on_i);
-      l.torque_lo[k] = kin.arm_i * arm_x_f;
-      l.torque_hi[k] = kin.arm_j * arm_x_f;
+      l.torque_lo[k] = arm_i * arm_x_f;
+      l.torque_hi[k] = arm_j * arm_x_f;
     }
     ++out.pair_contacts;
     const double r_min = std::min(ri, rj);

@@ -64,6 +64,10 @@ ParallelSimulation::ParallelSimulation(const SceneConfig& scene, const ParticleS
       kernels_(select_deterministic_forces(scene.effects)),
       energy_tracking_(scene.effects.energy_tracking),
       material_(ContactMaterial::from(scene.particles.material, scene.friction, scene.damping_ratio)) {
+  if (particles.has_shapes())
+    throw Error(
+        "the MPI DEM does not yet carry ellipsoids (orientation, semi-axes, contact normals): run "
+        "ellipsoid scenes on one rank");
   if (!scene.effects.wall_friction) {
     for (auto& w : walls_) w.friction = 0.0;
   }

@@ -124,7 +124,7 @@ std::vector<ParticleStressShare> particle_stress_shares(const ParticleStore& p, 
   for (int i = 0; i < n_owned; ++i) {
     const int c = cell[i];
     if (c < 0) continue;
-    add_grain_count(out[i].sums, p.radius[i]);
+    add_grain_count(out[i].sums, p.volume(static_cast<std::size_t>(i)));
     add_grain_terms(out[i].sums, p, static_cast<std::size_t>(i), centre[c], dynamics);
   }
   return out;

@@ -88,6 +88,26 @@ ParticleStore fill_container(const SceneConfig& s) {
   ParticleStore p;
   p.reserve(radii.size());
   const long n = static_cast<long>(radii.size());
+  // Shapes and orientations from a stream of their own: the positions and velocities of a
+  // scene do not change when its shapes do.
+  std::mt19937_64 shape_rng(s.fill.seed ^ 0x9e3779b97f4a7c15ULL);
+  const std::vector<GrainShape>& shapes = s.particles.shapes;
+  const bool ellipsoids = has_ellipsoids(shapes);
+  const std::vector<int> shape_of = assign_shapes(shapes, n, shape_rng);
+  auto add = [&](long k, const Vec3& x) {
+    const GrainShape shape = shapes.empty() ? GrainShape{} : shapes[shape_of[k]];
+    if (!ellipsoids || shape.is_sphere()) {
+      p.add_sphere(k, radii[k], density, x, velocity(), Vec3::Zero());
+      if (!ellipsoids) return;
+    } else {
+      p.add_ellipsoid(k, shape.semi_axes(radii[k]), density, x, random_orientation(shape_rng), velocity(),
+                      Vec3::Zero());
+      return;
+    }
+    // A sphere in a mixed scene draws an orientation too, so the stream does not depend on
+    // which grains are spheres.
+    (void)random_orientation(shape_rng);
+  };
   if (s.fill.method == FillMethod::lattice) {
     const LatticeShape l = lattice_shape(s, r_max);
     const double gap = l.pitch - 2.0 * r_max;
@@ -98,7 +118,7 @@ ParticleStore fill_container(const SceneConfig& s) {
       Vec3 x(l.margin_x + (in_layer % l.nx) * l.pitch, l.margin_y + (in_layer / l.nx) * l.pitch,
              s.fill.bottom_gap + r_max + jitter + layer * l.pitch);
       if (jitter > 0.0) x += jitter * Vec3(u(rng), u(rng), u(rng));
-      p.add_sphere(k, radii[k], density, x, velocity(), Vec3::Zero());
+      add(k, x);
     }
     return p;
   }
@@ -149,7 +169,7 @@ ParticleStore fill_container(const SceneConfig& s) {
       throw Error(m.str());
     }
   }
-  for (long k = 0; k < n; ++k) p.add_sphere(k, radii[k], density, pos[k], velocity(), Vec3::Zero());
+  for (long k = 0; k < n; ++k) add(k, pos[k]);
   return p;
 }
 

@@ -9,6 +9,7 @@
 #include "dem/contact/effects.h"
 #include "dem/core/material.h"
 #include "dem/core/types.h"
+#include "dem/scene/grain_shape.h"
 
 namespace upgrain::dem {
 
@@ -23,6 +24,9 @@ struct ParticleSpec {
   // Empty gradation: monodisperse spheres of `radius`.
   double radius = 1.5e-3;
   std::vector<GradationPoint> gradation;
+  // Empty: spheres. Otherwise the mix of shapes; the radius above is each grain's major
+  // semi-axis a, and orientations are uniformly random.
+  std::vector<GrainShape> shapes;
   Material material;
 };
 

@@ -11,8 +11,10 @@
 // which needs no inverse: slivers of near-zero volume carry near-zero weight instead of
 // blowing up. An affine motion x = F X + c gives dx_t = F dX_t, hence exactly F.
 // L is the same with (X, x) replaced by (x, v), tessellating the current positions.
+#include <array>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "dem/core/types.h"
 
@@ -26,9 +28,29 @@ struct TessellationGradient {
   long tetrahedra = 0;
 };
 
+// The Delaunay tetrahedra of a point set (CGAL), as indices into the set, in CGAL's order
+// of finite cells, each positively oriented. Keeping them lets F be taken again for new
+// current positions of the same reference set without tessellating it again.
+struct DelaunayTetrahedra {
+  bool valid = false;
+  std::string reason;  // why not valid; empty when valid
+  std::vector<std::array<int, 4>> tetrahedra;
+};
+
+// Invalid with the reason for fewer than 4 points, non-finite values, or points that span
+// less than three dimensions (the best fit's second-moment rule, then CGAL's dimension).
+DelaunayTetrahedra delaunay_tetrahedra(std::span<const Vec3> points);
+
+// The volume-averaged gradient over given tetrahedra of `reference` (from
+// delaunay_tetrahedra(reference)). Invalid when the lengths differ, a current value is not
+// finite, or the tetrahedra have no volume.
+TessellationGradient gradient_over_tetrahedra(const DelaunayTetrahedra& tessellation,
+                                              std::span<const Vec3> reference, std::span<const Vec3> current);
+
 // F from reference and current positions: the tessellation is that of the reference
-// positions. Invalid with the reason (fewer than 4 points, different lengths, non-finite
-// values, or points that span less than three dimensions).
+// positions (delaunay_tetrahedra, then gradient_over_tetrahedra). Invalid with the reason
+// (fewer than 4 points, different lengths, non-finite values, or points that span less
+// than three dimensions).
 TessellationGradient equivalent_continuum_deformation(std::span<const Vec3> reference,
                                                       std::span<const Vec3> current);
 

@@ -20,8 +20,8 @@ std::string_view name_of(StrainDefinition d) {
 
 std::string_view name_of(StrainReason r) {
   static constexpr std::string_view names[kStrainReasonCount] = {
-      "valid",         "too few particles", "degenerate set",  "J <= 0",
-      "near-singular", "non-finite",        "previous invalid"};
+      "valid",         "too few particles", "degenerate set",   "J <= 0",
+      "near-singular", "non-finite",        "previous invalid", "no earlier output"};
   const auto i = static_cast<int>(r);
   return i >= 0 && i < kStrainReasonCount ? names[i] : "unknown";
 }
@@ -88,7 +88,9 @@ struct Gradient {
   double residual_rms = 0.0;
 };
 
-Gradient gradient(StrainDefinition d, std::span<const Vec3> a, std::span<const Vec3> b) {
+// `tetrahedra`: the tessellation of `a` when it is known (the tessellation's F).
+Gradient gradient(StrainDefinition d, std::span<const Vec3> a, std::span<const Vec3> b,
+                  const DelaunayTetrahedra* tetrahedra = nullptr) {
   Gradient g;
   if (a.size() < static_cast<std::size_t>(kMinFitPoints)) {
     g.reason = StrainReason::too_few_particles;
@@ -110,7 +112,8 @@ Gradient gradient(StrainDefinition d, std::span<const Vec3> a, std::span<const V
       g.reason = refused(a.size(), a, b);
       return g;
     }
-    const TessellationGradient t = equivalent_continuum_deformation(a, b);
+    const TessellationGradient t =
+        tetrahedra ? gradient_over_tetrahedra(*tetrahedra, a, b) : equivalent_continuum_deformation(a, b);
     if (!t.valid) {
       g.reason = refused(a.size(), a, b);
       return g;
@@ -121,10 +124,12 @@ Gradient gradient(StrainDefinition d, std::span<const Vec3> a, std::span<const V
   return g;
 }
 
-// One cell, one definition: X the reference positions, x and v the current state of the set.
+// One cell, one definition: X the reference positions, x and v the current state of the set;
+// `tetrahedra` the tessellation of X when known.
 void evaluate_cell(CellStrainFields& out, int c, StrainDefinition d, std::span<const Vec3> X,
-                   std::span<const Vec3> x, std::span<const Vec3> v, const CellStrainFields* previous) {
-  const Gradient f = gradient(d, X, x);
+                   std::span<const Vec3> x, std::span<const Vec3> v, const CellStrainFields* previous,
+                   const DelaunayTetrahedra* tetrahedra) {
+  const Gradient f = gradient(d, X, x, tetrahedra);
   out.f_reason[c] = f.reason;
   if (f.reason == StrainReason::valid) {
     const StrainMeasures m = strain_measures(f.value);
@@ -236,10 +241,12 @@ GridStrain grid_strain(const StrainReference& reference, const RegularGrid& curr
   for (const Match& m : matches) ++start[m.cell + 1];
   std::partial_sum(start.begin(), start.end(), start.begin());
   std::vector<Vec3> X(matches.size()), x(matches.size()), v(matches.size());
+  std::vector<GlobalId> ids(matches.size());
   {
     std::vector<std::size_t> fill(start.begin(), start.end() - 1);
     for (const Match& m : matches) {
       const std::size_t at = fill[m.cell]++;
+      ids[at] = reference.id[m.ref];
       X[at] = reference.x[m.ref];
       x[at] = now.x[m.cur];
       v[at] = now.v[m.cur];
@@ -253,14 +260,33 @@ GridStrain grid_strain(const StrainReference& reference, const RegularGrid& curr
     g.fields[d].resize(cells);
   }
   const std::span<const Vec3> all_X(X), all_x(x), all_v(v);
+  const std::span<const GlobalId> all_ids(ids);
+  const int tessellation = static_cast<int>(StrainDefinition::tessellation);
+  if (g.computed[tessellation]) g.reference_tessellations.resize(cells);
+  const bool reuse = previous && previous->reference_step == reference.step &&
+                     previous->reference_tessellations.size() == static_cast<std::size_t>(cells);
   for (int c = 0; c < cells; ++c) {
     const std::size_t b = start[c], n = start[c + 1] - start[c];
     g.particles[c] = static_cast<long>(n);
+    // The reference tessellation of the cell's set: the previous one while the set is the
+    // same, else a new one.
+    const DelaunayTetrahedra* tetrahedra = nullptr;
+    if (g.computed[tessellation] && n >= static_cast<std::size_t>(kMinFitPoints)) {
+      std::shared_ptr<const CellTessellation>& t = g.reference_tessellations[c];
+      const auto set = all_ids.subspan(b, n);
+      if (reuse && previous->reference_tessellations[c] &&
+          std::ranges::equal(previous->reference_tessellations[c]->ids, set))
+        t = previous->reference_tessellations[c];
+      else
+        t = std::make_shared<const CellTessellation>(CellTessellation{
+            std::vector<GlobalId>(set.begin(), set.end()), delaunay_tetrahedra(all_X.subspan(b, n))});
+      tetrahedra = &t->tetrahedra;
+    }
     for (int d = 0; d < kStrainDefinitionCount; ++d) {
       if (!g.computed[d]) continue;
       const CellStrainFields* prev = previous && previous->computed[d] ? &previous->fields[d] : nullptr;
       evaluate_cell(g.fields[d], c, static_cast<StrainDefinition>(d), all_X.subspan(b, n),
-                    all_x.subspan(b, n), all_v.subspan(b, n), prev);
+                    all_x.subspan(b, n), all_v.subspan(b, n), prev, d == tessellation ? tetrahedra : nullptr);
     }
   }
   return g;

@@ -17,11 +17,13 @@
 // all its fields of that result are zero.
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string_view>
 #include <vector>
 
 #include "dem/core/types.h"
+#include "dem/strain/equivalent_continuum.h"
 #include "dem/stress/grid_stress.h"
 
 namespace upgrain::dem {
@@ -43,8 +45,9 @@ enum class StrainReason : std::int32_t {
   near_singular = 4,          // smallest principal stretch < kMinStretchRatio x largest
   non_finite = 5,             // a position, velocity or result is not finite
   previous_invalid = 6,       // F_inc only: the previous evaluation's F of the cell is not valid
+  no_history = 7,             // stress rates only: no earlier output with a stress to difference
 };
-inline constexpr int kStrainReasonCount = 7;
+inline constexpr int kStrainReasonCount = 8;
 std::string_view name_of(StrainReason r);
 
 // The state at t0, sorted by global id.
@@ -100,6 +103,15 @@ struct CellStrainFields {
   void resize(int cells);
 };
 
+// The Delaunay tetrahedra of one cell's reference positions, kept from one evaluation to
+// the next: while a cell's set is the same (always for a Lagrangian set that loses no
+// particle), the tessellation's F needs no new tessellation, which halves its cost
+// (docs/strain.md "Cost"). F is bitwise the same either way.
+struct CellTessellation {
+  std::vector<GlobalId> ids;  // the set, in id order
+  DelaunayTetrahedra tetrahedra;
+};
+
 struct GridStrain {
   StrainSet set = StrainSet::lagrangian;
   double reference_time = 0.0;
@@ -115,6 +127,9 @@ struct GridStrain {
   long untracked = 0;
   std::array<bool, kStrainDefinitionCount> computed = {false, false};
   std::array<CellStrainFields, kStrainDefinitionCount> fields;
+  // Per cell, with the tessellation: the reference tessellation used (shared with the
+  // evaluations that reuse it); null for sets of fewer than 4.
+  std::vector<std::shared_ptr<const CellTessellation>> reference_tessellations;
 
   [[nodiscard]] const CellStrainFields& operator[](StrainDefinition d) const {
     return fields[static_cast<int>(d)];
@@ -122,7 +137,8 @@ struct GridStrain {
 };
 
 // Evaluates every cell. `previous` (the last evaluation from the same reference, same cell
-// count) gives F_prev for the increment; without it F_prev = 1, so F_inc = F.
+// count) gives F_prev for the increment; without it F_prev = 1, so F_inc = F. Its reference
+// tessellations are reused for the cells whose set has not changed.
 GridStrain grid_strain(const StrainReference& reference, const RegularGrid& current_grid,
                        const ParticleKinematics& now, double time, long step,
                        const GridStrainOptions& options, const GridStrain* previous = nullptr);

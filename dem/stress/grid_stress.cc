@@ -37,17 +37,18 @@ StressSums& StressSums::operator+=(const StressSums& o) {
   return *this;
 }
 
-void add_grain_count(StressSums& s, double radius) {
+void add_grain_count(StressSums& s, double volume) {
   ++s.particles;
-  s.solid_volume += 4.0 / 3.0 * std::numbers::pi * std::pow(radius, 3);
+  s.solid_volume += volume;
 }
 
 void add_grain_terms(StressSums& s, const ParticleStore& p, std::size_t i, const Vec3& centre,
                      const GrainDynamics& dynamics) {
   s.de_saxce -= p.force[i] * (p.x[i] - centre).transpose();
   if (!dynamics.rotation) return;
-  // Spheres: J = I 1, so w x (J w) = 0 and w_dot = T / I.
-  const Mat3 inertia = Mat3::Identity() / p.inv_inertia[i];
+  // World-frame inertia Q J_body Q^T (spheres: I 1, so w x (J w) = 0 and w_dot = T / I);
+  // w_dot from the full Euler equations (rigid_body_inertia.h).
+  const Mat3 inertia = p.inertia_world(i);
   const Vec3 omega_dot = angular_acceleration(inertia, p.omega[i], p.torque[i]);
   s.inertial += rigid_body_inertial_moment(second_moment_from_inertia(inertia), p.omega[i], omega_dot);
 }
@@ -94,7 +95,7 @@ GridStress grid_stress(const ParticleStore& p, const std::vector<ContactSample>&
   for (int c = 0; c < cells; ++c) centre[c] = grid.cell_centre(c);
   for (std::size_t i = 0; i < p.size(); ++i) {
     cell[i] = grid.cell_of(p.x[i]);
-    if (cell[i] >= 0) add_grain_count(sums[cell[i]], p.radius[i]);
+    if (cell[i] >= 0) add_grain_count(sums[cell[i]], p.volume(i));
   }
   for (const ContactSample& s : contacts) {
     const int ca = cell[s.a];

@@ -107,7 +107,7 @@ inline void add_external_contact(StressSums& s, const Vec3& point, const Vec3& x
 // by add_grain_count().
 void add_grain_terms(StressSums& s, const ParticleStore& p, std::size_t i, const Vec3& centre,
                      const GrainDynamics& dynamics);
-void add_grain_count(StressSums& s, double radius);
+void add_grain_count(StressSums& s, double volume);
 
 // Writes cell c of g (arrays already sized) from its sums over a cell of volume v.
 void finish_cell(GridStress& g, int c, const StressSums& s, double v);

@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Checks an upgrain output folder: every XDMF data item points at an HDF5 dataset of the
 stated shape, snapshots hold particles sorted by id, the time series parses and its
-columns match its header, and summary.json is complete."""
+columns match its header, and summary.json is complete; the grid stress and strain files
+are consistent, the objective stress rates recompute from the files' own data, and
+report.md has a sane Strain section (check_strain_report.py)."""
 import csv
 import json
 import os
@@ -10,6 +12,8 @@ import xml.etree.ElementTree as ET
 
 import h5py
 import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))  # before any chdir
 
 
 def check_cell_xdmf(xdmf):
@@ -130,3 +134,95 @@ with h5py.File(os.path.join("grid_strain", strain_files[-1]), "r") as h:
 leftovers = [f for root, _, files in os.walk(".") for f in files if ".tmp." in f]
 assert not leftovers, f"temporary files left: {leftovers}"
 print(f"strain ok: {strain_items} grid-strain items, {len(strain_files)} grid-strain evaluations")
+# Objective stress rates (docs/strain.md "Stress rates over time"): every strain output with
+# a grid stress has them (the t0 = 0 reference has no stress yet); the differences use 1,
+# 2, then 3 outputs; the rates recomputed here from the files' own times, stresses, L and R
+# by the backward difference (eq. (10), last output) and eq. (9) match the written ones; the
+# validity flags match the codes; the CSV columns match the HDF5 files.
+def read(f):
+    with h5py.File(os.path.join("grid_strain", f), "r") as h:
+        if "rates" not in h:
+            return None
+        out = {"time": float(h.attrs["time"]), "step": int(h.attrs["step"]),
+               "used": int(h["rates"].attrs["outputs_used"]),
+               "formula": h["rates"].attrs["formula"],
+               "stress": h["/rates/stress"][:].reshape(-1, 3, 3)}
+        for d in definitions:
+            for key in ("L", "R", "F_reason", "L_reason", "stress_rate", "jaumann_rate", "green_naghdi_rate",
+                        "truesdell_rate", "oldroyd_rate", "rate_valid", "rate_reason", "green_naghdi_valid",
+                        "green_naghdi_reason"):
+                v = h[d][key][:]
+                out[d + "/" + key] = v.reshape(-1, 3, 3) if v.ndim == 2 and v.shape[1] == 9 else v.reshape(-1)
+        return out
+
+
+def backward(t, f):
+    """d/dt at the last of 2 or 3 outputs (eq. (10), last output; two-point for 2)."""
+    if len(t) == 2:
+        return (f[1] - f[0]) / (t[1] - t[0])
+    h1, h2 = t[1] - t[0], t[2] - t[1]
+    return (h2 / (h1 * (h1 + h2))) * f[0] - ((h1 + h2) / (h1 * h2)) * f[1] + \
+        ((h1 + 2 * h2) / (h2 * (h1 + h2))) * f[2]
+
+
+def skew(a):
+    return 0.5 * (a - np.swapaxes(a, -1, -2))
+
+
+outputs = [read(f) for f in strain_files]
+assert outputs[0] is None, "the t0 = 0 reference has no grid stress, hence no rates"
+with_rates = [o for o in outputs[1:] if o is not None]
+assert len(with_rates) == len(strain_files) - 1 and len(with_rates) >= 3, len(with_rates)
+assert [o["used"] for o in with_rates[:3]] == [1, 2, 3] and all(o["used"] == 3 for o in with_rates[3:])
+assert all(o["formula"] in (b"bagi", "bagi") for o in with_rates)
+checked = 0
+for k, o in enumerate(with_rates):
+    win = with_rates[max(0, k - 2):k + 1]
+    t = [w["time"] for w in win]
+    for d in definitions:
+        reason, valid = o[d + "/rate_reason"], o[d + "/rate_valid"] == 1
+        gn_reason, gn_valid = o[d + "/green_naghdi_reason"], o[d + "/green_naghdi_valid"] == 1
+        assert np.array_equal(valid, reason == 0) and np.array_equal(gn_valid, gn_reason == 0), (k, d)
+        for key in ("stress_rate", "jaumann_rate", "truesdell_rate", "oldroyd_rate"):
+            assert np.all(o[d + "/" + key][~valid] == 0.0), (k, d, key)
+        assert np.all(o[d + "/green_naghdi_rate"][~gn_valid] == 0.0), (k, d)
+        if k == 0:
+            assert not valid.any() and np.all(reason == names.index("no earlier output")), (d, reason)
+            continue
+        bad_l = o[d + "/L_reason"] != 0
+        assert np.array_equal(reason[bad_l], o[d + "/L_reason"][bad_l]), (k, d)
+        s = o["stress"]
+        sd = backward(t, np.array([w["stress"] for w in win]))
+        L = o[d + "/L"]
+        W = skew(L)
+        scale = np.abs(sd).max() + np.abs(L).max() * np.abs(s).max() + 1e-300
+        expect = {"stress_rate": sd,
+                  "jaumann_rate": sd - W @ s + s @ W,
+                  "truesdell_rate": sd - L @ s - s @ np.swapaxes(L, 1, 2) + np.trace(L, axis1=1, axis2=2)[:, None,
+                                                                                                        None] * s,
+                  "oldroyd_rate": sd - L @ s - s @ np.swapaxes(L, 1, 2)}
+        for key, e in expect.items():
+            err = np.abs(o[d + "/" + key][valid] - e[valid]).max(initial=0.0)
+            assert err <= 1e-9 * scale, (k, d, key, err, scale)
+        R = np.array([w[d + "/R"] for w in win])
+        omega = skew(backward(t, R) @ np.swapaxes(R[-1], 1, 2))
+        gn = sd - omega @ s + s @ omega
+        err = np.abs(o[d + "/green_naghdi_rate"][gn_valid] - gn[gn_valid]).max(initial=0.0)
+        assert err <= 1e-9 * scale, (k, d, "green_naghdi_rate", err)
+        checked += int(valid.sum())
+assert checked > 0, "no valid rate anywhere"
+last = with_rates[-1]
+rows = [r for r in sdata if int(r[1]) == last["step"] and r[sheader.index("definition")] == "best_fit"]
+for r in rows:
+    c = int(r[sheader.index("cell")])
+    assert int(r[sheader.index("rate_reason")]) == last["best_fit/rate_reason"][c]
+    for key, col in (("jaumann_rate", "jaumann"), ("green_naghdi_rate", "green_naghdi"),
+                     ("truesdell_rate", "truesdell"), ("oldroyd_rate", "oldroyd")):
+        v = np.array([float(x) for x in r[sheader.index(col + "_xx"):sheader.index(col + "_zz") + 1]])
+        assert np.array_equal(v, last["best_fit/" + key][c].reshape(9)), (c, key)
+print(f"rates ok: {len(with_rates)} outputs with rates, {checked} valid cell rates recomputed")
+# report.md: the run's account with the Strain section and its plots.
+sys.path.insert(0, HERE)
+from check_strain_report import check_strain_report  # noqa: E402
+
+print(f"strain report ok: {check_strain_report()} outputs")

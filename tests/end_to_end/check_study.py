@@ -18,6 +18,8 @@ import sys
 import h5py
 import numpy as np
 
+HERE = os.path.dirname(os.path.abspath(__file__))  # before any chdir
+
 folder = sys.argv[1]
 os.chdir(folder)
 s = json.load(open("study.json"))
@@ -62,7 +64,13 @@ for name in ("report.md", "comparison_cells.csv", "relative_l2.csv", "profiles_s
 report = open("report.md").read()
 for needle in ("Headline figures", "Timings", "profiles_szz.png", "bagi"):
     assert needle in report, needle
+# tiny_study.prm enables the strain: the report has its section and plots.
+sys.path.insert(0, HERE)
+from check_strain_report import check_strain_report  # noqa: E402
+
+strain_outputs = check_strain_report()
 leftovers = [f for root, _, files in os.walk(".") for f in files if ".tmp" in f]
 assert not leftovers, f"temporary files left: {leftovers}"
+print(f"strain report ok: {strain_outputs} outputs")
 print(f"study ok: floor carries {100 * floor_share:.2f} % of the weight, sum V s_zz = {total:.6g} vs "
       f"-M g z_mean = {moment:.6g}, level means of s_zz {['%.4g' % v for v in szz]}")

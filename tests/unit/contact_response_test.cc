@@ -14,8 +14,8 @@ ContactKinematics kinematics(double delta, const Vec3& vi = Vec3::Zero()) {
   ContactKinematics k;
   k.normal = Vec3(0, 0, 1);
   k.overlap = delta;
-  k.arm_i = 1e-3;
-  k.arm_j = 1e-3;
+  k.lever_i = 1e-3 * k.normal;
+  k.lever_j = -1e-3 * k.normal;
   k.v_i = vi;
   k.v_j = Vec3::Zero();
   k.omega_i = k.omega_j = Vec3::Zero();

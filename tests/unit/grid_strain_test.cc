@@ -269,3 +269,71 @@ TEST(GridStrain, InvertedMissingAndNonFiniteAreReportedNotNaN) {
   twice[1] = twice[0];
   EXPECT_THROW(make_strain_reference(twice, p.x, p.grid, 0.0, 0), upgrain::Error);
 }
+
+// The reference tessellation of a cell is kept while its set is the same (grid_strain.h,
+// CellTessellation): F is then bitwise the F of a fresh tessellation, and a cell whose set
+// changed (a particle lost), or an evaluation from another reference, tessellates anew.
+TEST(GridStrain, ReferenceTessellationIsReusedWhileTheSetIsTheSame) {
+  const Packing p = make_packing(11);
+  const StrainReference ref = make_strain_reference(p.id, p.x, p.grid, 0.0, 0);
+  // Non-affine motions, so that F depends on the tessellation.
+  auto wobble = [&](double a, unsigned seed) {
+    State s = move(p, Mat3::Identity(), Vec3::Zero(), Mat3::Zero(), Vec3::Zero(), seed);
+    for (Vec3& x : s.x) x += a * Vec3(std::sin(90 * x.y()), std::cos(70 * x.z()), std::sin(80 * x.x()));
+    return s;
+  };
+  GridStrainOptions o;
+  o.definitions = {false, true};
+  const int tess = static_cast<int>(StrainDefinition::tessellation);
+  const GridStrain g1 = grid_strain(ref, p.grid, wobble(1e-3, 1).view(), 1.0, 1, o);
+  const State s2 = wobble(2e-3, 2);
+  const GridStrain g2 = grid_strain(ref, p.grid, s2.view(), 2.0, 2, o, &g1);
+  const GridStrain fresh = grid_strain(ref, p.grid, s2.view(), 2.0, 2, o);
+  int reused = 0, differs = 0;
+  for (int c = 0; c < p.grid.num_cells(); ++c) {
+    if (g1.particles[c] < kMinFitPoints) {
+      EXPECT_EQ(g2.reference_tessellations[c], nullptr);
+      continue;
+    }
+    EXPECT_EQ(g2.reference_tessellations[c].get(), g1.reference_tessellations[c].get()) << c;
+    EXPECT_NE(fresh.reference_tessellations[c].get(), g1.reference_tessellations[c].get()) << c;
+    reused += g2.fields[tess].f_reason[c] == StrainReason::valid;
+    EXPECT_EQ(g2.fields[tess].f_reason[c], fresh.fields[tess].f_reason[c]);
+    EXPECT_TRUE(g2.fields[tess].deformation_gradient[c] == fresh.fields[tess].deformation_gradient[c]) << c;
+    differs += (g2.fields[tess].deformation_gradient[c] - g1.fields[tess].deformation_gradient[c]).norm() > 0;
+  }
+  EXPECT_GT(reused, 8);
+  EXPECT_EQ(differs, reused) << "the motion changed F in every valid cell";
+
+  // One particle (the first of the shuffled store) is lost: its cell tessellates anew, the
+  // others reuse.
+  State s3 = wobble(3e-3, 3);
+  const std::size_t lost = 0;
+  int lost_cell = -1;
+  for (std::size_t k = 0; k < p.id.size(); ++k)
+    if (p.id[k] == s3.id[lost]) lost_cell = p.grid.cell_of(p.x[k]);
+  ASSERT_GE(g2.particles[lost_cell], kMinFitPoints + 1);
+  s3.id.erase(s3.id.begin() + static_cast<long>(lost));
+  s3.x.erase(s3.x.begin() + static_cast<long>(lost));
+  s3.v.erase(s3.v.begin() + static_cast<long>(lost));
+  const GridStrain g3 = grid_strain(ref, p.grid, s3.view(), 3.0, 3, o, &g2);
+  const GridStrain fresh3 = grid_strain(ref, p.grid, s3.view(), 3.0, 3, o);
+  EXPECT_EQ(g3.untracked, 1);
+  for (int c = 0; c < p.grid.num_cells(); ++c) {
+    if (g3.particles[c] < kMinFitPoints) continue;
+    if (c == lost_cell) {
+      EXPECT_NE(g3.reference_tessellations[c].get(), g2.reference_tessellations[c].get());
+    } else {
+      EXPECT_EQ(g3.reference_tessellations[c].get(), g2.reference_tessellations[c].get()) << c;
+    }
+    EXPECT_TRUE(g3.fields[tess].deformation_gradient[c] == fresh3.fields[tess].deformation_gradient[c]) << c;
+  }
+  // Another reference: nothing is reused.
+  const StrainReference other = make_strain_reference(p.id, p.x, p.grid, 0.5, 50);
+  const GridStrain g4 = grid_strain(other, p.grid, s2.view(), 4.0, 4, o, &g2);
+  for (int c = 0; c < p.grid.num_cells(); ++c) {
+    if (g4.reference_tessellations[c]) {
+      EXPECT_NE(g4.reference_tessellations[c].get(), g2.reference_tessellations[c].get()) << c;
+    }
+  }
+}

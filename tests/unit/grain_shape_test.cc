@@ -1,0 +1,119 @@
+// Ellipsoid grains in the particle store and in scenes (issue 4, items 1 and 5): mass and
+// principal inertia of a solid ellipsoid, the world inertia, mixed sphere-ellipsoid stores,
+// reordering, the shape mix of a fill and its random orientations, refusal of bad shapes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "dem/core/error.h"
+#include "dem/core/particle_store.h"
+#include "dem/scene/fill.h"
+#include "dem/scene/grain_shape.h"
+
+using namespace upgrain;
+using namespace upgrain::dem;
+
+TEST(EllipsoidGrain, MassInertiaAndRotationalEnergy) {
+  ParticleStore p;
+  const Vec3 ax(3e-3, 2e-3, 1e-3);
+  const Eigen::Quaterniond q(Eigen::AngleAxisd(1.1, Vec3(0.2, 1, -0.4).normalized()));
+  p.add_ellipsoid(7, ax, 2000, Vec3(1, 2, 3), q, Vec3::Zero(), Vec3(4, -5, 6));
+  const double m = 2000 * 4.0 / 3.0 * std::numbers::pi * 6e-9;
+  EXPECT_NEAR(p.mass(0), m, 1e-15 * m);
+  EXPECT_DOUBLE_EQ(p.radius[0], 3e-3);  // bounding radius
+  EXPECT_NEAR(p.volume(0), 4.0 / 3.0 * std::numbers::pi * 6e-9, 1e-22);
+  // Principal moments m (b^2 + c^2) / 5 etc. are the eigenvalues of the world inertia, along
+  // the rotated body axes.
+  const Mat3 i_world = p.inertia_world(0);
+  const Vec3 j = m / 5.0 * Vec3(5e-6, 10e-6, 13e-6);
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 axis = q * Vec3::Unit(k);
+    EXPECT_LE((i_world * axis - j[k] * axis).norm(), 1e-12 * j[k]) << "axis " << k;
+  }
+  EXPECT_LE((i_world - i_world.transpose()).norm(), 1e-15 * i_world.norm());
+  const Vec3 w = p.omega[0];
+  EXPECT_NEAR(p.rotational_energy(0), 0.5 * w.dot(i_world * w), 1e-13 * p.rotational_energy(0));
+  EXPECT_TRUE(p.is_ellipsoid(0));
+  EXPECT_DOUBLE_EQ(p.min_semi_axis(0), 1e-3);
+}
+
+TEST(EllipsoidGrain, MixedStoresAndReorderingKeepShapes) {
+  ParticleStore p;
+  p.add_sphere(0, 2e-3, 2650, Vec3::Zero(), Vec3::Zero(), Vec3::Zero());
+  EXPECT_FALSE(p.has_shapes());
+  p.add_ellipsoid(1, Vec3(3e-3, 2e-3, 1e-3), 2650, Vec3::Ones(), Eigen::Quaterniond::Identity(), Vec3::Zero(),
+                  Vec3::Zero());
+  p.add_sphere(2, 1e-3, 2650, Vec3::Zero(), Vec3::Zero(), Vec3::Zero());
+  ASSERT_TRUE(p.has_shapes());
+  ASSERT_EQ(p.semi_axes.size(), 3u);
+  EXPECT_FALSE(p.is_ellipsoid(0));
+  EXPECT_TRUE(p.is_ellipsoid(1));
+  EXPECT_FALSE(p.is_ellipsoid(2));
+  EXPECT_EQ(p.semi_axes[0], Vec3::Constant(2e-3));
+  EXPECT_NEAR(p.inertia_body[0].x(), 0.4 * p.mass(0) * 4e-6, 1e-20);
+  EXPECT_NEAR(p.inertia_world(2)(0, 0), 0.4 * p.mass(2) * 1e-6, 1e-22);
+  p.permute({2, 0, 1});
+  EXPECT_EQ(p.id[2], 1);
+  EXPECT_TRUE(p.is_ellipsoid(2));
+  EXPECT_EQ(p.semi_axes[2], Vec3(3e-3, 2e-3, 1e-3));
+  EXPECT_EQ(p.semi_axes[0], Vec3::Constant(1e-3));
+}
+
+TEST(EllipsoidGrain, RefusesSemiAxesOutOfOrder) {
+  ParticleStore p;
+  try {
+    p.add_ellipsoid(42, Vec3(1e-3, 2e-3, 1e-3), 2650, Vec3::Zero(), Eigen::Quaterniond::Identity(),
+                    Vec3::Zero(), Vec3::Zero());
+    FAIL() << "accepted b > a";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("particle 42"), std::string::npos) << e.what();
+  }
+}
+
+TEST(GrainShapes, FractionsOrientationsAndValidation) {
+  std::mt19937_64 rng(5);
+  const std::vector<GrainShape> mix = {{1.0, 1.0, 1.0}, {0.8, 0.6, 1.0}, {0.6, 0.4, 2.0}};
+  const std::vector<int> shape = assign_shapes(mix, 1001, rng);
+  long count[3] = {0, 0, 0};
+  for (int k : shape) ++count[k];
+  EXPECT_EQ(count[0] + count[1] + count[2], 1001);
+  EXPECT_LE(std::abs(count[0] - 250.25), 1.0);
+  EXPECT_LE(std::abs(count[2] - 500.5), 1.0);
+  // Uniform over SO(3): unit quaternions whose rotated axis averages to zero.
+  Vec3 mean = Vec3::Zero();
+  const int n = 20000;
+  for (int k = 0; k < n; ++k) {
+    const Eigen::Quaterniond q = random_orientation(rng);
+    ASSERT_NEAR(q.norm(), 1.0, 1e-14);
+    mean += q * Vec3::UnitZ();
+  }
+  EXPECT_LT((mean / n).norm(), 4.0 / std::sqrt(static_cast<double>(n)));
+  EXPECT_THROW(validate_shapes({{1.0, 1.0, 1.0}, {0.4, 0.6, 1.0}}), Error);
+  EXPECT_THROW(validate_shapes({{0.8, 0.6, 0.0}}), Error);
+  EXPECT_NO_THROW(validate_shapes(mix));
+  try {
+    validate_shapes({{1.0, 1.0, 1.0}, {0.4, 0.6, 1.0}});
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("shape 2"), std::string::npos) << e.what();
+  }
+}
+
+TEST(GrainShapes, AFillPlacesTheSameCentresWhateverTheShapes) {
+  SceneConfig s;
+  s.particles.count = 200;
+  s.particles.gradation = {{1e-3, 0.0}, {2.5e-3, 1.0}};
+  s.container.lx = s.container.ly = 0.03;
+  const ParticleStore spheres = fill_container(s);
+  s.particles.shapes = {{1.0, 1.0, 1.0}, {0.8, 0.6, 1.0}, {0.8, 0.4, 1.0}, {0.6, 0.4, 1.0}};
+  const ParticleStore mixed = fill_container(s);
+  ASSERT_TRUE(mixed.has_shapes());
+  long ellipsoids = 0;
+  for (std::size_t i = 0; i < mixed.size(); ++i) {
+    EXPECT_EQ(mixed.x[i], spheres.x[i]);
+    EXPECT_EQ(mixed.radius[i], spheres.radius[i]);  // the major semi-axis
+    EXPECT_DOUBLE_EQ(mixed.semi_axes[i].x(), spheres.radius[i]);
+    ellipsoids += mixed.is_ellipsoid(i) ? 1 : 0;
+  }
+  EXPECT_EQ(ellipsoids, 150);
+}

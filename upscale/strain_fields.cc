@@ -1,0 +1,92 @@
+#include "upscale/strain_fields.h"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "dem/io/grid_strain_output.h"
+#include "upscale/h5_reader.h"
+
+namespace upgrain::upscale {
+
+namespace {
+constexpr const char* kComponents[9] = {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"};
+
+void add_tensor(GridFields& g, const std::string& name, const std::vector<dem::Mat3>& t) {
+  for (int e = 0; e < 9; ++e) {
+    std::vector<double> v(t.size());
+    for (std::size_t c = 0; c < t.size(); ++c) v[c] = t[c](e / 3, e % 3);
+    g.add(name + "_" + kComponents[e], std::move(v));
+  }
+}
+}  // namespace
+
+GridFields grid_fields_from_strain(const dem::GridStrain& strain) {
+  GridFields g;
+  for (int d = 0; d < 3; ++d) {
+    g.n[d] = strain.grid.n[d];
+    g.lo[d] = strain.grid.lo[d];
+    g.hi[d] = strain.grid.hi[d];
+  }
+  g.time = strain.time;
+  g.step = strain.step;
+  for (int d = 0; d < dem::kStrainDefinitionCount; ++d) {
+    if (!strain.computed[d]) continue;
+    const dem::CellStrainFields& f = strain.fields[d];
+    const std::string base = dem::io::field_name(static_cast<dem::StrainDefinition>(d));
+    g.add(base + "_ln_J", f.log_jacobian);
+    g.add(base + "_J", f.jacobian);
+    g.add(base + "_equivalent_shear_strain", f.equivalent_shear_strain);
+    g.add(base + "_equivalent_shear_rate", f.equivalent_shear_rate);
+    g.add(base + "_increment_equivalent_shear_strain", f.increment_equivalent_shear_strain);
+    std::vector<double> valid(f.f_reason.size()), reason(f.f_reason.size());
+    for (std::size_t c = 0; c < f.f_reason.size(); ++c) {
+      valid[c] = f.f_reason[c] == dem::StrainReason::valid ? 1.0 : 0.0;
+      reason[c] = static_cast<double>(f.f_reason[c]);
+    }
+    g.add(base + "_F_valid", std::move(valid));
+    g.add(base + "_F_reason", std::move(reason));
+    add_tensor(g, base + "_F", f.deformation_gradient);
+    add_tensor(g, base + "_hencky", f.hencky);
+  }
+  g.add("particles", std::vector<double>(strain.particles.begin(), strain.particles.end()));
+  return g;
+}
+
+GridFields read_strain_fields(const std::filesystem::path& h5_file) {
+  detail::QuietHdf5 quiet;
+  detail::Reader in(h5_file, "grid-strain file");
+  GridFields g;
+  const auto n = in.read<int>("/grid/n", H5T_NATIVE_INT, 3);
+  const auto lo = in.read<double>("/grid/lo", H5T_NATIVE_DOUBLE, 3);
+  const auto hi = in.read<double>("/grid/hi", H5T_NATIVE_DOUBLE, 3);
+  for (int d = 0; d < 3; ++d) {
+    if (n[d] < 1) throw upgrain::Error(in.where() + "/grid/n has " + std::to_string(n[d]) + " cells");
+    g.n[d] = n[d];
+    g.lo[d] = lo[d];
+    g.hi[d] = hi[d];
+  }
+  g.time = in.attribute("time");
+  g.step = static_cast<long>(in.attribute("step"));
+  const auto cells = static_cast<hsize_t>(g.num_cells());
+  for (int d = 0; d < dem::kStrainDefinitionCount; ++d) {
+    const std::string base = dem::io::field_name(static_cast<dem::StrainDefinition>(d));
+    const std::string group = "/" + base + "/";
+    if (!in.exists("/" + base)) continue;
+    for (const char* f : {"ln_J", "J", "equivalent_shear_strain", "equivalent_shear_rate",
+                          "increment_equivalent_shear_strain", "F_valid", "F_reason"})
+      g.add(base + "_" + f, in.read<double>(group + f, H5T_NATIVE_DOUBLE, cells));  // int32 -> double exactly
+    for (const char* t : {"F", "hencky"}) {
+      const auto flat = in.read<double>(group + t, H5T_NATIVE_DOUBLE, cells, 9);
+      for (int e = 0; e < 9; ++e) {
+        std::vector<double> v(cells);
+        for (hsize_t c = 0; c < cells; ++c) v[c] = flat[9 * c + e];
+        g.add(base + "_" + t + "_" + kComponents[e], std::move(v));
+      }
+    }
+  }
+  g.add("particles", in.read<double>("/cells/particles", H5T_NATIVE_DOUBLE, cells));
+  return g;
+}
+
+}  // namespace upgrain::upscale
