@@ -2,6 +2,8 @@
 // equilibrium (docs/stress.md; brief section 7):
 //   stress_examples symmetry OUT N...        Tables 2 and 4: symmetry against particle
 //                                            count, every formula on each bed;
+//   stress_examples ellipsoids OUT N...      Table 3: the same on the paper's polydisperse
+//                                            ellipsoid beds (four shapes, a = 1.0-2.5 mm);
 //   stress_examples grids OUT N nx,ny,nz...  Tables 6 and 7: per-grid stress on one bed
 //                                            for several grid sizes.
 // Writes CSV tables into OUT and prints them; paper_tables.py runs both and plots.
@@ -25,8 +27,8 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-int symmetry(const std::filesystem::path& out, const std::vector<long>& counts) {
-  std::ofstream table(out / "symmetry.csv");
+int symmetry(const std::filesystem::path& out, const std::vector<long>& counts, bool ellipsoids) {
+  std::ofstream table(out / (ellipsoids ? "symmetry_ellipsoids.csv" : "symmetry.csv"));
   table.precision(17);
   table << "count,box_side_m,deposition_steps_s,fire_steps,force_residual,torque_residual,settled_bagi_rai,"
            "formula,"
@@ -35,14 +37,16 @@ int symmetry(const std::filesystem::path& out, const std::vector<long>& counts) 
               "settled bagi", "bagi RAI%", "weber RAI%", "drescher", "mod. nicot", "bagi szz", "weber szz");
   for (long n : counts) {
     const auto t0 = std::chrono::steady_clock::now();
-    const SceneConfig s = test::paper_bed_scene(n);
+    const SceneConfig s = ellipsoids ? test::paper_ellipsoid_bed_scene(n) : test::paper_bed_scene(n);
     test::RelaxedBed bed = test::relaxed_bed(s, 1e-4, false);
     const int one[3] = {1, 1, 1};
     const double deposit_seconds = seconds_since(t0);
     // Bagi's asymmetry of the bed as settled (kinetic/released energy 1e-4), then relaxed.
     const double settled_rai =
         relative_asymmetry_index(test::bed_stress(*bed.sim, one)[StressFormula::bagi][0]);
-    bed.relaxation = relax_to_equilibrium(*bed.sim, RelaxationOptions{});
+    RelaxationOptions relax;
+    if (ellipsoids) relax.max_steps = 1000000;  // 129,249 FIRE steps for 69 grains
+    bed.relaxation = relax_to_equilibrium(*bed.sim, relax);
     const GridStress g = test::bed_stress(*bed.sim, one);
     const RelaxationResult res = equilibrium_residual(*bed.sim);
     for (int k = 0; k < kStressFormulaCount; ++k) {
@@ -61,10 +65,11 @@ int symmetry(const std::filesystem::path& out, const std::vector<long>& counts) 
                 g[StressFormula::bagi][0](2, 2), g[StressFormula::weber][0](2, 2), seconds_since(t0));
     if (n == counts.back()) {
       // Table 4: the full tensors of every formula on the largest bed.
-      std::ofstream t4(out / "formulas.csv");
+      std::ofstream t4(out / (ellipsoids ? "formulas_ellipsoids.csv" : "formulas.csv"));
       t4.precision(17);
       t4 << "count,formula,rai,s_xx,s_xy,s_xz,s_yx,s_yy,s_yz,s_zx,s_zy,s_zz\n";
-      std::printf("\nEvery formula on the %ld-sphere bed (Pa; RAI in %%):\n", n);
+      std::printf("\nEvery formula on the %ld-%s bed (Pa; RAI in %%):\n", n,
+                  ellipsoids ? "ellipsoid" : "sphere");
       for (int k = 0; k < kStressFormulaCount; ++k) {
         const auto f = static_cast<StressFormula>(k);
         const Mat3& m = g[f][0];
@@ -135,6 +140,7 @@ int main(int argc, char** argv) {
   if (argc < 4) {
     std::fprintf(stderr,
                  "usage: stress_examples symmetry OUT N...\n"
+                 "       stress_examples ellipsoids OUT N...\n"
                  "       stress_examples grids OUT N nx,ny,nz...\n");
     return 2;
   }
@@ -144,7 +150,12 @@ int main(int argc, char** argv) {
   if (mode == "symmetry") {
     std::vector<long> counts;
     for (int k = 3; k < argc; ++k) counts.push_back(std::stol(argv[k]));
-    return symmetry(out, counts);
+    return symmetry(out, counts, false);
+  }
+  if (mode == "ellipsoids") {
+    std::vector<long> counts;
+    for (int k = 3; k < argc; ++k) counts.push_back(std::stol(argv[k]));
+    return symmetry(out, counts, true);
   }
   if (mode == "grids" && argc >= 5) {
     std::vector<std::array<int, 3>> specs;

@@ -30,6 +30,21 @@ inline dem::SceneConfig paper_bed_scene(long count) {
   return s;
 }
 
+// The paper's ellipsoid beds (Table 3): the four shapes 1:1:1, 1:0.8:0.6, 1:0.8:0.4,
+// 1:0.6:0.4 in equal numbers, major semi-axes 1.0-2.5 mm, random orientations, the soft
+// material of paper_bed_scene, in a square box at least 2 cm wide and about as wide as the
+// bed is high, at 0.9 of the safe time step.
+inline dem::SceneConfig paper_ellipsoid_bed_scene(long count) {
+  dem::SceneConfig s = paper_bed_scene(count);
+  s.particles.gradation = {{1.0e-3, 0.0}, {2.5e-3, 1.0}};
+  s.particles.shapes = {{1.0, 1.0, 1.0}, {0.8, 0.6, 1.0}, {0.8, 0.4, 1.0}, {0.6, 0.4, 1.0}};
+  // Mean grain volume: a of about 1.75 mm, the shapes' mean b c / a^2 of 0.51.
+  const double grain = 4.0 / 3.0 * std::numbers::pi * std::pow(1.75e-3, 3) * 0.51;
+  s.container.lx = s.container.ly = std::max(std::cbrt(count * grain / 0.6), 0.02);
+  s.time_step = 0.9 * dem::estimate_time_step(s).safe_step;
+  return s;
+}
+
 struct RelaxedBed {
   std::unique_ptr<dem::Simulation> sim;
   dem::RelaxationResult settled;  // residuals when the deposition stopped

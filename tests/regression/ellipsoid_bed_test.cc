@@ -16,22 +16,9 @@
 using namespace upgrain;
 using namespace upgrain::dem;
 
-namespace {
-
-SceneConfig paper_ellipsoid_scene(long count) {
-  SceneConfig s = test::paper_bed_scene(count);
-  s.particles.gradation = {{1.0e-3, 0.0}, {2.5e-3, 1.0}};
-  s.particles.shapes = {{1.0, 1.0, 1.0}, {0.8, 0.6, 1.0}, {0.8, 0.4, 1.0}, {0.6, 0.4, 1.0}};
-  s.container.lx = s.container.ly = 0.02;
-  s.time_step = 0.9 * estimate_time_step(s).safe_step;
-  return s;
-}
-
-}  // namespace
-
 TEST(EllipsoidBed, RelaxedBagiStressIsSymmetricAndTheBedStaysAtRest) {
   const long count = 69;  // the smallest bed of the paper's Table 3
-  const SceneConfig s = paper_ellipsoid_scene(count);
+  const SceneConfig s = test::paper_ellipsoid_bed_scene(count);
   test::RelaxedBed bed = test::relaxed_bed(s);
   ASSERT_TRUE(bed.sim->particles().has_shapes());
   const int one[3] = {1, 1, 1};
