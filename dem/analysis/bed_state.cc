@@ -7,6 +7,27 @@
 
 namespace upgrain::dem {
 
+namespace {
+
+// Height of grain i's top: for an ellipsoid the support of its shape along z,
+// sqrt(e_z^T M e_z) with M = R diag(a^2, b^2, c^2) R^T; for a sphere its radius.
+double top_of(const ParticleStore& p, std::size_t i) {
+  if (!p.is_ellipsoid(i)) return p.x[i].z() + p.radius[i];
+  const Vec3 ez_body = p.orientation[i].conjugate() * Vec3::UnitZ();
+  return p.x[i].z() + ez_body.cwiseProduct(p.semi_axes[i]).norm();
+}
+
+// Whether point q lies in grain i: sum (y_k / a_k)^2 <= 1 in the body frame.
+bool contains(const ParticleStore& p, std::size_t i, const Vec3& q) {
+  const Vec3 d = q - p.x[i];
+  if (d.squaredNorm() > p.radius[i] * p.radius[i]) return false;  // outside the bounding sphere
+  if (!p.is_ellipsoid(i)) return true;
+  const Vec3 y = p.orientation[i].conjugate() * d;
+  return y.cwiseQuotient(p.semi_axes[i]).squaredNorm() <= 1.0;
+}
+
+}  // namespace
+
 BedState measure_bed(const ParticleStore& p, const BoxContainer& box, int samples) {
   BedState s;
   const std::size_t n = p.size();
@@ -23,7 +44,7 @@ BedState measure_bed(const ParticleStore& p, const BoxContainer& box, int sample
     const int ix = std::clamp(static_cast<int>(p.x[i].x() / box.lx * cx), 0, cx - 1);
     const int iy = std::clamp(static_cast<int>(p.x[i].y() / box.ly * cy), 0, cy - 1);
     double& t = top[static_cast<std::size_t>(iy * cx + ix)];
-    t = std::max(t, p.x[i].z() + p.radius[i]);
+    t = std::max(t, top_of(p, i));
   }
   double sum = 0.0;
   for (double t : top) sum += t;
@@ -60,7 +81,7 @@ BedState measure_bed(const ParticleStore& p, const BoxContainer& box, int sample
               const int cell = grid.flat(x, y, z);
               for (int k = start[cell]; k < start[cell + 1]; ++k) {
                 const int i = order[k];
-                if ((p.x[i] - q).squaredNorm() <= p.radius[i] * p.radius[i]) {
+                if (contains(p, static_cast<std::size_t>(i), q)) {
                   hit = true;
                   break;
                 }

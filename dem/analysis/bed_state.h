@@ -17,7 +17,8 @@ struct BedState {
 // highest particle top in each column. The solid fraction is measured by sampling a
 // regular lattice of points in a core box that stays two largest diameters clear of the
 // side walls, the floor and the surface (wall layers are looser; Mueller 1992), and
-// counting the points that lie inside a sphere.
+// counting the points that lie inside a grain (a sphere, or an ellipsoid in its own frame;
+// an ellipsoid's top is its support height along z).
 BedState measure_bed(const ParticleStore& p, const BoxContainer& box, int samples_per_axis = 60);
 
 }  // namespace upgrain::dem

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "dem/analysis/bed_state.h"
 #include "dem/core/error.h"
 #include "dem/core/particle_store.h"
 #include "dem/scene/fill.h"
@@ -116,4 +117,28 @@ TEST(GrainShapes, AFillPlacesTheSameCentresWhateverTheShapes) {
     ellipsoids += mixed.is_ellipsoid(i) ? 1 : 0;
   }
   EXPECT_EQ(ellipsoids, 150);
+}
+
+// The bed measures use the ellipsoids themselves, not their bounding spheres: aligned
+// 1:0.5:0.5 ellipsoids on a simple cubic lattice have the solid fraction (4/3) pi a b c / h^3
+// (a quarter of their bounding spheres'), and a column's top is the highest grain's top.
+TEST(GrainShapes, BedSolidFractionAndSurfaceUseTheEllipsoids) {
+  const Vec3 ax(2e-3, 1e-3, 1e-3);
+  const double h =
+      4e-3;  // = a + a along z: the core box (two diameters, 2 h, in from each side) spans 8 cells each way
+  ParticleStore p;
+  const Eigen::Quaterniond upright(Eigen::AngleAxisd(0.5 * std::numbers::pi, Vec3::UnitY()));  // a along z
+  long id = 0;
+  for (int i = 0; i < 12; ++i)
+    for (int j = 0; j < 12; ++j)
+      for (int k = 0; k < 12; ++k)
+        p.add_ellipsoid(id++, ax, 2650, Vec3((i + 0.5) * h, (j + 0.5) * h, (k + 0.5) * h), upright,
+                        Vec3::Zero(), Vec3::Zero());
+  BoxContainer box;
+  box.lx = box.ly = 12 * h;
+  const BedState bed = measure_bed(p, box);
+  const double expected = 4.0 / 3.0 * std::numbers::pi * ax.prod() / (h * h * h);
+  EXPECT_NEAR(bed.solid_fraction, expected, 0.03 * expected)
+      << "bounding spheres would give " << 4 * expected;
+  EXPECT_NEAR(bed.surface_height, 11.5 * h + ax.x(), 1e-12);  // the a axis stands upright
 }
