@@ -32,19 +32,6 @@ struct Timing {
   double seconds = 0.0;
 };
 
-ContactSolverStats minus(const ContactSolverStats& a, const ContactSolverStats& b) {
-  ContactSolverStats d = a;
-  d.calls -= b.calls;
-  d.warm_starts -= b.warm_starts;
-  d.warm_rejected -= b.warm_rejected;
-  d.newton_iterations -= b.newton_iterations;
-  d.fallbacks -= b.fallbacks;
-  d.failures -= b.failures;
-  d.uncertified -= b.uncertified;
-  d.proven_apart -= b.proven_apart;
-  return d;
-}
-
 // Deposits `n` grains of `shapes` (empty: spheres of radius r) soft, stiffens them to the
 // benchmark material, and times `steps` steps of the settled bed.
 Timing settle_and_time(long n, double r, const std::vector<GrainShape>& shapes, long steps) {
@@ -95,7 +82,8 @@ Timing settle_and_time(long n, double r, const std::vector<GrainShape>& shapes, 
   t.particle_steps_per_second = static_cast<double>(n) * static_cast<double>(steps) / t.seconds;
   t.contacts_per_particle =
       2.0 * static_cast<double>(sim.diagnostics().particle_contacts) / static_cast<double>(n);
-  t.solver = minus(sim.contact_solver_stats(), before);
+  t.solver = sim.contact_solver_stats();
+  t.solver -= before;
   return t;
 }
 

@@ -138,9 +138,8 @@ int run(int argc, char** argv) {
   if (rank == 0) {
     std::printf("upgrain: %s\n  %ld %s, time step %.3g s (safe %.3g s, %s-limited), end time %.3g s\n",
                 in.source.c_str(), in.scene.particles.count,
-                dem::has_ellipsoids(in.scene.particles.shapes) ? "grains (ellipsoids)" : "spheres", in.scene.time_step,
-                ts.safe_step,
-                ts.limiting.c_str(), in.scene.end_time);
+                dem::has_ellipsoids(in.scene.particles.shapes) ? "grains (ellipsoids)" : "spheres",
+                in.scene.time_step, ts.safe_step, ts.limiting.c_str(), in.scene.end_time);
     if (in.study.compare_with_continuum)
       std::printf(
           "  study: DEM deposition -> grid stress -> continuum column (Q%u) -> comparison and report\n",

@@ -58,20 +58,7 @@ PairFrame make_frame(const PosedEllipsoid& e1, const PosedEllipsoid& e2) {
 }
 
 PairFrame make_frame(const Ellipsoid& e1, const Ellipsoid& e2) {
-  PairFrame p;
-  const double c_min = std::min(e1.semi_axes.minCoeff(), e2.semi_axes.minCoeff());
-  p.scale = std::ldexp(1.0, -std::ilogb(c_min));
-  p.d = (e1.centre - e2.centre) * p.scale;
-  p.rot1 = e1.orientation.toRotationMatrix();
-  p.rot2 = e2.orientation.toRotationMatrix();
-  p.ax1 = e1.semi_axes * p.scale;
-  p.ax2 = e2.semi_axes * p.scale;
-  p.m1 = shape_matrix(p.rot1, p.ax1);
-  p.m2 = shape_matrix(p.rot2, p.ax2);
-  p.size = p.d.norm() + p.ax1.maxCoeff() + p.ax2.maxCoeff();
-  p.certify = p.ax1.minCoeff() * p.ax1.minCoeff() / p.ax1.maxCoeff() +
-              p.ax2.minCoeff() * p.ax2.minCoeff() / p.ax2.maxCoeff();
-  return p;
+  return make_frame(PosedEllipsoid::from(e1), PosedEllipsoid::from(e2));
 }
 
 // f(n) and the pieces its derivatives reuse (D2): u = M1 n, h1 = sqrt(n.u), v = M2 n,

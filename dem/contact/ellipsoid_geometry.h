@@ -76,6 +76,18 @@ struct ContactSolverStats {
     proven_apart += o.proven_apart;
     return *this;
   }
+  // The counts of a span of a run: the totals at its end minus those at its start.
+  ContactSolverStats& operator-=(const ContactSolverStats& o) {
+    calls -= o.calls;
+    warm_starts -= o.warm_starts;
+    warm_rejected -= o.warm_rejected;
+    newton_iterations -= o.newton_iterations;
+    fallbacks -= o.fallbacks;
+    failures -= o.failures;
+    uncertified -= o.uncertified;
+    proven_apart -= o.proven_apart;
+    return *this;
+  }
 };
 
 // An ellipsoid with its rotation matrix R and shape matrix M = R diag(a^2, b^2, c^2) R^T

@@ -54,9 +54,9 @@ class VerletList {
   bool with_history_;
   bool with_memory_ = false;
   long builds_ = 0;
-  std::vector<int> offsets_;               // CSR: pairs of i are partners_[offsets_[i] .. offsets_[i+1])
-  std::vector<int> partners_;              // j > i in the current local order
-  std::vector<TangentialSpring> springs_;  // tangential spring per pair slot
+  std::vector<int> offsets_;                 // CSR: pairs of i are partners_[offsets_[i] .. offsets_[i+1])
+  std::vector<int> partners_;                // j > i in the current local order
+  std::vector<TangentialSpring> springs_;    // tangential spring per pair slot
   std::vector<ShapedContactMemory> memory_;  // per pair slot, normal from i to j
   std::vector<Vec3> x_at_build_;
 };

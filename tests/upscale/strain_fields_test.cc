@@ -115,8 +115,8 @@ TEST(StrainFields, ReadFromTheWrittenFileBitForBit) {
   const upscale::GridFields memory = upscale::grid_fields_from_strain(strain);
   int pid = static_cast<int>(::getpid()), rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  const fs::path file = fs::temp_directory_path() / ("upgrain_strain_file_" + std::to_string(pid) + "_" +
-                                                     std::to_string(rank) + ".h5");
+  const fs::path file = fs::temp_directory_path() /
+                        ("upgrain_strain_file_" + std::to_string(pid) + "_" + std::to_string(rank) + ".h5");
   dem::io::write_grid_strain(file, strain);
   const upscale::GridFields read = upscale::read_strain_fields(file);
   EXPECT_EQ(read.names, memory.names);
