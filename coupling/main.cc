@@ -8,6 +8,7 @@
 #include <iostream>
 #include <string>
 
+#include "coupling/dem_run.h"
 #include "coupling/scene_input.h"
 #include "coupling/strain_report.h"
 #include "coupling/study.h"
@@ -26,7 +27,7 @@ constexpr const char* kUsage =
     "the elastic column of the same container (deal.II), comparison tables, plots and a\n"
     "report, all in the output folder. Without a file, runs the built-in default study\n"
     "(about 2,000 spheres on a 3 x 3 x 4 grid, a few minutes). Under mpirun the\n"
-    "continuum solve uses every rank.\n"
+    "DEM runs on the MPI engine (Parallel/DEM engine) and the continuum on every rank.\n"
     "\n"
     "Options:\n"
     "  -h, --help                    this text\n"
@@ -144,9 +145,12 @@ int run(int argc, char** argv) {
       std::printf(
           "  study: DEM deposition -> grid stress -> continuum column (Q%u) -> comparison and report\n",
           in.study.continuum.degree);
-    if (ranks > 1)
-      std::printf("  %d MPI ranks: the DEM runs on rank 0 (the MPI DEM is issue 5), the continuum on all\n",
-                  ranks);
+    const coupling::EngineChoice engine = coupling::choose_engine(in, ranks);
+    if (engine.mpi)
+      std::printf("  %d MPI rank(s): the MPI DEM engine on every rank (%s)\n", ranks, engine.reason.c_str());
+    else if (ranks > 1)
+      std::printf("  %d MPI ranks: the DEM runs on rank 0 (%s), the continuum on every rank\n", ranks,
+                  engine.reason.c_str());
   }
   if (check_only) {
     if (rank == 0) std::printf("  scene is valid; nothing written (--check)\n");
@@ -161,8 +165,8 @@ int run(int argc, char** argv) {
       return coupling::run_study(in, MPI_COMM_WORLD, progress,
                                  [&](const dem::DepositionResult& r) { print_deposition(in, r); });
     }
+    const dem::DepositionResult r = coupling::run_dem(in, MPI_COMM_WORLD, progress);
     if (rank == 0) {
-      const dem::DepositionResult r = dem::run_deposition(in.scene, in.control, in.output, progress);
       print_deposition(in, r);
       if (r.final_strain) {  // the strain on the mesh; report.md with the strain section and plots
         (void)coupling::write_strain_mesh(in.output.folder);

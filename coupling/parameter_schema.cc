@@ -119,6 +119,15 @@ const std::vector<ParameterSpec>& parameter_schema() {
       {"Output", "time series interval", "0.002", K::real, 0.0, 1e6, "", "s",
        "Simulated time between rows of time_series.csv."},
 
+      {"Parallel", "DEM engine", "auto", K::selection, 0, 0, "auto|serial|mpi", "-",
+       "Which engine runs the DEM under mpirun (docs/parallel.md). mpi: the MPI engine on every rank, "
+       "particles divided among blocks, results and output bytes the same on any rank count. serial: the "
+       "one-process engine on rank 0 (the continuum still uses every rank). auto: mpi on more than one "
+       "rank, serial on one rank and for ellipsoid scenes (the MPI engine does not carry ellipsoids yet)."},
+      {"Parallel", "blocks", "0, 0, 0", K::integer3, 0, 4096, "", "-",
+       "Blocks of the MPI engine along x, y, z; their product must be the rank count. 0, 0, 0 = chosen to "
+       "minimise the cut area for the rank count and the box."},
+
       {"Stress", "formulas", "weber, drescher, bagi, de saxce, nicot, modified nicot, modified de saxce",
        K::multiple_selection, 0, 0, "weber|drescher|bagi|de saxce|nicot|modified nicot|modified de saxce",
        "-",

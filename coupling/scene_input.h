@@ -1,5 +1,6 @@
 #pragma once
 // What the driver hands to the DEM engine after reading and validating a scene file.
+#include <array>
 #include <iosfwd>
 #include <string>
 
@@ -10,6 +11,13 @@
 
 namespace upgrain::coupling {
 
+// Parallel/DEM engine and blocks (coupling/dem_run.h chooses at run time).
+enum class DemEngineChoice { automatic, serial, mpi };
+struct ParallelInput {
+  DemEngineChoice engine = DemEngineChoice::automatic;
+  std::array<int, 3> blocks{0, 0, 0};  // all 0: chosen from the rank count and the box
+};
+
 struct SceneInput {
   std::string source;  // file name, or "built-in default scene"
   dem::SceneConfig scene;
@@ -19,6 +27,7 @@ struct SceneInput {
   std::string stress_box = "auto";  // Stress/box as written; applied by validate_scene
   std::string collapse = "none";    // Container/collapse: none, constrained or unconstrained
   StudyOptions study;
+  ParallelInput parallel;
 };
 
 // Reads a .prm file: syntax and entry names first (prm_syntax.h), values by deal.II's

@@ -194,6 +194,18 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   in.output.series_interval = prm.get_double("time series interval");
   prm.leave_subsection();
 
+  prm.enter_subsection("Parallel");
+  {
+    const std::string engine = prm.get("DEM engine");
+    in.parallel.engine = engine == "mpi"      ? DemEngineChoice::mpi
+                         : engine == "serial" ? DemEngineChoice::serial
+                                              : DemEngineChoice::automatic;
+    const auto b = Patterns::Tools::Convert<std::vector<int>>::to_value(
+        prm.get("blocks"), Patterns::List(Patterns::Integer(0, 4096), 3, 3, ","));
+    for (int d = 0; d < 3; ++d) in.parallel.blocks[d] = b[d];
+  }
+  prm.leave_subsection();
+
   prm.enter_subsection("Stress");
   dem::io::GridStressOptions& gs = in.output.grid_stress;
   for (const std::string& name : dealii::Utilities::split_string_list(prm.get("formulas"), ',')) {

@@ -7,6 +7,7 @@
 #include "dem/core/error.h"
 #include "dem/scene/fill.h"
 #include "dem/scene/gradation.h"
+#include "dem/scene/grain_shape.h"
 #include "dem/time_step.h"
 
 namespace upgrain::coupling {
@@ -180,6 +181,20 @@ void validate_scene(SceneInput& in) {
         throw Error(where + "Study/comparison formulas names '" + std::string(dem::name_of(f)) +
                     "', which is not in Stress/formulas; add it there");
     }
+  }
+  {
+    const auto& b = in.parallel.blocks;
+    const bool chosen = b[0] == 0 && b[1] == 0 && b[2] == 0;
+    if (!chosen && (b[0] == 0 || b[1] == 0 || b[2] == 0)) {
+      std::ostringstream m;
+      m << where << "Parallel/blocks = " << b[0] << ", " << b[1] << ", " << b[2]
+        << ": give every count (their product is the rank count), or 0, 0, 0 to have them chosen";
+      throw Error(m.str());
+    }
+    if (in.parallel.engine == DemEngineChoice::mpi && dem::has_ellipsoids(s.particles.shapes))
+      throw Error(where +
+                  "Parallel/DEM engine = mpi, but Particles/shapes has ellipsoids, which the MPI engine does "
+                  "not carry yet; set 'DEM engine = auto' (ellipsoids then run on rank 0) or 'serial'");
   }
   namespace fs = std::filesystem;
   const fs::path& folder = in.output.folder;

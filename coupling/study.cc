@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "coupling/dem_fem_comparison.h"
+#include "coupling/dem_run.h"
 #include "coupling/strain_report.h"
 #include "dem/core/error.h"
 #include "dem/io/atomic_file.h"
@@ -63,30 +64,6 @@ void broadcast(DemOutcome& d, MPI_Comm comm) {
   MPI_Bcast(&d.total_mass, 1, MPI_DOUBLE, 0, comm);
   MPI_Bcast(d.floor_force.data(), 3, MPI_DOUBLE, 0, comm);
   MPI_Bcast(&d.side_wall_vertical, 1, MPI_DOUBLE, 0, comm);
-}
-
-// Runs `work` on rank 0; an error there becomes the same error on every rank, so no rank
-// waits forever for a broadcast.
-template <class Work>
-void on_rank0(MPI_Comm comm, Work work) {
-  int rank = 0;
-  MPI_Comm_rank(comm, &rank);
-  std::string error;
-  if (rank == 0) {
-    try {
-      work();
-    } catch (const std::exception& e) {
-      error = e.what();
-      if (error.empty()) error = "unknown error";
-    }
-  }
-  int size = static_cast<int>(error.size());
-  MPI_Bcast(&size, 1, MPI_INT, 0, comm);
-  if (size > 0) {
-    error.resize(size);
-    MPI_Bcast(error.data(), size, MPI_CHAR, 0, comm);
-    throw Error(error);
-  }
 }
 
 upscale::GridFields comparison_fields(const DemOutcome& d, const DemFemComparison& c,
@@ -250,8 +227,8 @@ int run_study(const SceneInput& in, MPI_Comm comm,
   dem::DepositionResult r;
   DemOutcome d;
   auto t0 = Clock::now();
+  r = run_dem(in, comm, on_progress);
   on_rank0(comm, [&] {
-    r = dem::run_deposition(in.scene, in.control, in.output, on_progress);
     if (on_dem_done) on_dem_done(r);
     if (!r.final_stress) throw Error("the DEM run produced no grid stress (Stress/formulas is empty)");
     d.grid = r.final_grid;
@@ -264,7 +241,10 @@ int run_study(const SceneInput& in, MPI_Comm comm,
         d.side_wall_vertical += r.wall_forces[w].z();
     }
   });
-  timings.emplace_back("DEM deposition, relaxation and grid stress", since(t0));
+  timings.emplace_back(choose_engine(in, ranks).mpi
+                           ? "DEM deposition, relaxation and grid stress (MPI engine)"
+                           : "DEM deposition, relaxation and grid stress (rank 0)",
+                       since(t0));
   broadcast(d, comm);
 
   // 2. The continuum column of the same container, filled to the grid's top.

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "dem/boundary/wall_release.h"
+#include "dem/dem_engine.h"
 #include "dem/scene/fill.h"
 
 namespace upgrain::dem {
@@ -21,8 +22,15 @@ std::string num(double v) {
 DepositionResult run_deposition(const SceneConfig& scene, const RunControl& control,
                                 const std::optional<io::OutputOptions>& output,
                                 const std::function<void(const Progress&)>& on_progress) {
-  using Clock = std::chrono::steady_clock;
   Simulation sim(scene, fill_container(scene));
+  SerialEngine engine(sim);
+  return run_deposition(engine, scene, control, output, on_progress);
+}
+
+DepositionResult run_deposition(DemEngine& sim, const SceneConfig& scene, const RunControl& control,
+                                const std::optional<io::OutputOptions>& output,
+                                const std::function<void(const Progress&)>& on_progress) {
+  using Clock = std::chrono::steady_clock;
   const long total = static_cast<long>(std::llround(scene.end_time / scene.time_step));
   auto every = [&](double interval) {
     return interval > 0.0 ? std::max(1L, static_cast<long>(std::llround(interval / scene.time_step))) : total;
@@ -30,11 +38,25 @@ DepositionResult run_deposition(const SceneConfig& scene, const RunControl& cont
   const long series_every = every(output ? output->series_interval : 0.002);
   const long snapshot_every = every(output ? output->snapshot_interval : 0.0);
 
+  // Output is written by the root; the quantities it needs are collective (dem_engine.h).
   std::optional<io::RunRecorder> recorder;
+  auto record_series = [&] {
+    const EnergyBalance e = sim.energy();
+    const StepDiagnostics d = sim.diagnostics();
+    sim.on_root([&] {
+      recorder->record_series(sim.time(), sim.step_count(), e, balance_error(sim.initial_energy(), e), d);
+    });
+  };
+  auto write_snapshot = [&] {
+    sim.check_finite();
+    const std::vector<Vec3> forces = sim.wall_forces();
+    const ParticleStore& all = sim.whole_state();
+    sim.on_root([&] { recorder->write_snapshot(all, sim.walls(), forces, sim.time(), sim.step_count()); });
+  };
   if (output) {
-    recorder.emplace(*output);
-    recorder->record_series(sim);
-    recorder->write_snapshot(sim);
+    sim.on_root([&] { recorder.emplace(*output); });
+    record_series();
+    write_snapshot();
   }
 
   // Grid stress needs the contacts of a force evaluation, which are recorded on request
@@ -42,46 +64,46 @@ DepositionResult run_deposition(const SceneConfig& scene, const RunControl& cont
   DepositionResult r;
   std::optional<io::GridStressRecorder> stress_out;
   const bool stress_on = output && output->grid_stress.enabled();
-  if (stress_on) stress_out.emplace(output->folder, output->grid_stress.formulas);
+  if (stress_on) sim.on_root([&] { stress_out.emplace(output->folder, output->grid_stress.formulas); });
   const long stress_every =
       stress_on ? (output->grid_stress.interval > 0.0 ? every(output->grid_stress.interval) : snapshot_every)
                 : 0;
   auto stress_due = [&](long s) { return stress_on && (s % stress_every == 0 || s == total); };
   // Grid strain goes with the grid stress, on its grid. The reference state (positions by
-  // global id at t0) is kept in memory: the initial state when t0 = 0, otherwise the first
-  // evaluation at or after t0, which is then also the first strain written (F = 1).
+  // global id at t0) is kept in memory on the root: the initial state when t0 = 0, otherwise
+  // the first evaluation at or after t0, which is then also the first strain written (F = 1).
   std::optional<io::GridStrainRecorder> strain_out;
   const bool strain_on = stress_on && output->grid_strain.enabled;
-  if (strain_on) strain_out.emplace(output->folder);
+  if (strain_on) sim.on_root([&] { strain_out.emplace(output->folder); });
   std::optional<StrainReference> strain_reference;
   // The objective stress rates of each strain output with a stress (all but a t0 = 0
   // reference), by backward differences over the last outputs (strain/grid_stress_rates.h).
   std::optional<StressRateHistory> rate_history;
   if (strain_on) rate_history.emplace(output->grid_strain.rate_formula);
   auto evaluate_strain = [&](const RegularGrid& grid, const GridStress* stress) {
-    const ParticleStore& p = sim.particles();
-    if (!strain_reference) {
-      const double t0 = output->grid_strain.reference_time;
-      if (t0 > 0.0 && sim.time() < t0 - 0.5 * scene.time_step) return;
-      strain_reference = make_strain_reference(p.id, p.x, grid, sim.time(), sim.step_count());
-    }
-    GridStrain g = grid_strain(*strain_reference, grid, {p.id, p.x, p.v}, sim.time(), sim.step_count(),
-                               output->grid_strain.kernel, r.final_strain ? &*r.final_strain : nullptr);
-    if (stress) {
-      const GridStressRates rates = rate_history->push((*stress)[output->grid_strain.rate_formula], g);
-      strain_out->record(g, &rates);
-    } else {
-      strain_out->record(g);
-    }
-    r.final_strain = std::move(g);
+    const double t0 = output->grid_strain.reference_time;
+    if (!strain_reference && t0 > 0.0 && sim.time() < t0 - 0.5 * scene.time_step) return;
+    const ParticleStore& p = sim.whole_state();
+    sim.on_root([&] {
+      if (!strain_reference)
+        strain_reference = make_strain_reference(p.id, p.x, grid, sim.time(), sim.step_count());
+      GridStrain g = grid_strain(*strain_reference, grid, {p.id, p.x, p.v}, sim.time(), sim.step_count(),
+                                 output->grid_strain.kernel, r.final_strain ? &*r.final_strain : nullptr);
+      if (stress) {
+        const GridStressRates rates = rate_history->push((*stress)[output->grid_strain.rate_formula], g);
+        strain_out->record(g, &rates);
+      } else {
+        strain_out->record(g);
+      }
+      r.final_strain = std::move(g);
+    });
   };
   if (strain_on && output->grid_strain.reference_time <= 0.0)
-    evaluate_strain(stress_grid(output->grid_stress, sim.particles(), scene.container), nullptr);
+    evaluate_strain(sim.stress_grid(output->grid_stress, scene.container), nullptr);
   auto evaluate_stress = [&] {
-    r.final_grid = stress_grid(output->grid_stress, sim.particles(), scene.container);
-    r.final_stress = grid_stress(sim.particles(), sim.contacts(), r.final_grid,
-                                 {sim.gravity(), sim.integrates_rotation()});
-    stress_out->record(r.final_grid, *r.final_stress, sim.time(), sim.step_count());
+    r.final_grid = sim.stress_grid(output->grid_stress, scene.container);
+    r.final_stress = sim.grid_stress(r.final_grid);
+    sim.on_root([&] { stress_out->record(r.final_grid, *r.final_stress, sim.time(), sim.step_count()); });
     if (strain_on) evaluate_strain(r.final_grid, &*r.final_stress);
   };
 
@@ -107,17 +129,17 @@ DepositionResult run_deposition(const SceneConfig& scene, const RunControl& cont
     if (stress_due(s)) evaluate_stress();
     const bool series_now = (s % series_every == 0) || s == total;
     if (series_now) {
-      if (recorder) recorder->record_series(sim);
+      if (output) record_series();
+      // Every rank takes the same decision: the energies are the same bits everywhere.
       if (control.rest_ratio > 0.0 && s > rest_check_from && !walls_pending &&
           sim.kinetic_to_released() < control.rest_ratio)
         r.stopped_at_rest = true;
     }
-    if (recorder && ((s % snapshot_every == 0) || s == total || r.stopped_at_rest)) {
-      sim.check_finite();
-      if (!series_now) recorder->record_series(sim);
-      recorder->write_snapshot(sim);
+    if (output && ((s % snapshot_every == 0) || s == total || r.stopped_at_rest)) {
+      if (!series_now) record_series();
+      write_snapshot();
     }
-    if (on_progress) {
+    if (on_progress && sim.is_root()) {
       const auto now = Clock::now();
       if (std::chrono::duration<double>(now - last_report).count() >= 1.0 || s == total ||
           r.stopped_at_rest) {
@@ -133,46 +155,49 @@ DepositionResult run_deposition(const SceneConfig& scene, const RunControl& cont
         sim.request_contacts();
         sim.step();
         evaluate_stress();
-        if (recorder) {
-          recorder->record_series(sim);
-          recorder->write_snapshot(sim);
+        if (output) {
+          record_series();
+          write_snapshot();
         }
       }
       break;
     }
   }
   if (control.relax_at_end) {
-    r.relaxation = relax_to_equilibrium(sim, control.relaxation);
+    r.relaxation = sim.relax(control.relaxation);
     // One recorded step of the relaxed state for its stress, snapshot and series row.
     if (stress_on) sim.request_contacts();
     sim.step();
     if (stress_on) evaluate_stress();
-    if (recorder) {
-      recorder->record_series(sim);
-      recorder->write_snapshot(sim);
+    if (output) {
+      record_series();
+      write_snapshot();
     }
   }
   sim.check_finite();
   r.wall_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   r.steps = sim.step_count();
   r.simulated_time = sim.time();
-  r.particle_steps_per_second = static_cast<double>(r.steps) * static_cast<double>(sim.particles().size()) /
-                                std::max(r.wall_seconds, 1e-9);
+  const long n_particles = sim.particle_count();
+  r.particle_steps_per_second =
+      static_cast<double>(r.steps) * static_cast<double>(n_particles) / std::max(r.wall_seconds, 1e-9);
   r.energy = sim.energy();
-  r.energy_balance_error = sim.energy_balance_error();
+  r.energy_balance_error = balance_error(sim.initial_energy(), r.energy);
   const double released = pe0 - r.energy.potential;
-  r.kinetic_to_released = sim.kinetic_to_released();
+  r.kinetic_to_released = kinetic_to_released(sim.initial_energy(), r.energy);
   r.diagnostics = sim.diagnostics();
-  r.bed = measure_bed(sim.particles(), scene.container);
   r.wall_forces = sim.wall_forces();
   for (const PlaneWall& w : sim.walls()) r.wall_names.push_back(w.name);
-  for (std::size_t i = 0; i < sim.particles().size(); ++i) r.total_mass += sim.particles().mass(i);
-
-  if (recorder) {
+  const ParticleStore& all = sim.whole_state();
+  sim.on_root([&] {
+    r.bed = measure_bed(all, scene.container);
+    for (std::size_t i = 0; i < all.size(); ++i) r.total_mass += all.mass(i);
+    if (!recorder) return;
     recorder->flush();
-    const auto n = static_cast<double>(sim.particles().size());
+    const auto n = static_cast<double>(n_particles);
     recorder->write_summary({
         {"particles", num(n)},
+        {"mpi_ranks", num(sim.ranks())},
         {"steps", num(static_cast<double>(r.steps))},
         {"simulated_time_s", num(r.simulated_time)},
         {"wall_time_s", num(r.wall_seconds)},
@@ -196,7 +221,7 @@ DepositionResult run_deposition(const SceneConfig& scene, const RunControl& cont
         {"relaxation_force_residual", num(r.relaxation ? r.relaxation->max_force_residual : 0.0)},
         {"relaxation_torque_residual", num(r.relaxation ? r.relaxation->max_torque_residual : 0.0)},
     });
-  }
+  });
   return r;
 }
 

@@ -53,7 +53,16 @@ struct DepositionResult {
   std::optional<GridStrain> final_strain;
 };
 
+// On the serial engine, from the scene's fill.
 DepositionResult run_deposition(const SceneConfig& scene, const RunControl& control,
+                                const std::optional<io::OutputOptions>& output,
+                                const std::function<void(const Progress&)>& on_progress = {});
+
+class DemEngine;
+// On any engine (dem_engine.h), collective over its ranks: the output is written by the
+// root, and the result is complete on the root only (bed, mass, strain and progress
+// reports are the root's; the other fields are the same on every rank).
+DepositionResult run_deposition(DemEngine& engine, const SceneConfig& scene, const RunControl& control,
                                 const std::optional<io::OutputOptions>& output,
                                 const std::function<void(const Progress&)>& on_progress = {});
 

@@ -3,6 +3,9 @@
 // energies of the current state plus the energy dissipated so far by normal damping and
 // by Coulomb slip. Their sum is conserved by the physics; its drift is the balance error.
 
+#include <cmath>
+#include <limits>
+
 namespace upgrain::dem {
 
 struct EnergyBalance {
@@ -25,5 +28,21 @@ struct EnergyBalance {
            dissipated_friction + removed_by_relaxation - tangential_stiffness_change;
   }
 };
+
+// The relative drift of the total energy since e0, over the energy put into play (initial
+// kinetic and elastic energy and the potential energy released): the balance error of
+// docs/integrator.md.
+inline double balance_error(const EnergyBalance& e0, const EnergyBalance& e) {
+  const double reference =
+      e0.kinetic() + std::abs(e0.potential - e.potential) + e0.elastic_normal + e0.elastic_tangential;
+  return reference > 0.0 ? (e.total() - e0.total()) / reference : 0.0;
+}
+
+// Kinetic energy over the potential energy released since e0 (the at-rest criterion);
+// infinite while nothing has been released.
+inline double kinetic_to_released(const EnergyBalance& e0, const EnergyBalance& e) {
+  const double released = e0.potential - e.potential;
+  return released > 0.0 ? e.kinetic() / released : std::numeric_limits<double>::infinity();
+}
 
 }  // namespace upgrain::dem

@@ -170,18 +170,9 @@ EnergyBalance Simulation::energy() const {
   return e;
 }
 
-double Simulation::energy_balance_error() const {
-  const EnergyBalance e = energy();
-  const double reference =
-      e0_.kinetic() + std::abs(e0_.potential - e.potential) + e0_.elastic_normal + e0_.elastic_tangential;
-  return reference > 0.0 ? (e.total() - e0_.total()) / reference : 0.0;
-}
+double Simulation::energy_balance_error() const { return balance_error(e0_, energy()); }
 
-double Simulation::kinetic_to_released() const {
-  const EnergyBalance e = energy();
-  const double released = e0_.potential - e.potential;
-  return released > 0.0 ? e.kinetic() / released : std::numeric_limits<double>::infinity();
-}
+double Simulation::kinetic_to_released() const { return dem::kinetic_to_released(e0_, energy()); }
 
 StepDiagnostics Simulation::diagnostics() const {
   return {ctx_.particle_contacts, ctx_.wall_contacts, ctx_.max_overlap_ratio, neighbors_.builds(),

@@ -44,8 +44,7 @@ void write_snapshot(const std::filesystem::path& path, const ParticleStore& p,
     write_attribute(file, "units", "SI: m, s, kg, N");
     write_attribute(file, "frame", "right-handed, z up, gravity along -z");
 
-    Handle parts(H5Gcreate2(file, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
-                 "create group particles");
+    Handle parts(hdf5::create_group(file, "particles"), H5Gclose, "create group particles");
     std::vector<std::int64_t> ids(n);
     std::vector<double> radius(n);
     for (std::size_t k = 0; k < n; ++k) {
@@ -82,8 +81,7 @@ void write_snapshot(const std::filesystem::path& path, const ParticleStore& p,
       write_dataset(parts, "shape_tensor", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, tensor.data(), n, 9);
     }
 
-    Handle wg(H5Gcreate2(file, "walls", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
-              "create group walls");
+    Handle wg(hdf5::create_group(file, "walls"), H5Gclose, "create group walls");
     const std::size_t nw = walls.size();
     std::vector<double> point(3 * nw), normal(3 * nw), force(3 * nw, 0.0), friction(nw);
     std::string names;

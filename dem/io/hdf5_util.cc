@@ -10,11 +10,22 @@ Handle::Handle(hid_t h, herr_t (*close)(hid_t), const std::string& what) : h_(h)
   if (h_ < 0) throw Error("HDF5: cannot " + what);
 }
 
+namespace {
+// Object creation properties without modification times, so that a file's bytes depend
+// only on its content: the same run on any rank count writes identical files.
+hid_t untimed(hid_t property_class) {
+  const hid_t p = H5Pcreate(property_class);
+  if (p < 0 || H5Pset_obj_track_times(p, false) < 0) throw Error("HDF5: cannot create a property list");
+  return p;
+}
+}  // namespace
+
 void write_dataset(hid_t group, const char* name, hid_t mem_type, hid_t file_type, const void* data,
                    hsize_t rows, hsize_t cols) {
   const hsize_t dims[2] = {rows, cols};
   Handle space(H5Screate_simple(cols == 1 ? 1 : 2, dims, nullptr), H5Sclose, "create a dataspace");
-  Handle set(H5Dcreate2(group, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
+  Handle properties(untimed(H5P_DATASET_CREATE), H5Pclose, "create a property list");
+  Handle set(H5Dcreate2(group, name, file_type, space, H5P_DEFAULT, properties, H5P_DEFAULT), H5Dclose,
              std::string("create dataset ") + name);
   if (rows > 0 && H5Dwrite(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
     throw Error(std::string("HDF5: cannot write dataset ") + name);
@@ -52,7 +63,8 @@ void write_attribute(hid_t obj, const char* name, const std::vector<std::string>
 }
 
 hid_t create_group(hid_t parent, const std::string& name) {
-  const hid_t g = H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  Handle properties(untimed(H5P_GROUP_CREATE), H5Pclose, "create a property list");
+  const hid_t g = H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, properties, H5P_DEFAULT);
   if (g < 0) throw Error("HDF5: cannot create group " + name);
   return g;
 }

@@ -50,26 +50,32 @@ RunRecorder::RunRecorder(OutputOptions options) : options_(std::move(options)) {
 }
 
 void RunRecorder::record_series(const Simulation& sim) {
-  const EnergyBalance e = sim.energy();
-  const StepDiagnostics d = sim.diagnostics();
+  record_series(sim.time(), sim.step_count(), sim.energy(), sim.energy_balance_error(), sim.diagnostics());
+}
+
+void RunRecorder::record_series(double time, long step, const EnergyBalance& e, double balance_error,
+                                const StepDiagnostics& d) {
   char line[512];
   std::snprintf(line, sizeof line,
                 "%.9g,%ld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.6e,%ld,%ld,%.6e,%ld\n",
-                sim.time(), sim.step_count(), e.kinetic_translational, e.kinetic_rotational, e.potential,
-                e.elastic_normal, e.elastic_tangential, e.dissipated_damping, e.dissipated_friction,
-                e.tangential_stiffness_change, e.total(), sim.energy_balance_error(), d.particle_contacts,
-                d.wall_contacts, d.max_overlap_ratio, d.neighbor_builds);
+                time, step, e.kinetic_translational, e.kinetic_rotational, e.potential, e.elastic_normal,
+                e.elastic_tangential, e.dissipated_damping, e.dissipated_friction,
+                e.tangential_stiffness_change, e.total(), balance_error, d.particle_contacts, d.wall_contacts,
+                d.max_overlap_ratio, d.neighbor_builds);
   rows_.emplace_back(line);
 }
 
 void RunRecorder::write_snapshot(const Simulation& sim) {
+  write_snapshot(sim.particles(), sim.walls(), sim.wall_forces(), sim.time(), sim.step_count());
+}
+
+void RunRecorder::write_snapshot(const ParticleStore& p, const std::vector<PlaneWall>& walls,
+                                 const std::vector<Vec3>& wall_forces, double time, long step) {
   char name[64];
-  std::snprintf(name, sizeof name, "particles_%09ld.h5", sim.step_count());
+  std::snprintf(name, sizeof name, "particles_%09ld.h5", step);
   const std::filesystem::path rel = std::filesystem::path("snapshots") / name;
-  io::write_snapshot(options_.folder / rel, sim.particles(), sim.walls(), sim.wall_forces(), sim.time(),
-                     sim.step_count());
-  snapshots_.push_back({rel.string(), sim.time(), sim.step_count(), static_cast<long>(sim.particles().size()),
-                        sim.particles().has_shapes()});
+  io::write_snapshot(options_.folder / rel, p, walls, wall_forces, time, step);
+  snapshots_.push_back({rel.string(), time, step, static_cast<long>(p.size()), p.has_shapes()});
   flush();
 }
 

@@ -59,6 +59,11 @@ class RunRecorder {
 
   void record_series(const Simulation& sim);
   void write_snapshot(const Simulation& sim);
+  // The same from plain data (any engine; the MPI run passes its gathered state).
+  void record_series(double time, long step, const EnergyBalance& e, double balance_error,
+                     const StepDiagnostics& d);
+  void write_snapshot(const ParticleStore& p, const std::vector<PlaneWall>& walls,
+                      const std::vector<Vec3>& wall_forces, double time, long step);
   // Rewrites time_series.csv and particles.xdmf.
   void flush() const;
   void write_summary(const std::map<std::string, std::string>& entries) const;

@@ -139,7 +139,7 @@ DeterministicForceResult compute(const DeterministicForceInput& in) {
       l.torque_lo[k] = arm_i * arm_x_f;
       l.torque_hi[k] = arm_j * arm_x_f;
     }
-    ++out.pair_contacts;
+    if (i < n_owned) ++out.pair_contacts;
     const double r_min = std::min(ri, rj);
     if (delta > max_ratio * r_min) max_ratio = delta / r_min;
   }

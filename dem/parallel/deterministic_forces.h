@@ -38,7 +38,7 @@ struct DeterministicForceInput {
 };
 
 struct DeterministicForceResult {
-  long pair_contacts = 0;  // pairs touching, counted on this rank (straddling pairs on both)
+  long pair_contacts = 0;  // touching pairs whose lo is owned (so each pair once over the ranks)
   long wall_contacts = 0;
   double max_overlap_ratio = 0.0;
   // With energy tracking: this evaluation's dissipation on this rank, over the wall

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "dem/core/error.h"
+#include "dem/parallel/fixed_point_sum.h"
 
 namespace upgrain::dem {
 
@@ -88,6 +89,14 @@ inline void throw_if_any(MPI_Comm comm, const std::string& local_message) {
   m.resize(static_cast<std::size_t>(length));
   MPI_Bcast(m.data(), length, MPI_CHAR, first, comm);
   throw Error(m);
+}
+
+// Collective: the sums of every quantity over all ranks, the same bits on every rank and
+// on any partition of the terms (fixed_point_sum.h).
+inline std::vector<double> global_sums(FixedPointSums& sums, MPI_Comm comm) {
+  std::vector<std::int64_t>& l = sums.limbs();
+  MPI_Allreduce(MPI_IN_PLACE, l.data(), static_cast<int>(l.size()), MPI_INT64_T, MPI_SUM, comm);
+  return sums.values();
 }
 
 }  // namespace upgrain::dem

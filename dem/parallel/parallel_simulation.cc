@@ -86,6 +86,7 @@ ParallelSimulation::ParallelSimulation(const SceneConfig& scene, const ParticleS
   n_owned_ = static_cast<int>(p_.size());
   rebuild();
   evaluate_forces();
+  e0_ = energy();
   timings_ = {};  // step() only
 }
 
@@ -158,7 +159,7 @@ void ParallelSimulation::run(long steps) {
 
 void ParallelSimulation::rebuild() {
   std::chrono::steady_clock::time_point t = std::chrono::steady_clock::now();
-  check_finite_collective();
+  check_finite();
   timings_.rebuild_messages += seconds_since(t);
   // Springs of touching contacts, keyed by global ids, before local indices change.
   history_.clear();
@@ -231,9 +232,34 @@ void ParallelSimulation::evaluate_forces() {
   stiffness_change_ += r.dissipated.tangential_stiffness_change;
   last_overlap_ratio_ = r.max_overlap_ratio;
   last_overlap_step_ = step_;
+  last_pair_contacts_ = r.pair_contacts;
+  last_wall_contacts_ = r.wall_contacts;
 }
 
-void ParallelSimulation::check_finite_collective() const {
+StepDiagnostics ParallelSimulation::step_diagnostics() const {
+  long counts[2] = {last_pair_contacts_, last_wall_contacts_};
+  MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_LONG, MPI_SUM, comm_);
+  double overlap = last_overlap_ratio_;
+  MPI_Allreduce(MPI_IN_PLACE, &overlap, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  StepDiagnostics d;
+  d.particle_contacts = counts[0];
+  d.wall_contacts = counts[1];
+  d.max_overlap_ratio = overlap;
+  d.neighbor_builds = rebuilds_;
+  return d;
+}
+
+void ParallelSimulation::remove_wall(const std::string& name) {
+  for (PlaneWall& w : walls_) {
+    if (w.name != name) continue;
+    w.point -= 1e100 * w.normal;  // as Simulation::remove_wall
+    rebuild();
+    return;
+  }
+  throw Error("no wall named '" + name + "' to remove");
+}
+
+void ParallelSimulation::check_finite() const {
   std::string message;
   for (int i = 0; i < n_owned_; ++i) {
     if (!p_.x[i].allFinite() || !p_.v[i].allFinite() || !p_.omega[i].allFinite()) {
@@ -349,6 +375,7 @@ EnergyBalance ParallelSimulation::energy() const {
   e.dissipated_damping = sums[5];
   e.dissipated_friction = sums[6];
   e.tangential_stiffness_change = sums[7];
+  e.removed_by_relaxation = removed_by_relaxation_;
   return e;
 }
 

@@ -22,6 +22,7 @@
 #include "dem/parallel/parallel_stress.h"
 #include "dem/parallel/records.h"
 #include "dem/scene/scene_config.h"
+#include "dem/simulation.h"
 
 namespace upgrain::dem {
 
@@ -120,6 +121,28 @@ class ParallelSimulation {
   // summed per wall in global-id order (bitwise rank-independent).
   [[nodiscard]] std::vector<Vec3> wall_forces() const;
 
+  // Collective, the same on every rank: the energy at construction (the reference of the
+  // balance error and of the energy released).
+  [[nodiscard]] const EnergyBalance& initial_energy() const { return e0_; }
+  // Kinetic energy taken out by a relaxation (parallel_relaxation.h); the caller passes the
+  // same global value on every rank.
+  void account_removed_kinetic_energy(double joules) { removed_by_relaxation_ += joules; }
+  // Collective: the contact counts of the last evaluation over all ranks (each pair once),
+  // its largest overlap ratio and the rebuilds so far; the same on every rank.
+  [[nodiscard]] StepDiagnostics step_diagnostics() const;
+  // Collective (every rank calls it at the same step): moves the wall far behind its own
+  // plane, as Simulation::remove_wall, and rebuilds the lists. Throws if no wall has the name.
+  void remove_wall(const std::string& name);
+  [[nodiscard]] const std::vector<PlaneWall>& walls() const { return walls_; }
+  // Collective: upgrain::Error on every rank if an owned particle has a non-finite state.
+  void check_finite() const;
+  [[nodiscard]] bool integrates_rotation() const { return rotation_; }
+  [[nodiscard]] Vec3 gravity() const { return g_; }
+  [[nodiscard]] MPI_Comm comm() const { return comm_; }
+  // Owned velocities and angular velocities may be changed between steps (a relaxation);
+  // the ghosts receive them at the next step. Nothing else may change.
+  [[nodiscard]] ParticleStore& local_particles_for_update() { return p_; }
+
   [[nodiscard]] const Decomposition& decomposition() const { return *decomp_; }
   // Owned particles are p[0, owned()); ghosts follow.
   [[nodiscard]] const ParticleStore& local_particles() const { return p_; }
@@ -140,7 +163,6 @@ class ParallelSimulation {
   void refresh_ghosts();
   void sort_owned_by_cell();
   void evaluate_forces();
-  void check_finite_collective() const;
   static double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
@@ -163,6 +185,10 @@ class ParallelSimulation {
   long migrated_out_ = 0;
   double last_overlap_ratio_ = 0.0;
   long last_overlap_step_ = 0;
+  long last_pair_contacts_ = 0;  // pairs whose lo is owned
+  long last_wall_contacts_ = 0;
+  EnergyBalance e0_;
+  double removed_by_relaxation_ = 0.0;
   ParallelTimings timings_;
 
   ContactLists lists_;

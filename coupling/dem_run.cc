@@ -1,0 +1,53 @@
+#include "coupling/dem_run.h"
+
+#include "dem/parallel/exchange.h"
+#include "dem/parallel/parallel_engine.h"
+#include "dem/scene/grain_shape.h"
+
+namespace upgrain::coupling {
+
+EngineChoice choose_engine(const SceneInput& in, int ranks) {
+  switch (in.parallel.engine) {
+    case DemEngineChoice::mpi:
+      return {true, "Parallel/DEM engine = mpi"};
+    case DemEngineChoice::serial:
+      return {false, "Parallel/DEM engine = serial"};
+    case DemEngineChoice::automatic:
+      break;
+  }
+  if (ranks == 1) return {false, "one rank"};
+  if (dem::has_ellipsoids(in.scene.particles.shapes))
+    return {false, "ellipsoids, which the MPI engine does not carry yet"};
+  return {true, std::to_string(ranks) + " ranks"};
+}
+
+dem::DepositionResult run_dem(const SceneInput& in, MPI_Comm comm,
+                              const std::function<void(const dem::Progress&)>& on_progress) {
+  int ranks = 1;
+  MPI_Comm_size(comm, &ranks);
+  dem::DepositionResult r;
+  if (choose_engine(in, ranks).mpi) {
+    dem::ParallelOptions o;
+    if (in.parallel.blocks[0] > 0) o.blocks = in.parallel.blocks;
+    return dem::run_parallel_deposition(in.scene, in.control, in.output, on_progress, comm, o);
+  }
+  on_rank0(comm, [&] { r = dem::run_deposition(in.scene, in.control, in.output, on_progress); });
+  return r;
+}
+
+void on_rank0(MPI_Comm comm, const std::function<void()>& work) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  std::string error;
+  if (rank == 0) {
+    try {
+      work();
+    } catch (const std::exception& e) {
+      error = e.what();
+      if (error.empty()) error = "unknown error";
+    }
+  }
+  dem::throw_if_any(comm, error);
+}
+
+}  // namespace upgrain::coupling

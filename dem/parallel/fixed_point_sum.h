@@ -1,0 +1,44 @@
+#pragma once
+// Sums of doubles whose bits do not depend on the order of the terms, nor on how they are
+// divided among MPI ranks: each term is cut into four 32-bit limbs of a fixed-point number
+// scaled by a bound B on |term| that is the same everywhere, the limbs are summed as
+// integers (exact and associative, so MPI_SUM over int64 gives the same bits on any
+// partition), and the total is converted back once. This is the fixed-point variant of
+// the reproducible summation of Demmel and Nguyen (IEEE Trans. Comput. 64:2060, 2015).
+//
+// Accuracy: a term is kept to 2^-128 B (the bits below are rounded), so the sum is exact
+// to N 2^-128 B before the one rounding of the conversion: a few ulps of the result unless
+// the result itself is 2^-70 B or smaller (massive cancellation). Up to 2^31 terms per
+// quantity (each limb sum stays below 2^63).
+//
+// Used where a global sum steers the particle states (FIRE's power and norms,
+// dem/parallel/parallel_relaxation.h) and must therefore be identical on any rank count.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace upgrain::dem {
+
+class FixedPointSums {
+ public:
+  static constexpr int kLimbs = 4;
+
+  // One bound per quantity, each >= every |term| of that quantity and identical on every
+  // rank (an MPI_MAX over the ranks is exact). A zero bound means every term is zero.
+  explicit FixedPointSums(std::vector<double> bounds);
+
+  void add(int quantity, double term);
+
+  // The limbs of every quantity, to be summed elementwise over ranks (MPI_INT64_T, MPI_SUM).
+  [[nodiscard]] std::vector<std::int64_t>& limbs() { return limbs_; }
+  [[nodiscard]] const std::vector<std::int64_t>& limbs() const { return limbs_; }
+  // The sums, from the (summed) limbs.
+  [[nodiscard]] std::vector<double> values() const;
+  [[nodiscard]] int quantities() const { return static_cast<int>(exponent_.size()); }
+
+ private:
+  std::vector<int> exponent_;  // |term| < 2^exponent
+  std::vector<std::int64_t> limbs_;
+};
+
+}  // namespace upgrain::dem

@@ -1,0 +1,19 @@
+# Runs the driver on one scene under mpiexec with each rank count of RANKS, then
+# compare_rank_outputs.py on the folders (the first is the reference).
+file(REMOVE_RECURSE ${WORK})
+file(MAKE_DIRECTORY ${WORK})
+set(folders "")
+foreach(k ${RANKS})
+  execute_process(COMMAND ${MPIEXEC} ${NP_FLAG} ${k} ${UPGRAIN} --output ${WORK}/np${k} ${PRM}
+                  RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT code EQUAL 0)
+    message(FATAL_ERROR "upgrain on ${k} ranks failed:\n${out}\n${err}")
+  endif()
+  list(APPEND folders ${WORK}/np${k})
+endforeach()
+execute_process(COMMAND ${PYTHON} ${CHECK} ${folders} RESULT_VARIABLE code OUTPUT_VARIABLE check
+                ERROR_VARIABLE err)
+if(NOT code EQUAL 0)
+  message(FATAL_ERROR "outputs differ between rank counts:\n${check}\n${err}")
+endif()
+message(STATUS "${check}")
