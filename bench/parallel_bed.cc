@@ -1,7 +1,13 @@
 // MPI benchmark (issue 5, item 9): the settled dense bed of bench_dense_bed, stepped by
 // ParallelSimulation on the ranks it is started with.
 //   mpiexec -n K bench_parallel_bed bed.data [steps] [--no-serial] [--blocks PXxPYxPZ]
-// (blocks: default chosen by the decomposition rule, docs/parallel.md).
+//           [--wedge] [--balance STEPS] [--balance-cost particles|pair_slots]
+// (blocks: default chosen by the decomposition rule, docs/parallel.md). --wedge keeps only
+// the grains below the plane from the top of the bed at x = 0 to the floor at x = lx (a heap
+// against one wall: a strongly non-uniform bed, 1/4 of the grains in the right half);
+// --balance moves the planes (ParallelOptions::balance_interval, at construction and at
+// rebuilds; docs/parallel.md, "Load balance"), and the line then also reports the owned
+// imbalance before the timed run, the rebalances and the last before/after figures.
 // Rank 0 prints one line of `key value` pairs: particles, steps, wall seconds, particle-
 // steps/s, the share of time in communication (per-step reduction, ghost refresh, messages
 // of rebuilds; mean over ranks of ParallelTimings), the imbalance (max/mean of owned
@@ -26,6 +32,7 @@
 
 #include "bench/dense_bed_scene.h"
 #include "dem/parallel/parallel_simulation.h"
+#include "dem/parallel/records.h"
 #include "dem/simulation.h"
 
 using namespace upgrain::dem;
@@ -58,7 +65,21 @@ std::uint64_t state_hash(const ParticleStore& p) {
   return h;
 }
 
-int run(const std::string& path, long steps, bool serial, const ParallelOptions& options) {
+// The grains below the plane z = z_top (1 - x / lx), renumbered from 0.
+ParticleStore wedge_of(const ParticleStore& p, double lx) {
+  double z_top = 0.0;
+  for (const Vec3& x : p.x) z_top = std::max(z_top, x[2]);
+  ParticleStore out;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.x[i][2] > z_top * (1.0 - p.x[i][0] / lx)) continue;
+    StateRecord r = pack_state(p, i);
+    r.gid = static_cast<GlobalId>(out.size());
+    append_state(out, r);
+  }
+  return out;
+}
+
+int run(const std::string& path, long steps, bool serial, bool wedge, const ParallelOptions& options) {
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
@@ -72,7 +93,10 @@ int run(const std::string& path, long steps, bool serial, const ParallelOptions&
     return 1;
   }
   if (rank != 0) bed->particles = ParticleStore{};
-  const long n = static_cast<long>(bed->particles.size());
+  if (wedge && rank == 0) bed->particles = wedge_of(bed->particles, bed->scene.container.lx);
+  long n_global = static_cast<long>(bed->particles.size());
+  MPI_Bcast(&n_global, 1, MPI_LONG, 0, MPI_COMM_WORLD);
+  const long n = n_global;
 
   double serial_seconds = 0.0;
   if (serial && size == 1) {
@@ -82,8 +106,11 @@ int run(const std::string& path, long steps, bool serial, const ParallelOptions&
     serial_seconds = seconds_since(t0);
   }
 
+  const auto t_setup = std::chrono::steady_clock::now();
   ParallelSimulation sim(bed->scene, bed->particles, MPI_COMM_WORLD, options);
+  const double setup_seconds = seconds_since(t_setup);
   const long rebuilds_before = sim.diagnostics().rebuilds;
+  const LoadImbalance at_start = sim.load_imbalance();
   MPI_Barrier(MPI_COMM_WORLD);
   const auto t0 = std::chrono::steady_clock::now();
   sim.run(steps);
@@ -135,6 +162,12 @@ int run(const std::string& path, long steps, bool serial, const ParallelOptions&
       size, b[0], b[1], b[2], n, steps, wall, static_cast<double>(n) * steps / wall, share, share_reduction,
       share_refresh, share_rebuild, imbalance.owned_ratio, imbalance.pairs_ratio, imbalance.compute_ratio,
       diag.rebuilds - rebuilds_before, ghosts_max, static_cast<unsigned long long>(state_hash(final_state)));
+  if (options.balance_interval > 0 || wedge)
+    std::printf(
+        " wedge %d balance_interval %ld owned_imbalance_start %.4f setup_seconds %.4f rebalances %ld "
+        "last_rebalance_before %.4f last_rebalance_after %.4f",
+        wedge ? 1 : 0, options.balance_interval, at_start.owned_ratio, setup_seconds, diag.rebalances,
+        diag.imbalance_before, diag.imbalance_after);
   if (serial_seconds > 0.0)
     std::printf(" serial_seconds %.4f serial_particle_steps_per_second %.4e parallel_over_serial %.4f",
                 serial_seconds, static_cast<double>(n) * steps / serial_seconds, wall / serial_seconds);
@@ -149,11 +182,21 @@ int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   bool serial = true;
   bool usage = false;
+  bool wedge = false;
   ParallelOptions options;
   std::vector<std::string> positional;
   for (std::size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--no-serial") {
       serial = false;
+    } else if (args[i] == "--wedge") {
+      wedge = true;
+    } else if (args[i] == "--balance" && i + 1 < args.size()) {
+      options.balance_interval = std::atol(args[++i].c_str());
+      usage = usage || options.balance_interval <= 0;
+    } else if (args[i] == "--balance-cost" && i + 1 < args.size()) {
+      const std::string c = args[++i];
+      usage = usage || (c != "particles" && c != "pair_slots");
+      options.balance_cost = c == "pair_slots" ? BalanceCost::pair_slots : BalanceCost::particles;
     } else if (args[i] == "--blocks" && i + 1 < args.size()) {
       std::array<int, 3>& b = options.blocks;
       usage = usage || std::sscanf(args[++i].c_str(), "%dx%dx%d", &b[0], &b[1], &b[2]) != 3;
@@ -165,7 +208,7 @@ int main(int argc, char** argv) {
   if (!usage && (positional.size() == 1 || positional.size() == 2)) {
     try {
       code = run(positional[0], positional.size() > 1 ? std::atol(positional[1].c_str()) : 1000, serial,
-                 options);
+                 wedge, options);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "bench_parallel_bed: %s\n", e.what());
       MPI_Abort(MPI_COMM_WORLD, 1);
@@ -173,7 +216,8 @@ int main(int argc, char** argv) {
   } else {
     std::fprintf(
         stderr,
-        "usage: mpiexec -n K bench_parallel_bed bed.data [steps] [--no-serial] [--blocks PXxPYxPZ]\n");
+        "usage: mpiexec -n K bench_parallel_bed bed.data [steps] [--no-serial] [--blocks PXxPYxPZ] [--wedge] "
+        "[--balance STEPS] [--balance-cost particles|pair_slots]\n");
   }
   MPI_Finalize();
   return code;

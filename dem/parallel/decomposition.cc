@@ -1,5 +1,6 @@
 #include "dem/parallel/decomposition.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -41,7 +42,7 @@ std::array<int, 3> choose_blocks(int ranks, const Box& box, double min_block) {
 }
 
 Decomposition::Decomposition(MPI_Comm comm, const Box& box, double min_block, std::array<int, 3> blocks)
-    : box_(box) {
+    : box_(box), min_block_(min_block) {
   MPI_Comm_size(comm, &size_);
   if (blocks[0] <= 0 || blocks[1] <= 0 || blocks[2] <= 0) blocks = choose_blocks(size_, box, min_block);
   const Vec3 l = box.hi - box.lo;
@@ -69,12 +70,47 @@ Decomposition::Decomposition(MPI_Comm comm, const Box& box, double min_block, st
   MPI_Cart_create(comm, 3, dims_.data(), periods, 0, &cart_);
   MPI_Comm_rank(cart_, &rank_);
   MPI_Cart_coords(cart_, rank_, 3, coords_.data());
-  const double inf = std::numeric_limits<double>::infinity();
   for (int d = 0; d < 3; ++d) {
     MPI_Cart_shift(cart_, d, 1, &neighbor_[d][0], &neighbor_[d][1]);
+    planes_[d].resize(static_cast<std::size_t>(dims_[d] + 1));
+    for (int k = 0; k <= dims_[d]; ++k) planes_[d][k] = box_.lo[d] + k * (box_.hi[d] - box_.lo[d]) / dims_[d];
+  }
+  update_block();
+}
+
+void Decomposition::update_block() {
+  const double inf = std::numeric_limits<double>::infinity();
+  for (int d = 0; d < 3; ++d) {
     block_.lo[d] = coords_[d] == 0 ? -inf : plane(d, coords_[d]);
     block_.hi[d] = coords_[d] == dims_[d] - 1 ? inf : plane(d, coords_[d] + 1);
   }
+}
+
+void Decomposition::set_cuts(int d, const std::vector<double>& cuts) {
+  const int n = dims_[d] - 1;
+  std::ostringstream m;
+  if (static_cast<int>(cuts.size()) != n) {
+    m << "load balance: " << cuts.size() << " cuts along "
+      << "xyz"[d] << " for " << dims_[d] << " blocks";
+  } else {
+    for (int k = 0; k < n && m.tellp() == 0; ++k) {
+      const bool inside = cuts[k] >= box_.lo[d] && cuts[k] <= box_.hi[d];
+      const bool ascending = k == 0 || cuts[k] >= cuts[k - 1];
+      // Interior block k (k = 1 .. n - 1 in cut numbering) lies between cuts k - 1 and k.
+      const bool thick = k == 0 || cuts[k] - cuts[k - 1] >= min_block_;
+      if (!inside || !ascending || !thick)
+        m << "load balance: plane " << k + 1 << " along "
+          << "xyz"[d] << " at " << cuts[k] << " m "
+          << (!inside      ? "outside the box"
+              : !ascending ? "below the previous plane"
+                           : "leaves a block thinner")
+          << (inside && ascending ? " than the interaction range" : "") << " (box " << box_.lo[d] << " .. "
+          << box_.hi[d] << " m, interaction range " << min_block_ << " m)";
+    }
+  }
+  if (m.tellp() != 0) throw Error(m.str());
+  for (int k = 0; k < n; ++k) planes_[d][static_cast<std::size_t>(k + 1)] = cuts[k];
+  update_block();
 }
 
 Decomposition::~Decomposition() {
@@ -84,13 +120,11 @@ Decomposition::~Decomposition() {
 std::array<int, 3> Decomposition::block_of(const Vec3& x) const {
   std::array<int, 3> c{};
   for (int d = 0; d < 3; ++d) {
-    const double s = (x[d] - box_.lo[d]) / (box_.hi[d] - box_.lo[d]) * dims_[d];
-    // Compare against the same planes as plane(): the owner test must agree with the
-    // block bounds bit for bit, or a particle on a plane would belong to no block.
-    int k = s > 0.0 ? static_cast<int>(std::min(s, static_cast<double>(dims_[d] - 1))) : 0;
-    while (k > 0 && x[d] < plane(d, k)) --k;
-    while (k < dims_[d] - 1 && x[d] >= plane(d, k + 1)) ++k;
-    c[d] = k;
+    // The number of interior planes at or below x: compared against the same numbers as
+    // the block bounds, so a particle on a plane belongs to exactly one block. The planes
+    // need not be equally spaced (load balance).
+    const auto first = planes_[d].begin() + 1, last = planes_[d].end() - 1;
+    c[d] = static_cast<int>(std::upper_bound(first, last, x[d]) - first);
   }
   return c;
 }

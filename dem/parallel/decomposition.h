@@ -1,11 +1,14 @@
 #pragma once
-// Static Cartesian domain decomposition: px x py x pz blocks over a global box, one block
-// per rank of an MPI Cartesian communicator (non-periodic). The outer faces of the border
-// blocks are open: a particle outside the box (above the fill, say) belongs to the nearest
-// block, so ownership is defined everywhere. The block-choice rule is in docs/parallel.md.
+// Cartesian domain decomposition: px x py x pz blocks over a global box, one block per rank
+// of an MPI Cartesian communicator (non-periodic). The outer faces of the border blocks are
+// open: a particle outside the box (above the fill, say) belongs to the nearest block, so
+// ownership is defined everywhere. The planes start equally spaced; the load balance
+// (load_balance.h) moves them per axis, keeping the tensor grid. The block-choice rule is
+// in docs/parallel.md.
 #include <mpi.h>
 
 #include <array>
+#include <vector>
 
 #include "dem/core/types.h"
 
@@ -50,9 +53,16 @@ class Decomposition {
   [[nodiscard]] int rank_of_block(const std::array<int, 3>& c) const;
   [[nodiscard]] int owner_of(const Vec3& x) const { return rank_of_block(block_of(x)); }
   // The k-th plane along axis d (k = 0 .. blocks[d]); block k spans planes k and k + 1.
-  [[nodiscard]] double plane(int d, int k) const {
-    return box_.lo[d] + k * (box_.hi[d] - box_.lo[d]) / dims_[d];
-  }
+  // Planes 0 and blocks[d] are the box faces.
+  [[nodiscard]] double plane(int d, int k) const { return planes_[d][static_cast<std::size_t>(k)]; }
+  [[nodiscard]] double min_block() const { return min_block_; }
+
+  // Moves the blocks[d] - 1 interior planes along axis d to `cuts` (load balance). Not
+  // collective, but every rank must pass the same cuts. Throws upgrain::Error unless they
+  // ascend inside the box and every interior block (between two cuts) is at least
+  // min_block() thick: the ghost layer of a face must not reach past the next face. The
+  // outer blocks are open outwards and need no thickness (clamp_cuts, load_balance.h).
+  void set_cuts(int d, const std::vector<double>& cuts);
 
  private:
   MPI_Comm cart_ = MPI_COMM_NULL;
@@ -61,6 +71,9 @@ class Decomposition {
   std::array<int, 3> coords_{0, 0, 0};
   std::array<std::array<int, 2>, 3> neighbor_{};
   Box box_, block_;
+  double min_block_ = 0.0;
+  std::array<std::vector<double>, 3> planes_;  // blocks[d] + 1 per axis
+  void update_block();
 };
 
 }  // namespace upgrain::dem

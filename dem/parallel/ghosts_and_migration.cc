@@ -1,7 +1,8 @@
 // The communication of ParallelSimulation: migration and ghosts, both by the three-stage
 // exchange (along x, then y, then z, each with the two face neighbours). Forwarding what
 // arrived in earlier stages reaches the 12 edge and 8 corner neighbours without messages
-// to them (Plimpton 1995, J. Comput. Phys. 117:1, sec. 4).
+// to them (Plimpton 1995, J. Comput. Phys. 117:1, sec. 4). After a load-balance move of
+// the planes, migration repeats these stages until every particle is home.
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
@@ -48,6 +49,35 @@ void ParallelSimulation::migrate() {
   throw_if_any(comm_, message);
   timings_.rebuild_messages += seconds_since(t);
 
+  // The check above used the planes the particles were last sorted by; a rebalance moves
+  // them only now. A particle may then be several blocks from home: each pass moves it one
+  // block along every axis, and a global reduction decides whether another pass is needed
+  // (at most max(blocks) - 1 passes; the springs travel with it at every hop).
+  if (!rebalance_if_due()) {
+    migration_pass();
+    return;
+  }
+  const std::array<int, 3>& b = dec.blocks();
+  const int max_passes = std::max({b[0], b[1], b[2]});
+  for (int pass = 1;; ++pass) {
+    migration_pass();
+    int away = 0;
+    for (int i = 0; i < n_owned_ && away == 0; ++i) away = dec.block_of(p_.x[i]) == me ? 0 : 1;
+    int any_away = 0;
+    t = std::chrono::steady_clock::now();
+    MPI_Allreduce(&away, &any_away, 1, MPI_INT, MPI_MAX, comm_);
+    timings_.rebuild_messages += seconds_since(t);
+    if (any_away == 0) return;
+    // Collective: every rank sees the same any_away and pass.
+    if (pass >= max_passes)
+      throw Error("load balance: particles still away from their blocks after migration");
+  }
+}
+
+void ParallelSimulation::migration_pass() {
+  const Decomposition& dec = *decomp_;
+  const std::array<int, 3>& me = dec.coords();
+  std::chrono::steady_clock::time_point t;
   std::array<std::vector<GlobalId>, 2> leaving;
   for (int d = 0; d < 3; ++d) {
     for (int s = 0; s < 2; ++s) {

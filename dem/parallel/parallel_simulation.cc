@@ -80,6 +80,10 @@ ParallelSimulation::ParallelSimulation(const SceneConfig& scene, const ParticleS
   range_ = 2.0 * max_radius_ + skin_;
   const Box box = options.box ? *options.box : default_box(scene, all, max_radius_);
   decomp_ = std::make_unique<Decomposition>(comm, box, range_, options.blocks);
+  if (options.balance_interval < 0) throw Error("load balance: balance_interval must be >= 0 steps");
+  balance_.interval = options.balance_interval;
+  balance_.cost = options.balance_cost;
+  balance_.next_step = options.balance_at_start ? 0 : options.balance_interval;
   comm_ = decomp_->comm();
   for (const StateRecord& r : all)
     if (decomp_->owner_of(get(r.x)) == decomp_->rank()) append_state(p_, r);
@@ -197,6 +201,7 @@ void ParallelSimulation::rebuild() {
   lists_.build(p_, n_owned_, max_radius_, skin_, walls_, history_);
   x_at_build_.assign(p_.x.begin(), p_.x.begin() + n_owned_);
   ++rebuilds_;
+  if (balance_.measure_after) measure_balance_after();
 }
 
 // Memory locality only (as VerletList::rebuild): no result depends on the local order,
@@ -416,6 +421,10 @@ ParallelDiagnostics ParallelSimulation::diagnostics() const {
   d.rebuilds = rebuilds_;
   d.migrated_out = migrated_out_;
   d.max_overlap_ratio = last_overlap_ratio_;
+  d.rebalances = balance_.count;
+  d.rebalance_step = balance_.last_step;
+  d.imbalance_before = balance_.before;
+  d.imbalance_after = balance_.after;
   return d;
 }
 

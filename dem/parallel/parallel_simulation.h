@@ -1,9 +1,9 @@
 #pragma once
-// The MPI step loop: a static Cartesian decomposition (decomposition.h), ghosts over the
-// 26 neighbours by the three-stage x/y/z exchange, migration with contact history at
-// neighbour-list rebuilds, and a force sum whose result does not depend on the number of
-// ranks, bit for bit (docs/parallel.md). The integrator is Simulation::step's velocity
-// Verlet, operation for operation.
+// The MPI step loop: a Cartesian decomposition (decomposition.h; planes fixed or moved by the
+// load balance, load_balance.h), ghosts over the 26 neighbours by the three-stage x/y/z
+// exchange, migration with contact history at neighbour-list rebuilds, and a force sum
+// whose result does not depend on the number of ranks, bit for bit (docs/parallel.md). The
+// integrator is Simulation::step's velocity Verlet, operation for operation.
 #include <mpi.h>
 
 #include <array>
@@ -19,6 +19,7 @@
 #include "dem/parallel/contact_lists.h"
 #include "dem/parallel/decomposition.h"
 #include "dem/parallel/deterministic_forces.h"
+#include "dem/parallel/load_balance.h"
 #include "dem/parallel/parallel_stress.h"
 #include "dem/parallel/records.h"
 #include "dem/scene/scene_config.h"
@@ -31,6 +32,13 @@ struct ParallelOptions {
   // The box the blocks divide; default: the container footprint, from the floor (or the
   // lowest particle) to the highest particle surface. Outer blocks are open outwards.
   std::optional<Box> box;
+  // Load balance (docs/parallel.md, "Load balance"): at the first neighbour-list rebuild
+  // at or after every `balance_interval` steps, the planes move to the quantiles of
+  // `balance_cost` along each cut axis; with `balance_at_start` also at construction (a bed
+  // at rest is never rebuilt). 0: fixed (Eulerian) blocks.
+  long balance_interval = 0;
+  BalanceCost balance_cost = BalanceCost::particles;
+  bool balance_at_start = true;
 };
 
 struct ParallelDiagnostics {
@@ -41,6 +49,13 @@ struct ParallelDiagnostics {
   long rebuilds = 0;               // neighbour-list rebuilds (identical on every rank)
   long migrated_out = 0;           // particles this rank sent away, cumulative
   double max_overlap_ratio = 0.0;  // of the last evaluation, on this rank
+  // Load balance (identical on every rank): the number of rebalances, the step of the last,
+  // and max/mean over ranks of the balanced cost just before it and at the end of its
+  // rebuild (after migration and the new lists). 1 = perfect balance.
+  long rebalances = 0;
+  long rebalance_step = -1;
+  double imbalance_before = 1.0;
+  double imbalance_after = 1.0;
 };
 
 // Wall-clock seconds spent by this rank in the parts of step(), accumulated since the end
@@ -159,6 +174,12 @@ class ParallelSimulation {
  private:
   void rebuild();
   void migrate();
+  void migration_pass();
+  // Load balance (rebalance.cc): moves the planes when due, before migration; measures
+  // the balance once the rebuild that moved them is complete.
+  bool rebalance_if_due();
+  void measure_balance_after();
+  [[nodiscard]] long owned_cost(int i) const;
   void build_ghosts();
   void refresh_ghosts();
   void sort_owned_by_cell();
@@ -205,6 +226,16 @@ class ParallelSimulation {
   ContactMaterial material_;
   std::vector<Vec3> x_at_build_;
   std::vector<SpringRecord> history_;
+  struct {
+    long interval = 0;
+    BalanceCost cost = BalanceCost::particles;
+    long next_step = 0;
+    long count = 0;
+    long last_step = -1;
+    double before = 1.0, after = 1.0;
+    bool measure_after = false;
+    std::vector<long> histogram, reduced;  // 3 axes x kBalanceBins, then the total cost
+  } balance_;
 
   // Ghost routes of the current rebuild, per axis and face: the local indices sent and
   // where the received ghosts start in the store. Refreshes follow the same routes.
