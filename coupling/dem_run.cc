@@ -1,5 +1,8 @@
 #include "coupling/dem_run.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "dem/parallel/exchange.h"
 #include "dem/parallel/parallel_engine.h"
 #include "dem/scene/grain_shape.h"
@@ -29,6 +32,15 @@ dem::DepositionResult run_dem(const SceneInput& in, MPI_Comm comm,
   if (choose_engine(in, ranks).mpi) {
     dem::ParallelOptions o;
     if (in.parallel.blocks[0] > 0) o.blocks = in.parallel.blocks;
+    if (in.parallel.balance_interval > 0.0) {
+      o.balance_interval =
+          std::max(1L, static_cast<long>(std::llround(in.parallel.balance_interval / in.scene.time_step)));
+      o.balance_at_start = true;
+    } else {
+      o.balance_interval = 0;
+      o.balance_at_start = false;
+    }
+    o.balance_cost = in.parallel.balance_by_pairs ? dem::BalanceCost::pair_slots : dem::BalanceCost::particles;
     return dem::run_parallel_deposition(in.scene, in.control, in.output, on_progress, comm, o);
   }
   on_rank0(comm, [&] { r = dem::run_deposition(in.scene, in.control, in.output, on_progress); });

@@ -60,6 +60,12 @@ void print_deposition(const upgrain::coupling::SceneInput& in, const upgrain::de
               r.bed.particles_outside);
   std::printf("  energy: kinetic/released %.3e, balance error %.3e\n", r.kinetic_to_released,
               r.energy_balance_error);
+  if (r.load.ranks > 1)
+    std::printf(
+        "  load over %d ranks: owned particles max/mean %.3f, compute time max/mean %.3f, communication up "
+        "to %.1f %% of a rank's step time, %ld rebalances\n",
+        r.load.ranks, r.load.owned_imbalance, r.load.compute_imbalance, 100.0 * r.load.communication_share,
+        r.load.rebalances);
   const dem::ContactSolverStats& cs = r.diagnostics.contact_solver;
   if (cs.calls > 0)
     std::printf(

@@ -127,6 +127,13 @@ const std::vector<ParameterSpec>& parameter_schema() {
       {"Parallel", "blocks", "0, 0, 0", K::integer3, 0, 4096, "", "-",
        "Blocks of the MPI engine along x, y, z; their product must be the rank count. 0, 0, 0 = chosen to "
        "minimise the cut area for the rank count and the box."},
+      {"Parallel", "balance interval", "0.01", K::real, 0.0, 1e6, "", "s",
+       "Simulated time between moves of the block planes to the quantiles of the cost (load balance, "
+       "docs/parallel.md), applied at the next neighbour-list rebuild; also once at the start. 0 = fixed "
+       "blocks. Results do not depend on it, only the speed."},
+      {"Parallel", "balance cost", "particles", K::selection, 0, 0, "particles|pair slots", "-",
+       "What the load balance equalises per block: owned particles, or particles plus their neighbour-list "
+       "pairs (better for beds with loose and dense regions)."},
 
       {"Stress", "formulas", "weber, drescher, bagi, de saxce, nicot, modified nicot, modified de saxce",
        K::multiple_selection, 0, 0, "weber|drescher|bagi|de saxce|nicot|modified nicot|modified de saxce",

@@ -203,6 +203,8 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
     const auto b = Patterns::Tools::Convert<std::vector<int>>::to_value(
         prm.get("blocks"), Patterns::List(Patterns::Integer(0, 4096), 3, 3, ","));
     for (int d = 0; d < 3; ++d) in.parallel.blocks[d] = b[d];
+    in.parallel.balance_interval = prm.get_double("balance interval");
+    in.parallel.balance_by_pairs = prm.get("balance cost") == "pair slots";
   }
   prm.leave_subsection();
 

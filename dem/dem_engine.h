@@ -21,6 +21,15 @@
 
 namespace upgrain::dem {
 
+// How the work was shared among the ranks (for the log and summary.json).
+struct EngineLoad {
+  int ranks = 1;
+  long rebalances = 0;                // moves of the block planes (docs/parallel.md, "Load balance")
+  double owned_imbalance = 1.0;       // max/mean of the particles owned per rank, now
+  double compute_imbalance = 1.0;     // max/mean of the compute seconds per rank
+  double communication_share = 0.0;   // largest share of a rank's step time spent in messages
+};
+
 class DemEngine {
  public:
   virtual ~DemEngine() = default;
@@ -56,6 +65,7 @@ class DemEngine {
   // After a step that recorded contacts: the stress of `grid`, on every rank.
   [[nodiscard]] virtual GridStress grid_stress(const RegularGrid& grid) = 0;
   virtual RelaxationResult relax(const RelaxationOptions& options) = 0;
+  [[nodiscard]] virtual EngineLoad load() const = 0;
 
   // Shared by both engines (energy.h): the balance error and the kinetic-to-released ratio.
   [[nodiscard]] double energy_balance_error() const { return balance_error(initial_energy(), energy()); }
@@ -97,6 +107,7 @@ class SerialEngine final : public DemEngine {
   RelaxationResult relax(const RelaxationOptions& options) override {
     return relax_to_equilibrium(sim_, options);
   }
+  [[nodiscard]] EngineLoad load() const override { return {}; }
 
  private:
   Simulation& sim_;

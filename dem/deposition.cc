@@ -186,6 +186,7 @@ DepositionResult run_deposition(DemEngine& sim, const SceneConfig& scene, const 
   const double released = pe0 - r.energy.potential;
   r.kinetic_to_released = kinetic_to_released(sim.initial_energy(), r.energy);
   r.diagnostics = sim.diagnostics();
+  r.load = sim.load();
   r.wall_forces = sim.wall_forces();
   for (const PlaneWall& w : sim.walls()) r.wall_names.push_back(w.name);
   const ParticleStore& all = sim.whole_state();
@@ -198,6 +199,10 @@ DepositionResult run_deposition(DemEngine& sim, const SceneConfig& scene, const 
     recorder->write_summary({
         {"particles", num(n)},
         {"mpi_ranks", num(sim.ranks())},
+        {"load_rebalances", num(static_cast<double>(r.load.rebalances))},
+        {"load_owned_imbalance", num(r.load.owned_imbalance)},
+        {"load_compute_imbalance", num(r.load.compute_imbalance)},
+        {"load_communication_share", num(r.load.communication_share)},
         {"steps", num(static_cast<double>(r.steps))},
         {"simulated_time_s", num(r.simulated_time)},
         {"wall_time_s", num(r.wall_seconds)},

@@ -8,6 +8,7 @@
 #include "dem/io/grid_stress_output.h"
 
 #include "dem/analysis/bed_state.h"
+#include "dem/dem_engine.h"
 #include "dem/io/run_recorder.h"
 #include "dem/relaxation.h"
 #include "dem/simulation.h"
@@ -51,6 +52,7 @@ struct DepositionResult {
   RegularGrid final_grid;
   // The last grid-strain evaluation, when the output asked for one.
   std::optional<GridStrain> final_strain;
+  EngineLoad load;  // how the ranks shared the work (one rank: the defaults)
 };
 
 // On the serial engine, from the scene's fill.
@@ -58,7 +60,6 @@ DepositionResult run_deposition(const SceneConfig& scene, const RunControl& cont
                                 const std::optional<io::OutputOptions>& output,
                                 const std::function<void(const Progress&)>& on_progress = {});
 
-class DemEngine;
 // On any engine (dem_engine.h), collective over its ranks: the output is written by the
 // root, and the result is complete on the root only (bed, mass, strain and progress
 // reports are the root's; the other fields are the same on every rank).

@@ -45,6 +45,20 @@ RelaxationResult ParallelEngine::relax(const RelaxationOptions& options) {
   return relax_to_equilibrium(sim_, options);
 }
 
+EngineLoad ParallelEngine::load() const {
+  const LoadImbalance b = sim_.load_imbalance();
+  const ParallelTimings& t = sim_.timings();
+  double share = t.total() > 0.0 ? t.communication() / t.total() : 0.0;
+  MPI_Allreduce(MPI_IN_PLACE, &share, 1, MPI_DOUBLE, MPI_MAX, sim_.comm());
+  EngineLoad l;
+  l.ranks = ranks_;
+  l.rebalances = sim_.diagnostics().rebalances;
+  l.owned_imbalance = b.owned_ratio;
+  l.compute_imbalance = b.compute_ratio;
+  l.communication_share = share;
+  return l;
+}
+
 DepositionResult run_parallel_deposition(const SceneConfig& scene, const RunControl& control,
                                          const std::optional<io::OutputOptions>& output,
                                          const std::function<void(const Progress&)>& on_progress,

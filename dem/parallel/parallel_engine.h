@@ -38,6 +38,7 @@ class ParallelEngine final : public DemEngine {
                                         const BoxContainer& box) override;
   [[nodiscard]] GridStress grid_stress(const RegularGrid& grid) override { return sim_.grid_stress(grid); }
   RelaxationResult relax(const RelaxationOptions& options) override;
+  [[nodiscard]] EngineLoad load() const override;
 
  private:
   ParallelSimulation& sim_;
