@@ -8,12 +8,18 @@
 // narrow-phase tests per second (pairs past the bounding spheres: proven apart, or solved),
 // Newton steps per solve, and the ratio of an ellipsoid particle-step to a sphere one
 // (target: at most 4).
-//   bench_ellipsoid_bed [N [steps]]   (defaults 2000 and 2000)
+//   bench_ellipsoid_bed [N [steps [cache_dir]]]   (defaults 2000 and 2000, no cache)
+// With `cache_dir`, the settled beds are written there on the first run and read back on
+// later ones (same N), so repeated timings and callgrind runs skip the settling. Under
+// callgrind (`valgrind --tool=callgrind --collect-atstart=no`) only the timed steps are
+// collected, one profile file per bed (`.1` spheres, `.2` ellipsoids).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <numbers>
+#include <string>
 
 #include "bench/dense_bed_scene.h"
 #include "dem/relaxation.h"
@@ -21,9 +27,52 @@
 #include "dem/simulation.h"
 #include "dem/time_step.h"
 
+#if __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>
+#define UPGRAIN_TOGGLE_COLLECT() CALLGRIND_TOGGLE_COLLECT
+#define UPGRAIN_DUMP_STATS(what) CALLGRIND_DUMP_STATS_AT(what)
+#else
+#define UPGRAIN_TOGGLE_COLLECT()
+#define UPGRAIN_DUMP_STATS(what)
+#endif
+
 using namespace upgrain::dem;
 
 namespace {
+
+// The settled bed as raw arrays (a benchmark's private cache, not a file format; the
+// element types are plain numbers and fixed-size Eigen types).
+template <class T>
+void write_array(std::ofstream& out, const std::vector<T>& a) {
+  const std::size_t n = a.size();
+  out.write(reinterpret_cast<const char*>(&n), sizeof n);
+  out.write(reinterpret_cast<const char*>(a.data()), static_cast<std::streamsize>(n * sizeof(T)));
+}
+
+template <class T>
+bool read_array(std::ifstream& in, std::vector<T>& a) {
+  std::size_t n = 0;
+  if (!in.read(reinterpret_cast<char*>(&n), sizeof n)) return false;
+  a.resize(n);
+  return static_cast<bool>(
+      in.read(reinterpret_cast<char*>(a.data()), static_cast<std::streamsize>(n * sizeof(T))));
+}
+
+template <class F>
+void for_each_array(ParticleStore& p, F&& f) {
+  f(p.id);
+  f(p.radius);
+  f(p.inv_mass);
+  f(p.inv_inertia);
+  f(p.x);
+  f(p.v);
+  f(p.omega);
+  f(p.force);
+  f(p.torque);
+  f(p.semi_axes);
+  f(p.orientation);
+  f(p.inertia_body);
+}
 
 struct Timing {
   double particle_steps_per_second = 0.0;
@@ -32,10 +81,58 @@ struct Timing {
   double seconds = 0.0;
 };
 
-// Deposits `n` grains of `shapes` (empty: spheres of radius r) soft, stiffens them to the
-// benchmark material, and times `steps` steps of the settled bed.
-Timing settle_and_time(long n, double r, const std::vector<GrainShape>& shapes, long steps) {
+// Deposits `n` grains of `shapes` (empty: spheres of radius r) soft and stiffens them to the
+// benchmark material.
+ParticleStore settle(long n, double r, const std::vector<GrainShape>& shapes, double side);
+
+// The settled bed (from the cache or settled now), timed over `steps` steps.
+Timing settle_and_time(long n, double r, const std::vector<GrainShape>& shapes, long steps,
+                       const std::string& cache_dir) {
   const double side = std::cbrt(n * 4.0 / 3.0 * std::numbers::pi * std::pow(1.5e-3, 3) / 0.6);
+  const char* what = shapes.empty() ? "spheres" : "ellipsoids";
+  ParticleStore p;
+  const std::string cache =
+      cache_dir.empty() ? std::string() : cache_dir + "/" + what + "_" + std::to_string(n) + ".bin";
+  bool cached = false;
+  if (!cache.empty()) {
+    std::ifstream in(cache, std::ios::binary);
+    cached = static_cast<bool>(in);
+    for_each_array(p, [&](auto& a) { cached = cached && read_array(in, a); });
+    if (cached) std::fprintf(stderr, "%s: settled bed read from %s\n", what, cache.c_str());
+  }
+  if (!cached) {
+    p = settle(n, r, shapes, side);
+    if (!cache.empty()) {
+      std::ofstream out(cache, std::ios::binary);
+      for_each_array(p, [&](auto& a) { write_array(out, a); });
+    }
+  }
+  SceneConfig stiff = upgrain::bench::benchmark_scene(side);
+  stiff.particles.shapes = shapes;
+  if (estimate_time_step(stiff).safe_step < stiff.time_step)
+    std::fprintf(stderr, "%s: note: dt = 1e-6 s is above the safe step %.2e s\n", what,
+                 estimate_time_step(stiff).safe_step);
+  for (auto& v : p.v) v.setZero();
+  for (auto& w : p.omega) w.setZero();
+  Simulation sim(stiff, p);
+  sim.run(200);  // lists built, caches warm
+  const ContactSolverStats before = sim.contact_solver_stats();
+  const auto t0 = std::chrono::steady_clock::now();
+  UPGRAIN_TOGGLE_COLLECT();
+  sim.run(steps);
+  UPGRAIN_TOGGLE_COLLECT();
+  UPGRAIN_DUMP_STATS(what);  // one callgrind file per bed
+  Timing t;
+  t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  t.particle_steps_per_second = static_cast<double>(n) * static_cast<double>(steps) / t.seconds;
+  t.contacts_per_particle =
+      2.0 * static_cast<double>(sim.diagnostics().particle_contacts) / static_cast<double>(n);
+  t.solver = sim.contact_solver_stats();
+  t.solver -= before;
+  return t;
+}
+
+ParticleStore settle(long n, double r, const std::vector<GrainShape>& shapes, double side) {
   SceneConfig s = upgrain::bench::benchmark_scene(side);
   s.particles.count = n;
   s.particles.radius = r;
@@ -65,26 +162,7 @@ Timing settle_and_time(long n, double r, const std::vector<GrainShape>& shapes, 
     p = relax.particles();
     std::fprintf(stderr, "%s: relaxed at E = %.2g Pa (dt %.2e s)\n", what, e, stage.time_step);
   }
-  SceneConfig stiff = upgrain::bench::benchmark_scene(side);
-  stiff.particles.shapes = shapes;
-  if (estimate_time_step(stiff).safe_step < stiff.time_step)
-    std::fprintf(stderr, "%s: note: dt = 1e-6 s is above the safe step %.2e s\n", what,
-                 estimate_time_step(stiff).safe_step);
-  for (auto& v : p.v) v.setZero();
-  for (auto& w : p.omega) w.setZero();
-  Simulation sim(stiff, p);
-  sim.run(200);  // lists built, caches warm
-  const ContactSolverStats before = sim.contact_solver_stats();
-  const auto t0 = std::chrono::steady_clock::now();
-  sim.run(steps);
-  Timing t;
-  t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  t.particle_steps_per_second = static_cast<double>(n) * static_cast<double>(steps) / t.seconds;
-  t.contacts_per_particle =
-      2.0 * static_cast<double>(sim.diagnostics().particle_contacts) / static_cast<double>(n);
-  t.solver = sim.contact_solver_stats();
-  t.solver -= before;
-  return t;
+  return p;
 }
 
 }  // namespace
@@ -92,10 +170,11 @@ Timing settle_and_time(long n, double r, const std::vector<GrainShape>& shapes, 
 int main(int argc, char** argv) {
   const long n = argc > 1 ? std::atol(argv[1]) : 2000;
   const long steps = argc > 2 ? std::atol(argv[2]) : 2000;
+  const std::string cache_dir = argc > 3 ? argv[3] : "";
   const double r = 1.5e-3;
-  const Timing spheres = settle_and_time(n, r, {}, steps);
+  const Timing spheres = settle_and_time(n, r, {}, steps, cache_dir);
   const GrainShape shape{0.8, 0.6, 1.0};
-  const Timing ellipsoids = settle_and_time(n, r / std::cbrt(0.8 * 0.6), {shape}, steps);
+  const Timing ellipsoids = settle_and_time(n, r / std::cbrt(0.8 * 0.6), {shape}, steps, cache_dir);
   const ContactSolverStats& st = ellipsoids.solver;
   const double tests = static_cast<double>(st.calls + st.proven_apart);
   std::printf(

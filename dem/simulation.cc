@@ -113,11 +113,12 @@ void Simulation::first_rotation_half(double half) {
       continue;
     }
     const Vec3& j = p_.inertia_body[i];
+    const Vec3 inv_j = j.cwiseInverse();  // once for the splitting and for w
     RigidRotationState s{p_.orientation[i], j.cwiseProduct(p_.orientation[i].conjugate() * p_.omega[i])};
     s.angular_momentum_body += s.orientation.conjugate() * (half * p_.torque[i]);
-    free_rotation_step(s, j, dt_);
+    free_rotation_step_inverse(s, inv_j, dt_);
     p_.orientation[i] = s.orientation;
-    p_.omega[i] = angular_velocity_world(s, j);
+    p_.omega[i] = s.orientation * s.angular_momentum_body.cwiseProduct(inv_j);
   }
 }
 

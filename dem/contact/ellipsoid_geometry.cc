@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -19,9 +20,10 @@ constexpr double kAngleConverged = 1e-6;  // rad: a last step this small is take
 // positions far from the origin cost no digits, and the power-of-two scaling is exact.
 struct PairFrame {
   double scale = 1.0;
-  Vec3 d;                // (c1 - c2) * scale
-  Mat3 m1, m2;           // M_i = R_i diag(a_i^2, b_i^2, c_i^2) R_i^T, scaled
-  Mat3 rot1, rot2;       // R_i (columns: body axes in the world)
+  Vec3 d;                      // (c1 - c2) * scale
+  Mat3 m1, m2;                 // M_i = R_i diag(a_i^2, b_i^2, c_i^2) R_i^T, scaled
+  const Mat3* rot1 = nullptr;  // R_i (columns: body axes in the world), not scaled
+  const Mat3* rot2 = nullptr;
   Vec3 ax1, ax2;         // semi-axes, scaled
   double size = 1.0;     // |d| + a1 + a2: magnitude of the terms of the gradient
   double certify = 0.0;  // c1^2/a1 + c2^2/a2: smallest radius of curvature of B1 - B2 (D4)
@@ -39,26 +41,31 @@ Mat3 shape_matrix(const Mat3& rot, const Vec3& axes) {
   return m;
 }
 
+// 2^-floor(log2 c): the power of two that brings c into [1, 2). From the exponent bits for
+// a normal c (ilogb and ldexp are two library calls on every pair frame otherwise).
+double scale_for(double c) {
+  const auto biased = static_cast<std::uint64_t>(std::bit_cast<std::uint64_t>(c) >> 52);
+  if (c > 0.0 && biased >= 1 && biased <= 2045) return std::bit_cast<double>((2046 - biased) << 52);
+  return std::ldexp(1.0, -std::ilogb(c));
+}
+
+// The posed ellipsoids must outlive the frame (it keeps their rotations by pointer).
 PairFrame make_frame(const PosedEllipsoid& e1, const PosedEllipsoid& e2) {
   PairFrame p;
-  const double c_min = std::min(e1.semi_axes.minCoeff(), e2.semi_axes.minCoeff());
-  p.scale = std::ldexp(1.0, -std::ilogb(c_min));
+  p.scale = scale_for(std::min(e1.minor, e2.minor));
   const double scale2 = p.scale * p.scale;
   p.d = (e1.centre - e2.centre) * p.scale;
-  p.rot1 = e1.rot;
-  p.rot2 = e2.rot;
+  p.rot1 = &e1.rot;
+  p.rot2 = &e2.rot;
   p.ax1 = e1.semi_axes * p.scale;
   p.ax2 = e2.semi_axes * p.scale;
   p.m1 = e1.shape * scale2;  // exact: equal to shape_matrix(rot1, ax1)
   p.m2 = e2.shape * scale2;
-  p.size = p.d.norm() + p.ax1.maxCoeff() + p.ax2.maxCoeff();
-  p.certify = p.ax1.minCoeff() * p.ax1.minCoeff() / p.ax1.maxCoeff() +
-              p.ax2.minCoeff() * p.ax2.minCoeff() / p.ax2.maxCoeff();
+  // Scaling by a power of two commutes with rounding: these equal the same expressions of
+  // the scaled semi-axes bit for bit.
+  p.size = p.d.norm() + e1.major * p.scale + e2.major * p.scale;
+  p.certify = (e1.min_radius + e2.min_radius) * p.scale;
   return p;
-}
-
-PairFrame make_frame(const Ellipsoid& e1, const Ellipsoid& e2) {
-  return make_frame(PosedEllipsoid::from(e1), PosedEllipsoid::from(e2));
 }
 
 // f(n) and the pieces its derivatives reuse (D2): u = M1 n, h1 = sqrt(n.u), v = M2 n,
@@ -70,14 +77,40 @@ struct Eval {
   double h1, h2;
 };
 
-Eval evaluate(const PairFrame& p, const Vec3& n) {
+// f alone (with u, v, h1, h2): all a separation proof needs.
+[[gnu::always_inline]] inline Eval evaluate_gap(const Vec3& d, const Mat3& m1, const Mat3& m2,
+                                                const Vec3& n) {
   Eval e;
-  e.u = p.m1 * n;
-  e.v = p.m2 * n;
+  e.u = m1 * n;
+  e.v = m2 * n;
   e.h1 = std::sqrt(n.dot(e.u));
   e.h2 = std::sqrt(n.dot(e.v));
-  e.g = p.d + e.u / e.h1 + e.v / e.h2;
-  e.f = n.dot(p.d) + e.h1 + e.h2;
+  e.f = n.dot(d) + e.h1 + e.h2;
+  return e;
+}
+
+[[gnu::always_inline]] inline void add_gradient(Eval& e, const Vec3& d) {
+  e.g = d + e.u * (1.0 / e.h1) + e.v * (1.0 / e.h2);
+}
+
+Eval evaluate(const Vec3& d, const Mat3& m1, const Mat3& m2, const Vec3& n) {
+  Eval e = evaluate_gap(d, m1, m2, n);
+  add_gradient(e, d);
+  return e;
+}
+
+Eval evaluate(const PairFrame& p, const Vec3& n) { return evaluate(p.d, p.m1, p.m2, n); }
+
+// An evaluation in world units carried into a frame: every piece scales by the frame's power
+// of two `scale`, exactly. `normal_scale` = 1/l carries an evaluation at l n to one at n:
+// u, v, h1, h2 and f scale with it, G (homogeneous of degree zero) does not.
+Eval scaled(Eval e, double scale, double normal_scale) {
+  e.u *= scale * scale * normal_scale;
+  e.v *= scale * scale * normal_scale;
+  e.h1 *= scale * normal_scale;
+  e.h2 *= scale * normal_scale;
+  e.g *= scale;
+  e.f *= scale * normal_scale;
   return e;
 }
 
@@ -146,12 +179,16 @@ NewtonResult newton_on_sphere(const PairFrame& p, const Vec3& start, const Eval*
       r.converged = true;
       return r;
     }
-    const Vec3 m1t1 = p.m1 * t1, m1t2 = p.m1 * t2, m2t1 = p.m2 * t1, m2t2 = p.m2 * t2;
-    const double h1_3 = r.e.h1 * r.e.h1 * r.e.h1, h2_3 = r.e.h2 * r.e.h2 * r.e.h2;
+    // H3 restricted to the tangent plane: with S = M1/h1 + M2/h2 one pair of products
+    // S t1, S t2 instead of four, and reciprocals instead of twelve divisions.
+    const double r1 = 1.0 / r.e.h1, r2 = 1.0 / r.e.h2;
+    const Mat3 s_mat = p.m1 * r1 + p.m2 * r2;
+    const Vec3 st1 = s_mat * t1, st2 = s_mat * t2;
+    const double r1_3 = r1 * r1 * r1, r2_3 = r2 * r2 * r2;
     const double u1 = t1.dot(r.e.u), u2 = t2.dot(r.e.u), v1 = t1.dot(r.e.v), v2 = t2.dot(r.e.v);
-    double h11 = t1.dot(m1t1) / r.e.h1 - u1 * u1 / h1_3 + t1.dot(m2t1) / r.e.h2 - v1 * v1 / h2_3 - r.e.f;
-    double h22 = t2.dot(m1t2) / r.e.h1 - u2 * u2 / h1_3 + t2.dot(m2t2) / r.e.h2 - v2 * v2 / h2_3 - r.e.f;
-    const double h12 = t1.dot(m1t2) / r.e.h1 - u1 * u2 / h1_3 + t1.dot(m2t2) / r.e.h2 - v1 * v2 / h2_3;
+    double h11 = t1.dot(st1) - u1 * u1 * r1_3 - v1 * v1 * r2_3 - r.e.f;
+    double h22 = t2.dot(st2) - u2 * u2 * r1_3 - v2 * v2 * r2_3 - r.e.f;
+    const double h12 = t1.dot(st2) - u1 * u2 * r1_3 - v1 * v2 * r2_3;
     double l0, l1;
     symmetric_eigenvalues_2x2(h11, h12, h22, l0, l1);
     const double floor = 1e-3 * (std::abs(l0) + p.certify);
@@ -160,9 +197,9 @@ NewtonResult newton_on_sphere(const PairFrame& p, const Vec3& start, const Eval*
       h11 += floor - l1;
       h22 += floor - l1;
     }
-    const double det = h11 * h22 - h12 * h12;
-    double x1 = -(h22 * g1 - h12 * g2) / det;
-    double x2 = -(h11 * g2 - h12 * g1) / det;
+    const double inv_det = 1.0 / (h11 * h22 - h12 * h12);
+    double x1 = -(h22 * g1 - h12 * g2) * inv_det;
+    double x2 = -(h11 * g2 - h12 * g1) * inv_det;
     const double step = std::sqrt(x1 * x1 + x2 * x2);
     // The Newton step of a positive-definite Hessian estimates the angle between n and the
     // minimiser: below kAngleConverged, take it unchecked (it leaves an error ~ step^2) and stop.
@@ -225,7 +262,7 @@ PrincipalCurvatures curvatures_body(const Mat3& rot, const Vec3& ax, const Vec3&
 // body, their bisector, the six body axes and the cross product of the two major axes.
 int cold_candidates(const PairFrame& p, std::array<Vec3, 11>& out) {
   const double dn = p.d.norm();
-  const Vec3 u0 = dn > 0.0 ? Vec3(-p.d / dn) : Vec3(p.rot1.col(2));
+  const Vec3 u0 = dn > 0.0 ? Vec3(-p.d / dn) : Vec3(p.rot1->col(2));
   int count = 0;
   auto add = [&](const Vec3& v) {
     const double len = v.norm();
@@ -233,14 +270,14 @@ int cold_candidates(const PairFrame& p, std::array<Vec3, 11>& out) {
     out[count++] = (v.dot(u0) < 0.0 ? -v : v) / len;
   };
   add(u0);
-  const Vec3 n1 = inverse_shape_times(p.rot1, p.ax1, u0).normalized();
-  const Vec3 n2 = inverse_shape_times(p.rot2, p.ax2, u0).normalized();
+  const Vec3 n1 = inverse_shape_times(*p.rot1, p.ax1, u0).normalized();
+  const Vec3 n2 = inverse_shape_times(*p.rot2, p.ax2, u0).normalized();
   add(n1);
   add(n2);
   add(n1 + n2);
-  for (int k = 0; k < 3; ++k) add(p.rot1.col(k));
-  for (int k = 0; k < 3; ++k) add(p.rot2.col(k));
-  add(p.rot1.col(0).cross(p.rot2.col(0)));
+  for (int k = 0; k < 3; ++k) add(p.rot1->col(k));
+  for (int k = 0; k < 3; ++k) add(p.rot2->col(k));
+  add(p.rot1->col(0).cross(p.rot2->col(0)));
   return count;
 }
 
@@ -275,9 +312,10 @@ NewtonResult fallback(const PairFrame& p, const std::array<Vec3, 11>& cands, int
   return best;
 }
 
-ContactGeometry assemble(const PairFrame& p, const Vec3& centre1, const Vec3& centre2, const NewtonResult& r,
-                         bool curvatures = true) {
-  ContactGeometry g;
+// Writes the result into `g`, a default ContactGeometry (the fields not set keep their
+// defaults), in place: the force loop's result is not copied.
+void assemble(const PairFrame& p, const Vec3& centre1, const Vec3& centre2, const NewtonResult& r,
+              bool curvatures, ContactGeometry& g) {
   const double inv = 1.0 / p.scale;  // exact: a power of two
   g.depth = r.e.f * inv;
   g.touching = r.e.f > 0.0;
@@ -288,8 +326,8 @@ ContactGeometry assemble(const PairFrame& p, const Vec3& centre1, const Vec3& ce
   g.point2 = centre2 + arm2 * inv;
   g.point = centre1 + (arm1 - 0.5 * r.e.f * r.n) * inv;
   if (g.touching && curvatures) {  // curvatures feed the contact law only: skipped for gaps
-    const PrincipalCurvatures k1 = curvatures_body(p.rot1, p.ax1, p.rot1.transpose() * arm1);
-    const PrincipalCurvatures k2 = curvatures_body(p.rot2, p.ax2, p.rot2.transpose() * arm2);
+    const PrincipalCurvatures k1 = curvatures_body(*p.rot1, p.ax1, p.rot1->transpose() * arm1);
+    const PrincipalCurvatures k2 = curvatures_body(*p.rot2, p.ax2, p.rot2->transpose() * arm2);
     for (int i = 0; i < 2; ++i) {
       g.curvature1[i] = k1.k[i] * p.scale;
       g.curvature2[i] = k2.k[i] * p.scale;
@@ -300,7 +338,6 @@ ContactGeometry assemble(const PairFrame& p, const Vec3& centre1, const Vec3& ce
   g.iterations = r.iterations;
   g.converged = r.converged;
   g.certified = r.converged && r.e.f < p.certify * (1.0 - 1e-9);
-  return g;
 }
 
 }  // namespace
@@ -337,9 +374,9 @@ namespace {
 // The solver on a pair frame (D3, D4): warm start, cold start from the best candidate, and the
 // multi-start fallback when the result is not certified.
 // `at_initial`: f at the initial normal when the caller has it (it must be the normalised one).
-ContactGeometry solve_frame(const PairFrame& p, const Vec3& centre1, const Vec3& centre2,
-                            ContactSolverStats& stats, const std::optional<Vec3>& initial_normal,
-                            bool curvatures, const Eval* at_initial = nullptr) {
+void solve_frame(const PairFrame& p, const Vec3& centre1, const Vec3& centre2, ContactSolverStats& stats,
+                 const std::optional<Vec3>& initial_normal, bool curvatures, ContactGeometry& g,
+                 const Eval* at_initial = nullptr) {
   int iterations = 0;
   if (initial_normal && initial_normal->squaredNorm() > 0.5) {
     ++stats.warm_starts;
@@ -347,7 +384,8 @@ ContactGeometry solve_frame(const PairFrame& p, const Vec3& centre1, const Vec3&
     iterations += r.iterations;
     if (r.converged && r.e.f < p.certify * (1.0 - 1e-9)) {
       stats.newton_iterations += iterations;
-      return assemble(p, centre1, centre2, r, curvatures);
+      assemble(p, centre1, centre2, r, curvatures, g);
+      return;
     }
     ++stats.warm_rejected;
   }
@@ -372,26 +410,28 @@ ContactGeometry solve_frame(const PairFrame& p, const Vec3& centre1, const Vec3&
     if ((wide.converged && !r.converged) || (wide.converged == r.converged && wide.e.f < r.e.f)) r = wide;
   }
   stats.newton_iterations += iterations;
-  ContactGeometry g = assemble(p, centre1, centre2, r, curvatures);
+  assemble(p, centre1, centre2, r, curvatures, g);
   g.iterations = iterations;
   if (!g.converged)
     ++stats.failures;
   else if (!g.certified)
     ++stats.uncertified;
-  return g;
 }
 
-// proven_separated() on a frame.
-bool separated_frame(const PairFrame& p, double margin) {
+// proven_separated() on a frame; `witness` receives the direction that proved it.
+bool separated_frame(const PairFrame& p, double margin, Vec3* witness = nullptr) {
   const double dn = p.d.norm();
   if (!(dn > 0.0)) return false;
   const Vec3 u0 = -p.d / dn;
   const double bound = -margin * p.scale;
-  if (evaluate(p, u0).f < bound) return true;
-  const Vec3 n1 = inverse_shape_times(p.rot1, p.ax1, u0).normalized();
-  if (evaluate(p, n1).f < bound) return true;
-  const Vec3 n2 = inverse_shape_times(p.rot2, p.ax2, u0).normalized();
-  return evaluate(p, n2).f < bound;
+  auto proves = [&](const Vec3& n) {
+    if (!(evaluate_gap(p.d, p.m1, p.m2, n).f < bound)) return false;
+    if (witness) *witness = n;
+    return true;
+  };
+  if (proves(u0)) return true;
+  if (proves(inverse_shape_times(*p.rot1, p.ax1, u0).normalized())) return true;
+  return proves(inverse_shape_times(*p.rot2, p.ax2, u0).normalized());
 }
 
 }  // namespace
@@ -399,7 +439,10 @@ bool separated_frame(const PairFrame& p, double margin) {
 ContactGeometry support_function_contact(const Ellipsoid& e1, const Ellipsoid& e2, ContactSolverStats& stats,
                                          const std::optional<Vec3>& initial_normal) {
   ++stats.calls;
-  return solve_frame(make_frame(e1, e2), e1.centre, e2.centre, stats, initial_normal, true);
+  const PosedEllipsoid p1 = PosedEllipsoid::from(e1), p2 = PosedEllipsoid::from(e2);
+  ContactGeometry g;
+  solve_frame(make_frame(p1, p2), e1.centre, e2.centre, stats, initial_normal, true, g);
+  return g;
 }
 
 PosedEllipsoid PosedEllipsoid::from(const Ellipsoid& e) {
@@ -408,36 +451,51 @@ PosedEllipsoid PosedEllipsoid::from(const Ellipsoid& e) {
   q.rot = e.orientation.toRotationMatrix();
   q.semi_axes = e.semi_axes;
   q.shape = shape_matrix(q.rot, e.semi_axes);
+  q.major = e.semi_axes.maxCoeff();
+  q.minor = e.semi_axes.minCoeff();
+  q.min_radius = q.minor * q.minor / q.major;
   return q;
 }
 
-std::optional<ContactGeometry> posed_contact(const PosedEllipsoid& e1, const PosedEllipsoid& e2,
-                                             ContactSolverStats& stats,
-                                             const std::optional<Vec3>& initial_normal, bool curvatures) {
+bool posed_contact(const PosedEllipsoid& e1, const PosedEllipsoid& e2, ContactSolverStats& stats,
+                   const std::optional<Vec3>& initial_normal, bool curvatures, ContactGeometry& g) {
   if (e1.is_sphere() && e2.is_sphere()) {
     ++stats.calls;
-    return sphere_sphere_contact(e1.centre, e1.semi_axes.x(), e2.centre, e2.semi_axes.x());
+    g = sphere_sphere_contact(e1.centre, e1.semi_axes.x(), e2.centre, e2.semi_axes.x());
+    return true;
   }
-  const PairFrame p = make_frame(e1, e2);
   // f(n) >= depth for every unit n: f < 0 at the pair's last normal proves a gap with one
-  // evaluation, the tightest bound for a pair that was near at the last step.
+  // evaluation, the tightest bound for a pair that was near at the last step. Half the warm
+  // pairs of a bed end here, before their frame is built.
   const bool warm = initial_normal && initial_normal->squaredNorm() > 0.5;
   if (!warm) {
-    if (separated_frame(p, 0.0)) {
+    const PairFrame p = make_frame(e1, e2);
+    if (separated_frame(p, 0.0, &g.normal)) {
       ++stats.proven_apart;
-      return std::nullopt;
+      return false;
     }
     ++stats.calls;
-    return solve_frame(p, e1.centre, e2.centre, stats, initial_normal, curvatures);
+    solve_frame(p, e1.centre, e2.centre, stats, initial_normal, curvatures, g);
+    return true;
   }
-  const Vec3 n = initial_normal->normalized();
-  const Eval at_n = evaluate(p, n);
-  if (at_n.f < 0.0) {
+  // f is homogeneous of degree one, f(l n) = l f(n) for l > 0: the proof needs no unit n,
+  // and the evaluation is carried to the unit normal by scaling only if the pair is solved.
+  const Vec3& m = *initial_normal;
+  const Vec3 d = e1.centre - e2.centre;
+  Eval at_m = evaluate_gap(d, e1.shape, e2.shape, m);
+  if (at_m.f < 0.0) {
     ++stats.proven_apart;
-    return std::nullopt;
+    g.normal = m;
+    return false;
   }
   ++stats.calls;
-  return solve_frame(p, e1.centre, e2.centre, stats, n, curvatures, &at_n);
+  const double inv_len = 1.0 / std::sqrt(m.squaredNorm());
+  const Vec3 n = m * inv_len;
+  add_gradient(at_m, d);  // homogeneous of degree zero
+  const PairFrame p = make_frame(e1, e2);
+  const Eval at_n = scaled(at_m, p.scale, inv_len);
+  solve_frame(p, e1.centre, e2.centre, stats, n, curvatures, g, &at_n);
+  return true;
 }
 
 ContactGeometry ellipsoid_sphere_contact(const Ellipsoid& e, const Vec3& centre, double radius,
@@ -473,12 +531,14 @@ ContactGeometry posed_plane_contact(const PosedEllipsoid& e, const Plane& plane,
 }
 
 double support_gap_function(const Ellipsoid& e1, const Ellipsoid& e2, const Vec3& n) {
-  const PairFrame p = make_frame(e1, e2);
+  const PosedEllipsoid p1 = PosedEllipsoid::from(e1), p2 = PosedEllipsoid::from(e2);
+  const PairFrame p = make_frame(p1, p2);
   return evaluate(p, n).f / p.scale;
 }
 
 bool proven_separated(const Ellipsoid& e1, const Ellipsoid& e2, double margin) {
-  return separated_frame(make_frame(e1, e2), margin);
+  const PosedEllipsoid p1 = PosedEllipsoid::from(e1), p2 = PosedEllipsoid::from(e2);
+  return separated_frame(make_frame(p1, p2), margin);
 }
 
 PrincipalCurvatures principal_curvatures(const Ellipsoid& e, const Vec3& surface_point) {

@@ -99,6 +99,9 @@ struct PosedEllipsoid {
   Mat3 rot = Mat3::Identity();
   Vec3 semi_axes = Vec3::Ones();
   Mat3 shape = Mat3::Identity();
+  double major = 1.0;       // largest semi-axis a
+  double minor = 1.0;       // smallest semi-axis c
+  double min_radius = 1.0;  // c^2 / a: the smallest radius of curvature of the surface
 
   static PosedEllipsoid from(const Ellipsoid& e);
   [[nodiscard]] bool is_sphere() const {
@@ -106,14 +109,17 @@ struct PosedEllipsoid {
   }
 };
 
-// The force loop's call, on one pair frame: a conservative separation proof and, unless it
-// succeeds (then nullopt, counted in stats.proven_apart), the solver of ellipsoid_contact().
-// The proof is f(n) < 0 at `initial_normal` when one is given (f bounds the depth from above),
-// else proven_separated()'s three directions. `curvatures` false skips the principal
-// curvatures (the contact law needs them only at a contact's first touch).
-std::optional<ContactGeometry> posed_contact(const PosedEllipsoid& e1, const PosedEllipsoid& e2,
-                                             ContactSolverStats& stats,
-                                             const std::optional<Vec3>& initial_normal, bool curvatures);
+// The force loop's call: a conservative separation proof and, unless it succeeds (then
+// false, counted in stats.proven_apart), the solver of ellipsoid_contact() on one pair frame.
+// The proof is f(n) < 0 at `initial_normal` when one is given (f bounds the depth from above;
+// evaluated before the pair frame is built, since the frame's power-of-two scaling changes no
+// sign and no bit), else proven_separated()'s three directions. `curvatures` false skips the principal
+// curvatures (the contact law needs them only at a contact's first touch). Returns false when
+// proven apart, with g.normal the direction n of the proof (f(n) < 0: the next step's warm
+// start and one-evaluation proof), else true with the geometry in `g`, which must be a default
+// ContactGeometry (written in place: no copy of the result).
+bool posed_contact(const PosedEllipsoid& e1, const PosedEllipsoid& e2, ContactSolverStats& stats,
+                   const std::optional<Vec3>& initial_normal, bool curvatures, ContactGeometry& g);
 
 // Ellipsoid-plane on a posed ellipsoid, optionally without curvatures.
 ContactGeometry posed_plane_contact(const PosedEllipsoid& e, const Plane& plane, bool curvatures);

@@ -22,14 +22,16 @@ bool shaped_pair_geometry(const ParticleStore& p, const std::vector<PosedEllipso
                           std::size_t j, ShapedContactMemory& memory, ContactSolverStats& stats,
                           ContactKinematics& kin, double& r_star) {
   const bool first_touch = memory.r_star == 0.0;  // curvatures are needed only then
-  const std::optional<ContactGeometry> found = posed_contact(
-      posed[i], posed[j], stats,
-      memory.normal != Vec3::Zero() ? std::optional<Vec3>(memory.normal) : std::nullopt, first_touch);
-  if (!found) {  // proven apart: a pair's last normal stays its warm start and its proof
+  ContactGeometry g;
+  if (!posed_contact(posed[i], posed[j], stats,
+                     memory.normal != Vec3::Zero() ? std::optional<Vec3>(memory.normal) : std::nullopt,
+                     first_touch, g)) {
+    // Proven apart: the direction of the proof is the pair's next warm start and, while the
+    // pair stays apart, proves it again with one evaluation.
+    memory.normal = g.normal;
     memory.r_star = 0.0;
     return false;
   }
-  const ContactGeometry& g = *found;
   memory.normal = g.normal;
   if (!g.touching) {
     memory.r_star = 0.0;
@@ -96,7 +98,10 @@ void compute_forces(ForceContext& ctx) {
           // Most pairs in the list are not touching: write only when a contact just ended.
           if (springs[k].stiffness != 0.0) springs[k] = TangentialSpring{};
         }
-        if constexpr (Shapes) (*memory)[k] = ShapedContactMemory{};
+        if constexpr (Shapes) {
+          // As the springs: write only when the pair had a memory.
+          if (!(*memory)[k].empty()) (*memory)[k] = ShapedContactMemory{};
+        }
         continue;
       }
       ContactKinematics kin;

@@ -21,44 +21,60 @@ struct RigidRotationState {
   Vec3 angular_momentum_body = Vec3::Zero();  // L in the principal body frame (kg m^2/s)
 };
 
-// Exact free rotation about principal axis k for a time h: with L_b,k and I_k fixed, the
-// body turns by phi = h L_k / I_k about its axis k, so L_b turns by -phi about that axis.
-// One sine and cosine of phi/2 serve both: the quaternion factor (cos phi/2, sin phi/2 e_k)
+// Exact free rotation about principal axis K for a time h: with L_b,K and I_K fixed, the
+// body turns by phi = h L_K / I_K about its axis K, so L_b turns by -phi about that axis.
+// `half_step_rate` is h / (2 I_K), so that phi/2 = L_K half_step_rate (no division here).
+// One sine and cosine of phi/2 serve both: the quaternion factor (cos phi/2, sin phi/2 e_K)
 // and cos phi = c^2 - s^2, sin phi = 2 s c for L_b (the rotation is a fifth of an ellipsoid's
 // step cost otherwise, measured with perf).
-inline void rotate_about_principal_axis(RigidRotationState& st, const Vec3& inertia, int k, double h) {
-  const double half = 0.5 * h * st.angular_momentum_body[k] / inertia[k];
+template <int K>
+inline void rotate_about_principal_axis(RigidRotationState& st, double half_step_rate) {
+  constexpr int i = (K + 1) % 3, j = (K + 2) % 3;  // (i, j, K) cyclic
+  Vec3& l = st.angular_momentum_body;
+  const double half = l[K] * half_step_rate;
   double s, c;
   if (std::abs(half) < 0.03) {
-    // A DEM step turns a grain by far less than 0.03 rad: Taylor series to x^9 and x^8, whose
-    // remainders (x^11/11!, x^10/10!) are below 1e-16 of the result there, at a fifth of the
-    // cost of sincos.
+    // A DEM step turns a grain by far less than 0.03 rad: Taylor series to x^7 and x^6,
+    // whose remainders (x^9/9!, x^8/8!) are below 2e-17 of the result there, with constant
+    // coefficients (no division in the chain: the rotation is latency-bound).
     const double x2 = half * half;
-    s = half * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0))));
-    c = 1.0 - x2 / 2.0 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0)));
+    s = half * (1.0 + x2 * (-1.0 / 6.0 + x2 * (1.0 / 120.0 - x2 * (1.0 / 5040.0))));
+    c = 1.0 + x2 * (-0.5 + x2 * (1.0 / 24.0 - x2 * (1.0 / 720.0)));
   } else {
     s = std::sin(half);
     c = std::cos(half);
   }
-  Eigen::Quaterniond turn(c, 0.0, 0.0, 0.0);
-  turn.vec()[k] = s;
-  st.orientation = st.orientation * turn;
+  // q <- q (c, s e_K), the Hamilton product written out for a factor with one vector
+  // component: (w, v)(c, s e_K) = (c w - s v_K, c v + s w e_K + s v x e_K).
+  Eigen::Quaterniond& q = st.orientation;
+  const double w = q.w(), vi = q.vec()[i], vj = q.vec()[j], vk = q.vec()[K];
+  q.w() = c * w - s * vk;
+  q.vec()[i] = c * vi + s * vj;
+  q.vec()[j] = c * vj - s * vi;
+  q.vec()[K] = c * vk + s * w;
   const double cos_phi = c * c - s * s, sin_phi = 2.0 * s * c;
-  const int i = (k + 1) % 3, j = (k + 2) % 3;  // (i, j, k) cyclic
-  Vec3& l = st.angular_momentum_body;
   const double li = l[i], lj = l[j];
   l[i] = cos_phi * li + sin_phi * lj;
   l[j] = -sin_phi * li + cos_phi * lj;
 }
 
+// One step h of torque-free rotation, given the inverse principal moments 1/I (body frame).
+inline void free_rotation_step_inverse(RigidRotationState& s, const Vec3& inverse_inertia, double h) {
+  const Vec3 rate = (0.5 * h) * inverse_inertia;  // h / (2 I): phi/2 = L rate
+  rotate_about_principal_axis<0>(s, 0.5 * rate[0]);
+  rotate_about_principal_axis<1>(s, 0.5 * rate[1]);
+  rotate_about_principal_axis<2>(s, rate[2]);
+  rotate_about_principal_axis<1>(s, 0.5 * rate[1]);
+  rotate_about_principal_axis<0>(s, 0.5 * rate[0]);
+  // Removes round-off only: every factor is a unit quaternion, so |q|^2 = 1 + e with e of
+  // order 1e-16, and one Newton step for 1/sqrt, (3 - |q|^2)/2, normalises to round-off
+  // without a square root or a division.
+  s.orientation.coeffs() *= 1.5 - 0.5 * s.orientation.squaredNorm();
+}
+
 // One step h of torque-free rotation (principal moments `inertia` in the body frame).
 inline void free_rotation_step(RigidRotationState& s, const Vec3& inertia, double h) {
-  rotate_about_principal_axis(s, inertia, 0, 0.5 * h);
-  rotate_about_principal_axis(s, inertia, 1, 0.5 * h);
-  rotate_about_principal_axis(s, inertia, 2, h);
-  rotate_about_principal_axis(s, inertia, 1, 0.5 * h);
-  rotate_about_principal_axis(s, inertia, 0, 0.5 * h);
-  s.orientation.normalize();  // removes round-off only: every factor is a unit quaternion
+  free_rotation_step_inverse(s, inertia.cwiseInverse(), h);
 }
 
 // A whole step with a world-frame torque held over it: half kick, free rotation, half kick.
