@@ -8,6 +8,7 @@
 // Output is written by the root inside on_root(), which turns an error there into the same
 // error on every rank, so no rank is left waiting in a later message.
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "dem/core/particle_store.h"
 #include "dem/energy.h"
 #include "dem/io/run_recorder.h"
+#include "dem/parallel/parallel_stress.h"
 #include "dem/relaxation.h"
 #include "dem/simulation.h"
 #include "dem/stress/grid_stress.h"
@@ -24,10 +26,10 @@ namespace upgrain::dem {
 // How the work was shared among the ranks (for the log and summary.json).
 struct EngineLoad {
   int ranks = 1;
-  long rebalances = 0;                // moves of the block planes (docs/parallel.md, "Load balance")
-  double owned_imbalance = 1.0;       // max/mean of the particles owned per rank, now
-  double compute_imbalance = 1.0;     // max/mean of the compute seconds per rank
-  double communication_share = 0.0;   // largest share of a rank's step time spent in messages
+  long rebalances = 0;               // moves of the block planes (docs/parallel.md, "Load balance")
+  double owned_imbalance = 1.0;      // max/mean of the particles owned per rank, now
+  double compute_imbalance = 1.0;    // max/mean of the compute seconds per rank
+  double communication_share = 0.0;  // largest share of a rank's step time spent in messages
 };
 
 class DemEngine {
@@ -64,6 +66,9 @@ class DemEngine {
                                                 const BoxContainer& box) = 0;
   // After a step that recorded contacts: the stress of `grid`, on every rank.
   [[nodiscard]] virtual GridStress grid_stress(const RegularGrid& grid) = 0;
+  // After the same step: the stress per compute grid (MPI block), on every rank; none for
+  // an engine without blocks.
+  [[nodiscard]] virtual std::optional<ComputeGridStress> compute_grid_stress() { return std::nullopt; }
   virtual RelaxationResult relax(const RelaxationOptions& options) = 0;
   [[nodiscard]] virtual EngineLoad load() const = 0;
 

@@ -6,6 +6,7 @@
 
 #include "dem/boundary/wall_release.h"
 #include "dem/dem_engine.h"
+#include "dem/io/compute_grid_stress_output.h"
 #include "dem/scene/fill.h"
 
 namespace upgrain::dem {
@@ -63,6 +64,7 @@ DepositionResult run_deposition(DemEngine& sim, const SceneConfig& scene, const 
   // before the step that computes them (Simulation::request_contacts()).
   DepositionResult r;
   std::optional<io::GridStressRecorder> stress_out;
+  std::optional<io::ComputeGridStressRecorder> compute_grid_out;  // MPI runs: per block
   const bool stress_on = output && output->grid_stress.enabled();
   if (stress_on) sim.on_root([&] { stress_out.emplace(output->folder, output->grid_stress.formulas); });
   const long stress_every =
@@ -104,6 +106,11 @@ DepositionResult run_deposition(DemEngine& sim, const SceneConfig& scene, const 
     r.final_grid = sim.stress_grid(output->grid_stress, scene.container);
     r.final_stress = sim.grid_stress(r.final_grid);
     sim.on_root([&] { stress_out->record(r.final_grid, *r.final_stress, sim.time(), sim.step_count()); });
+    if (const std::optional<ComputeGridStress> blocks = sim.compute_grid_stress())
+      sim.on_root([&] {
+        if (!compute_grid_out) compute_grid_out.emplace(output->folder, output->grid_stress.formulas);
+        compute_grid_out->record(*blocks, sim.time(), sim.step_count());
+      });
     if (strain_on) evaluate_strain(r.final_grid, &*r.final_stress);
   };
 

@@ -1,5 +1,8 @@
 #include "dem/parallel/parallel_engine.h"
 
+#include <algorithm>
+#include <sstream>
+
 #include "dem/parallel/exchange.h"
 #include "dem/parallel/parallel_relaxation.h"
 #include "dem/scene/fill.h"
@@ -26,6 +29,25 @@ void ParallelEngine::on_root(const std::function<void()>& work) {
 
 const ParticleStore& ParallelEngine::whole_state() {
   gathered_ = sim_.gather_sorted_by_id();
+  // At every output: no particle lost or doubled, and the mass unchanged (summed in id
+  // order, so exactly the same sum as at the first output).
+  std::string error;
+  if (rank_ == 0) {
+    double mass = 0.0;
+    for (std::size_t i = 0; i < gathered_.size(); ++i) mass += gathered_.mass(i);
+    if (reference_mass_ < 0.0) reference_mass_ = mass;
+    const long n = static_cast<long>(gathered_.size());
+    const bool unique = std::adjacent_find(gathered_.id.begin(), gathered_.id.end()) == gathered_.id.end();
+    if (n != sim_.diagnostics().particles || !unique || mass != reference_mass_) {
+      std::ostringstream m;
+      m.precision(17);
+      m << "parallel run: the gathered state at step " << sim_.step_count() << " has " << n << " particles"
+        << (unique ? "" : " with repeated ids") << " of mass " << mass << " kg; expected "
+        << sim_.diagnostics().particles << " particles of mass " << reference_mass_ << " kg";
+      error = m.str();
+    }
+  }
+  throw_if_any(sim_.comm(), error);
   return gathered_;
 }
 

@@ -37,6 +37,9 @@ class ParallelEngine final : public DemEngine {
   [[nodiscard]] RegularGrid stress_grid(const io::GridStressOptions& options,
                                         const BoxContainer& box) override;
   [[nodiscard]] GridStress grid_stress(const RegularGrid& grid) override { return sim_.grid_stress(grid); }
+  [[nodiscard]] std::optional<ComputeGridStress> compute_grid_stress() override {
+    return sim_.compute_grid_stress();
+  }
   RelaxationResult relax(const RelaxationOptions& options) override;
   [[nodiscard]] EngineLoad load() const override;
 
@@ -45,6 +48,7 @@ class ParallelEngine final : public DemEngine {
   int rank_ = 0;
   int ranks_ = 1;
   ParticleStore gathered_;
+  double reference_mass_ = -1.0;  // of the first gathered state (rank 0)
 };
 
 // The whole run (run_deposition) on the MPI engine, collective over `comm`: rank 0 fills

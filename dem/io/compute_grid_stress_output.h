@@ -1,0 +1,27 @@
+#pragma once
+// Stress per compute grid of an MPI run (the blocks of the decomposition, one per rank,
+// as the paper computes it; dem/parallel/parallel_stress.h): compute_grid_stress.csv, a
+// row per evaluation, block and formula, with the block's box (the outer blocks clipped to
+// the decomposition box) and its volume V. The blocks depend on the rank count and move
+// with the load balance, so, unlike the fixed grid, this table is not rank-independent.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "dem/parallel/parallel_stress.h"
+
+namespace upgrain::dem::io {
+
+class ComputeGridStressRecorder {
+ public:
+  ComputeGridStressRecorder(std::filesystem::path folder, std::vector<StressFormula> formulas);
+  // Rewrites the table atomically, as grid_stress.csv.
+  void record(const ComputeGridStress& blocks, double time, long step);
+
+ private:
+  std::filesystem::path folder_;
+  std::vector<StressFormula> formulas_;
+  std::vector<std::string> rows_;
+};
+
+}  // namespace upgrain::dem::io
