@@ -40,26 +40,14 @@ dem::DepositionResult run_dem(const SceneInput& in, MPI_Comm comm,
       o.balance_interval = 0;
       o.balance_at_start = false;
     }
-    o.balance_cost = in.parallel.balance_by_pairs ? dem::BalanceCost::pair_slots : dem::BalanceCost::particles;
+    o.balance_cost =
+        in.parallel.balance_by_pairs ? dem::BalanceCost::pair_slots : dem::BalanceCost::particles;
     return dem::run_parallel_deposition(in.scene, in.control, in.output, on_progress, comm, o);
   }
   on_rank0(comm, [&] { r = dem::run_deposition(in.scene, in.control, in.output, on_progress); });
   return r;
 }
 
-void on_rank0(MPI_Comm comm, const std::function<void()>& work) {
-  int rank = 0;
-  MPI_Comm_rank(comm, &rank);
-  std::string error;
-  if (rank == 0) {
-    try {
-      work();
-    } catch (const std::exception& e) {
-      error = e.what();
-      if (error.empty()) error = "unknown error";
-    }
-  }
-  dem::throw_if_any(comm, error);
-}
+void on_rank0(MPI_Comm comm, const std::function<void()>& work) { dem::run_on_root(comm, work); }
 
 }  // namespace upgrain::coupling

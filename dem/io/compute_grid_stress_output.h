@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "dem/io/csv_series.h"
 #include "dem/parallel/parallel_stress.h"
 
 namespace upgrain::dem::io {
@@ -15,13 +16,13 @@ namespace upgrain::dem::io {
 class ComputeGridStressRecorder {
  public:
   ComputeGridStressRecorder(std::filesystem::path folder, std::vector<StressFormula> formulas);
-  // Rewrites the table atomically, as grid_stress.csv.
+  // Appends the rows of this evaluation.
   void record(const ComputeGridStress& blocks, double time, long step);
 
  private:
   std::filesystem::path folder_;
   std::vector<StressFormula> formulas_;
-  std::vector<std::string> rows_;
+  CsvSeries csv_;
 };
 
 }  // namespace upgrain::dem::io

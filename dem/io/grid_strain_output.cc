@@ -137,7 +137,26 @@ void write_grid_strain(const std::filesystem::path& path, const GridStrain& stra
   target.commit();
 }
 
-GridStrainRecorder::GridStrainRecorder(std::filesystem::path folder) : folder_(std::move(folder)) {
+namespace {
+std::string strain_csv_header() {
+  std::ostringstream csv;
+  csv << "# Upgrain grid strain. " << kConvention << ". Reason codes:";
+  for (int r = 0; r < kStrainReasonCount; ++r)
+    csv << ' ' << r << " = " << name_of(static_cast<StrainReason>(r));
+  csv << ".\ntime,step,reference_time,set,cell,i,j,k,x,y,z,definition,particles,F_reason,"
+         "F_xx,F_xy,F_xz,F_yx,F_yy,F_yz,F_zx,F_zy,F_zz,J,ln_J,equivalent_shear_strain,L_reason,"
+         "L_xx,L_xy,L_xz,L_yx,L_yy,L_yz,L_zx,L_zy,L_zz,equivalent_shear_rate,increment_reason,"
+         "increment_ln_J,increment_equivalent_shear_strain,residual_rms,rate_reason,green_naghdi_reason";
+  for (const char* rate : {"jaumann", "green_naghdi", "truesdell", "oldroyd"})
+    for (const char* comp : {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"})
+      csv << ',' << rate << '_' << comp;
+  csv << '\n';
+  return csv.str();
+}
+}  // namespace
+
+GridStrainRecorder::GridStrainRecorder(std::filesystem::path folder)
+    : folder_(std::move(folder)), csv_(folder_ / "grid_strain.csv", strain_csv_header()) {
   std::error_code ec;
   std::filesystem::create_directories(folder_ / "grid_strain", ec);
   if (ec) throw Error("cannot create " + (folder_ / "grid_strain").string() + ": " + ec.message());
@@ -150,6 +169,7 @@ void GridStrainRecorder::record(const GridStrain& strain, const GridStressRates*
   write_grid_strain(folder_ / rel, strain, rates);
   entries_.push_back({rel, strain.time, strain.step, strain.grid, strain.computed, rates != nullptr});
   const RegularGrid& grid = strain.grid;
+  std::string rows;
   for (int c = 0; c < grid.num_cells(); ++c) {
     const int i = c % grid.n[0], j = (c / grid.n[0]) % grid.n[1], k = c / (grid.n[0] * grid.n[1]);
     const Vec3 x = grid.cell_centre(c);
@@ -177,28 +197,14 @@ void GridStrainRecorder::record(const GridStrain& strain, const GridStressRates*
                                          r ? &r->truesdell : nullptr, r ? &r->oldroyd : nullptr})
         for (int e = 0; e < 9; ++e) row << ',' << (t ? (*t)[c](e / 3, e % 3) : 0.0);
       row << '\n';
-      rows_.push_back(row.str());
+      rows += row.str();
     }
   }
+  csv_.append(rows);
   flush();
 }
 
 void GridStrainRecorder::flush() const {
-  std::ostringstream csv;
-  csv << "# Upgrain grid strain. " << kConvention << ". Reason codes:";
-  for (int r = 0; r < kStrainReasonCount; ++r)
-    csv << ' ' << r << " = " << name_of(static_cast<StrainReason>(r));
-  csv << ".\ntime,step,reference_time,set,cell,i,j,k,x,y,z,definition,particles,F_reason,"
-         "F_xx,F_xy,F_xz,F_yx,F_yy,F_yz,F_zx,F_zy,F_zz,J,ln_J,equivalent_shear_strain,L_reason,"
-         "L_xx,L_xy,L_xz,L_yx,L_yy,L_yz,L_zx,L_zy,L_zz,equivalent_shear_rate,increment_reason,"
-         "increment_ln_J,increment_equivalent_shear_strain,residual_rms,rate_reason,green_naghdi_reason";
-  for (const char* rate : {"jaumann", "green_naghdi", "truesdell", "oldroyd"})
-    for (const char* comp : {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"})
-      csv << ',' << rate << '_' << comp;
-  csv << '\n';
-  for (const auto& r : rows_) csv << r;
-  write_text_atomically(folder_ / "grid_strain.csv", csv.str());
-
   std::vector<GridXdmfStep> steps;
   for (const GridStrainEntry& e : entries_) {
     GridXdmfStep step{e.file, e.time, e.step, e.grid, {}};

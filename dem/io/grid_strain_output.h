@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "dem/io/csv_series.h"
 #include "dem/strain/grid_strain.h"
 #include "dem/strain/grid_stress_rates.h"
 
@@ -39,7 +40,7 @@ class GridStrainRecorder {
 
   std::filesystem::path folder_;
   std::vector<GridStrainEntry> entries_;
-  std::vector<std::string> rows_;
+  CsvSeries csv_;
 };
 
 // Layout of each file (cells in the order (k ny + j) nx + i, x fastest):

@@ -79,7 +79,13 @@ void write_grid_stress(const std::filesystem::path& path, const RegularGrid& gri
 }
 
 GridStressRecorder::GridStressRecorder(std::filesystem::path folder, std::vector<StressFormula> formulas)
-    : folder_(std::move(folder)), formulas_(std::move(formulas)) {
+    : folder_(std::move(folder)),
+      formulas_(std::move(formulas)),
+      csv_(folder_ / "grid_stress.csv",
+           std::string("# Upgrain grid stress. ") + kSignConvention + ". " + kVolume +
+               ". rai = relative asymmetry index (fraction, 2-norm).\n"
+               "time,step,cell,i,j,k,x,y,z,formula,s_xx,s_xy,s_xz,s_yx,s_yy,s_yz,s_zx,s_zy,s_zz,rai,"
+               "particles,internal_contacts,external_contacts,wall_contacts,solid_fraction\n") {
   std::error_code ec;
   std::filesystem::create_directories(folder_ / "grid_stress", ec);
   if (ec) throw Error("cannot create " + (folder_ / "grid_stress").string() + ": " + ec.message());
@@ -91,6 +97,7 @@ void GridStressRecorder::record(const RegularGrid& grid, const GridStress& stres
   const std::string rel = (std::filesystem::path("grid_stress") / name).string();
   write_grid_stress(folder_ / rel, grid, stress, formulas_, time, step);
   entries_.push_back({rel, time, step, grid});
+  std::string rows;
   for (int c = 0; c < grid.num_cells(); ++c) {
     const int i = c % grid.n[0], j = (c / grid.n[0]) % grid.n[1], k = c / (grid.n[0] * grid.n[1]);
     const Vec3 x = grid.cell_centre(c);
@@ -105,21 +112,14 @@ void GridStressRecorder::record(const RegularGrid& grid, const GridStress& stres
           s(1, 0), s(1, 1), s(1, 2), s(2, 0), s(2, 1), s(2, 2), relative_asymmetry_index(s),
           stress.particles[c], stress.internal_contacts[c], stress.external_contacts[c],
           stress.wall_contacts[c], stress.solid_fraction[c]);
-      rows_.emplace_back(line);
+      rows += line;
     }
   }
+  csv_.append(rows);
   flush();
 }
 
 void GridStressRecorder::flush() const {
-  std::ostringstream csv;
-  csv << "# Upgrain grid stress. " << kSignConvention << ". " << kVolume
-      << ". rai = relative asymmetry index (fraction, 2-norm).\n"
-         "time,step,cell,i,j,k,x,y,z,formula,s_xx,s_xy,s_xz,s_yx,s_yy,s_yz,s_zx,s_zy,s_zz,rai,"
-         "particles,internal_contacts,external_contacts,wall_contacts,solid_fraction\n";
-  for (const auto& r : rows_) csv << r;
-  write_text_atomically(folder_ / "grid_stress.csv", csv.str());
-
   std::vector<GridXdmfStep> steps;
   for (const GridStressEntry& e : entries_) {
     GridXdmfStep step{e.file, e.time, e.step, e.grid, {}};

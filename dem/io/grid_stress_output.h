@@ -2,12 +2,13 @@
 // Grid stress output: one HDF5 file per evaluation (full, unsymmetrised tensors at full
 // precision for each formula asked for, with RAI, counts and solid fraction per cell), an
 // XDMF temporal collection so ParaView shows any component as cell data on the grid, and
-// one CSV table (a row per evaluation, cell and formula) that is also the stress time
-// series. docs/output.md.
+// one CSV table (a row per evaluation, cell and formula, appended) that is also the stress
+// time series. docs/output.md.
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "dem/io/csv_series.h"
 #include "dem/stress/grid_stress.h"
 
 namespace upgrain::dem::io {
@@ -34,7 +35,7 @@ class GridStressRecorder {
   std::filesystem::path folder_;
   std::vector<StressFormula> formulas_;
   std::vector<GridStressEntry> entries_;
-  std::vector<std::string> rows_;
+  CsvSeries csv_;
 };
 
 // Layout of each file (cells in the order (k ny + j) nx + i, x fastest):

@@ -43,7 +43,8 @@ RegularGrid stress_grid(const GridStressOptions& options, const ParticleStore& p
   return g;
 }
 
-RunRecorder::RunRecorder(OutputOptions options) : options_(std::move(options)) {
+RunRecorder::RunRecorder(OutputOptions options)
+    : options_(std::move(options)), series_(options_.folder / "time_series.csv", kSeriesHeader) {
   std::error_code ec;
   std::filesystem::create_directories(options_.folder / "snapshots", ec);
   if (ec) throw Error("cannot create output folder " + options_.folder.string() + ": " + ec.message());
@@ -79,10 +80,10 @@ void RunRecorder::write_snapshot(const ParticleStore& p, const std::vector<Plane
   flush();
 }
 
-void RunRecorder::flush() const {
-  std::string text = kSeriesHeader;
-  for (const auto& r : rows_) text += r;
-  write_text_atomically(options_.folder / "time_series.csv", text);
+void RunRecorder::flush() {
+  std::string text;
+  for (; rows_written_ < rows_.size(); ++rows_written_) text += rows_[rows_written_];
+  series_.append(text);
   write_xdmf(options_.folder / "particles.xdmf", snapshots_);
 }
 

@@ -1,12 +1,13 @@
 #pragma once
 // What a run leaves in its output folder: HDF5 snapshots with an XDMF companion, a CSV
 // time series of energies and contacts, and a JSON summary. Every file is written
-// atomically; the time series is rewritten whole at each snapshot.
+// atomically; the time series is appended to at each snapshot (csv_series.h).
 #include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "dem/io/csv_series.h"
 #include "dem/io/hdf5_snapshot.h"
 #include "dem/simulation.h"
 #include "dem/strain/grid_strain.h"
@@ -64,8 +65,8 @@ class RunRecorder {
                      const StepDiagnostics& d);
   void write_snapshot(const ParticleStore& p, const std::vector<PlaneWall>& walls,
                       const std::vector<Vec3>& wall_forces, double time, long step);
-  // Rewrites time_series.csv and particles.xdmf.
-  void flush() const;
+  // Appends the new rows to time_series.csv and rewrites particles.xdmf.
+  void flush();
   void write_summary(const std::map<std::string, std::string>& entries) const;
 
   [[nodiscard]] const OutputOptions& options() const { return options_; }
@@ -74,6 +75,8 @@ class RunRecorder {
  private:
   OutputOptions options_;
   std::vector<std::string> rows_;
+  std::size_t rows_written_ = 0;
+  CsvSeries series_;
   std::vector<SnapshotInfo> snapshots_;
 };
 

@@ -6,6 +6,8 @@
 #include <mpi.h>
 
 #include <array>
+#include <exception>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -89,6 +91,23 @@ inline void throw_if_any(MPI_Comm comm, const std::string& local_message) {
   m.resize(static_cast<std::size_t>(length));
   MPI_Bcast(m.data(), length, MPI_CHAR, first, comm);
   throw Error(m);
+}
+
+// Collective: runs `work` on `root`; an exception there is thrown as upgrain::Error on
+// every rank, so no rank waits forever in a later message.
+inline void run_on_root(MPI_Comm comm, const std::function<void()>& work, int root = 0) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  std::string error;
+  if (rank == root) {
+    try {
+      work();
+    } catch (const std::exception& e) {
+      error = e.what();
+      if (error.empty()) error = "unknown error";
+    }
+  }
+  throw_if_any(comm, error);
 }
 
 // Collective: the sums of every quantity over all ranks, the same bits on every rank and

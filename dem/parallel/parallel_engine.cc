@@ -14,18 +14,7 @@ ParallelEngine::ParallelEngine(ParallelSimulation& sim) : sim_(sim) {
   MPI_Comm_size(sim_.comm(), &ranks_);
 }
 
-void ParallelEngine::on_root(const std::function<void()>& work) {
-  std::string error;
-  if (rank_ == 0) {
-    try {
-      work();
-    } catch (const std::exception& e) {
-      error = e.what();
-      if (error.empty()) error = "unknown error";
-    }
-  }
-  throw_if_any(sim_.comm(), error);
-}
+void ParallelEngine::on_root(const std::function<void()>& work) { run_on_root(sim_.comm(), work); }
 
 const ParticleStore& ParallelEngine::whole_state() {
   gathered_ = sim_.gather_sorted_by_id();

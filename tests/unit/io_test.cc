@@ -9,6 +9,7 @@
 
 #include "dem/boundary/plane_wall.h"
 #include "dem/io/atomic_file.h"
+#include "dem/io/csv_series.h"
 #include "dem/io/hdf5_snapshot.h"
 
 using namespace upgrain::dem;
@@ -36,6 +37,34 @@ TEST(AtomicFile, AbandonedFileLeavesNoTrace) {
   in >> s;
   EXPECT_EQ(s, "done");
   fs::remove_all(target.parent_path());
+}
+
+TEST(CsvSeries, AppendsRowsAfterTheHeader) {
+  const fs::path target = scratch("series.csv");
+  {
+    // A file left by an earlier run (Output/overwrite = true) is replaced, not appended to.
+    std::ofstream(target) << "old,row\n";
+  }
+  io::CsvSeries csv(target, "# comment\na,b\n");
+  csv.append("1,2\n");
+  csv.append("");
+  csv.append("3,4\n5,6\n");
+  std::ifstream in(target);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text, "# comment\na,b\n1,2\n3,4\n5,6\n");
+  // Nothing but the table in the folder: no temporary files left.
+  int entries = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(target.parent_path())) ++entries;
+  EXPECT_EQ(entries, 1);
+  fs::remove_all(target.parent_path());
+  // A folder that has gone away is an error naming the file, not a silent loss.
+  io::CsvSeries gone(target, "h\n");
+  try {
+    gone.append("x\n");
+    ADD_FAILURE() << "no error for a missing folder";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("series.csv"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Snapshot, RoundTripSortedById) {
