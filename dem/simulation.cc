@@ -105,32 +105,34 @@ void Simulation::step() {
 // kick w += (h/2) T / I. Ellipsoids: the symplectic splitting of rigid_rotation.h, with
 // the angular momentum L_b = J Q^T w rebuilt from w (exact up to round-off), so that w
 // stays the one angular state that contacts, relaxation and stress read.
-void Simulation::first_rotation_half(double half) {
-  const std::size_t n = p_.size();
+void Simulation::first_rotation_half(double half) { rotation_first_half(p_, p_.size(), half, dt_); }
+
+void Simulation::second_rotation_half(double half) { rotation_second_half(p_, p_.size(), half); }
+
+void rotation_first_half(ParticleStore& p, std::size_t n, double half, double dt) {
   for (std::size_t i = 0; i < n; ++i) {
-    if (!p_.is_ellipsoid(i)) {
-      p_.omega[i] += half * p_.inv_inertia[i] * p_.torque[i];
+    if (!p.is_ellipsoid(i)) {
+      p.omega[i] += half * p.inv_inertia[i] * p.torque[i];
       continue;
     }
-    const Vec3& j = p_.inertia_body[i];
+    const Vec3& j = p.inertia_body[i];
     const Vec3 inv_j = j.cwiseInverse();  // once for the splitting and for w
-    RigidRotationState s{p_.orientation[i], j.cwiseProduct(p_.orientation[i].conjugate() * p_.omega[i])};
-    s.angular_momentum_body += s.orientation.conjugate() * (half * p_.torque[i]);
-    free_rotation_step_inverse(s, inv_j, dt_);
-    p_.orientation[i] = s.orientation;
-    p_.omega[i] = s.orientation * s.angular_momentum_body.cwiseProduct(inv_j);
+    RigidRotationState s{p.orientation[i], j.cwiseProduct(p.orientation[i].conjugate() * p.omega[i])};
+    s.angular_momentum_body += s.orientation.conjugate() * (half * p.torque[i]);
+    free_rotation_step_inverse(s, inv_j, dt);
+    p.orientation[i] = s.orientation;
+    p.omega[i] = s.orientation * s.angular_momentum_body.cwiseProduct(inv_j);
   }
 }
 
-void Simulation::second_rotation_half(double half) {
-  const std::size_t n = p_.size();
+void rotation_second_half(ParticleStore& p, std::size_t n, double half) {
   for (std::size_t i = 0; i < n; ++i) {
-    if (!p_.is_ellipsoid(i)) {
-      p_.omega[i] += half * p_.inv_inertia[i] * p_.torque[i];
+    if (!p.is_ellipsoid(i)) {
+      p.omega[i] += half * p.inv_inertia[i] * p.torque[i];
       continue;
     }
-    const Eigen::Quaterniond& q = p_.orientation[i];
-    p_.omega[i] += q * ((q.conjugate() * (half * p_.torque[i])).cwiseQuotient(p_.inertia_body[i]));
+    const Eigen::Quaterniond& q = p.orientation[i];
+    p.omega[i] += q * ((q.conjugate() * (half * p.torque[i])).cwiseQuotient(p.inertia_body[i]));
   }
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "dem/contact/ellipsoid_geometry.h"
+#include "dem/contact/shaped_contact.h"
 
 namespace upgrain::dem {
 
@@ -11,43 +12,6 @@ namespace {
 
 Ellipsoid ellipsoid_of(const ParticleStore& p, std::size_t i) {
   return {p.x[i], p.orientation[i], p.semi_axes[i]};
-}
-
-// Geometry of a pair with at least one ellipsoid (docs/ellipsoids.md): bounding spheres
-// (already tested by the caller), then on one pair frame a conservative separation proof and
-// the support-function solver warm-started from the pair's previous normal. Returns false
-// when apart. `memory` keeps the last normal of a near pair (the next step's warm start) and
-// the Hertz radius of a touching one.
-bool shaped_pair_geometry(const ParticleStore& p, const std::vector<PosedEllipsoid>& posed, std::size_t i,
-                          std::size_t j, ShapedContactMemory& memory, ContactSolverStats& stats,
-                          ContactKinematics& kin, double& r_star) {
-  const bool first_touch = memory.r_star == 0.0;  // curvatures are needed only then
-  ContactGeometry g;
-  if (!posed_contact(posed[i], posed[j], stats,
-                     memory.normal != Vec3::Zero() ? std::optional<Vec3>(memory.normal) : std::nullopt,
-                     first_touch, g)) {
-    // Proven apart: the direction of the proof is the pair's next warm start and, while the
-    // pair stays apart, proves it again with one evaluation.
-    memory.normal = g.normal;
-    memory.r_star = 0.0;
-    return false;
-  }
-  memory.normal = g.normal;
-  if (!g.touching) {
-    memory.r_star = 0.0;
-    return false;
-  }
-  kin.normal = g.normal;
-  kin.overlap = g.depth;
-  kin.lever_i = g.point - p.x[i];
-  kin.lever_j = g.point - p.x[j];
-  // Elliptic Hertz through the Gaussian-curvature radius (Johnson 1985, eq. 4.25), taken at
-  // first touch and held while the contact lasts: the normal force is then the gradient of
-  // the Hertz potential (8/15) E* sqrt(R*) delta^(5/2), since d(delta) is the normal at the
-  // contact point (envelope theorem), and the contact law is conservative.
-  if (first_touch) memory.r_star = gaussian_curvature_radius(g);
-  r_star = memory.r_star;
-  return true;
 }
 
 template <class E, bool Record, bool Shapes>
@@ -199,20 +163,13 @@ void compute_forces(ForceContext& ctx) {
       bool shaped = false;
       if constexpr (Shapes) shaped = p.is_ellipsoid(i);
       if (shaped) {
-        // Closed form: the ellipsoid's lowest point along -normal (docs/ellipsoid-contact.md).
         double& r_held = near.r_star[k];
-        const ContactGeometry g =
-            posed_plane_contact(ctx.posed[i], Plane{wall.point, wall.normal}, r_held == 0.0);
-        if (!g.touching) {
+        if (!shaped_wall_geometry(ctx.posed[i], p.x[i], wall, r_held, kin)) {
           if constexpr (kWallTangential) {
             if (spring.stiffness != 0.0) spring = TangentialSpring{};
           }
-          r_held = 0.0;
           continue;
         }
-        kin.overlap = g.depth;
-        kin.lever_i = g.point - p.x[i];
-        if (r_held == 0.0) r_held = gaussian_curvature_radius(g);  // held while touching, as for pairs
         wp.r_star = r_held;
       } else {
         kin.overlap = ri - gap;

@@ -13,10 +13,18 @@ TangentialSpring find_spring(const std::vector<SpringRecord>& history, GlobalId 
   return TangentialSpring{get(it->force), it->stiffness};
 }
 
+ShapedContactMemory find_memory(const std::vector<MemoryRecord>& history, GlobalId a, GlobalId b) {
+  MemoryRecord key{a, b, {0, 0, 0}, 0.0};
+  const auto it = std::lower_bound(history.begin(), history.end(), key);
+  if (it == history.end() || !it->same_key(key)) return ShapedContactMemory{};
+  return ShapedContactMemory{get(it->normal), it->r_star};
+}
+
 }  // namespace
 
 void ContactLists::build(const ParticleStore& p, int n_owned, double max_radius, double skin,
-                         const std::vector<PlaneWall>& walls, const std::vector<SpringRecord>& history) {
+                         const std::vector<PlaneWall>& walls, const std::vector<SpringRecord>& history,
+                         const std::vector<MemoryRecord>* memory_history) {
   const int n = static_cast<int>(p.size());
   lo.clear();
   hi.clear();
@@ -82,6 +90,11 @@ void ContactLists::build(const ParticleStore& p, int n_owned, double max_radius,
   if (!history.empty()) {
     for (std::size_t k = 0; k < m; ++k) spring[k] = find_spring(history, p.id[lo[k]], p.id[hi[k]]);
   }
+  memory.clear();
+  if (memory_history != nullptr) {
+    memory.resize(m);
+    for (std::size_t k = 0; k < m; ++k) memory[k] = find_memory(*memory_history, p.id[lo[k]], p.id[hi[k]]);
+  }
   force.resize(m);
   torque_lo.resize(m);
   torque_hi.resize(m);
@@ -89,6 +102,8 @@ void ContactLists::build(const ParticleStore& p, int n_owned, double max_radius,
   elastic_normal.assign(m, 0.0);
   elastic_tangential.assign(m, 0.0);
   damping_on_lo.assign(m, Vec3::Zero());
+  damping_torque_lo.assign(memory_history != nullptr ? m : 0, Vec3::Zero());
+  damping_torque_hi.assign(memory_history != nullptr ? m : 0, Vec3::Zero());
 
   // 4. Wall contacts of the owned particles, by particle then wall.
   wall.clear();
@@ -101,6 +116,14 @@ void ContactLists::build(const ParticleStore& p, int n_owned, double max_radius,
     }
   }
   wall_force_on_particle.assign(wall.size(), Vec3::Zero());
+  wall_r_star.clear();
+  if (memory_history != nullptr) {
+    wall_r_star.resize(wall.size());
+    for (std::size_t e = 0; e < wall.size(); ++e)
+      wall_r_star[e] =
+          find_memory(*memory_history, p.id[wall[e].particle], -1 - static_cast<GlobalId>(wall[e].wall))
+              .r_star;
+  }
 }
 
 void ContactLists::collect_springs(const ParticleStore& p, std::vector<SpringRecord>& out) const {
@@ -116,6 +139,21 @@ void ContactLists::collect_springs(const ParticleStore& p, std::vector<SpringRec
     SpringRecord r{p.id[c.particle], -1 - static_cast<GlobalId>(c.wall), {0, 0, 0}, c.spring.stiffness};
     put(r.force, c.spring.force);
     out.push_back(r);
+  }
+}
+
+void ContactLists::collect_memory(const ParticleStore& p, std::vector<MemoryRecord>& out) const {
+  for (std::size_t k = 0; k < memory.size(); ++k) {
+    const ShapedContactMemory& m = memory[k];
+    if (m.empty()) continue;
+    MemoryRecord r{p.id[lo[k]], p.id[hi[k]], {0, 0, 0}, m.r_star};
+    put(r.normal, m.normal);
+    out.push_back(r);
+  }
+  for (std::size_t e = 0; e < wall_r_star.size(); ++e) {
+    if (wall_r_star[e] == 0.0) continue;
+    out.push_back(
+        {p.id[wall[e].particle], -1 - static_cast<GlobalId>(wall[e].wall), {0, 0, 0}, wall_r_star[e]});
   }
 }
 

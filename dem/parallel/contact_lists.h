@@ -36,19 +36,28 @@ struct ContactLists {
   // lo (hi receives the opposite).
   std::vector<double> elastic_normal, elastic_tangential;
   std::vector<Vec3> damping_on_lo;
+  std::vector<Vec3> damping_torque_lo, damping_torque_hi;  // its torques (ellipsoid scenes)
   // CSR rows of the owned particles: entry 2 k + s for slot k, s = 1 when the row's
   // particle is the slot's hi.
   std::vector<int> row_start, row;
+  // Ellipsoid scenes (build with memory): per slot the contact memory, its normal from lo
+  // to hi; per wall entry the Hertz radius held while touching. Empty for spheres.
+  std::vector<ShapedContactMemory> memory;
+  std::vector<double> wall_r_star;
   std::vector<WallContact> wall;
   // Per wall entry, per evaluation: the force on the particle (zero when not touching).
   std::vector<Vec3> wall_force_on_particle;
 
   // Rebuilds everything from the local store (n_owned owned particles, then ghosts).
-  // `history` must be sorted and free of duplicate keys.
+  // `history` and `memory_history` must be sorted and free of duplicate keys; with
+  // `memory_history` (ellipsoid scenes) the lists keep contact memory.
   void build(const ParticleStore& p, int n_owned, double max_radius, double skin,
-             const std::vector<PlaneWall>& walls, const std::vector<SpringRecord>& history);
+             const std::vector<PlaneWall>& walls, const std::vector<SpringRecord>& history,
+             const std::vector<MemoryRecord>* memory_history = nullptr);
   // Appends the springs of touching contacts (nonzero stiffness) to `out`.
   void collect_springs(const ParticleStore& p, std::vector<SpringRecord>& out) const;
+  // Appends the non-empty contact memories (ellipsoid scenes) to `out`.
+  void collect_memory(const ParticleStore& p, std::vector<MemoryRecord>& out) const;
   [[nodiscard]] std::size_t num_pairs() const { return lo.size(); }
 
  private:

@@ -4,12 +4,13 @@
 #include <cmath>
 
 #include "dem/contact/contact_response.h"
+#include "dem/contact/shaped_contact.h"
 
 namespace upgrain::dem {
 
 namespace {
 
-template <class E, bool Record>
+template <class E, bool Record, bool Shapes>
 DeterministicForceResult compute(const DeterministicForceInput& in) {
   ParticleStore& p = *in.particles;
   ContactLists& l = *in.lists;
@@ -18,15 +19,24 @@ DeterministicForceResult compute(const DeterministicForceInput& in) {
   DeterministicForceResult out;
   TangentialSpring dummy_spring;
   constexpr bool kDampingWork = E::damping && E::energy;
+  // As the serial loop: ellipsoids turn under normal forces as well.
+  constexpr bool kRotation = Shapes ? E::rotation_requested : E::rotation;
 
   for (int i = 0; i < n_owned; ++i) {
     p.force[i].setZero();
-    if constexpr (E::rotation) p.torque[i].setZero();
+    if constexpr (kRotation) p.torque[i].setZero();
+  }
+  if constexpr (Shapes) {
+    const std::size_t n = p.size();
+    in.posed->resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+      (*in.posed)[i] = PosedEllipsoid::from(Ellipsoid{p.x[i], p.orientation[i], p.semi_axes[i]});
   }
   if constexpr (E::energy) {
     in.energy->elastic_normal.assign(n_owned, 0.0);
     in.energy->elastic_tangential.assign(n_owned, 0.0);
     if constexpr (kDampingWork) in.energy->damping_force.assign(n_owned, Vec3::Zero());
+    if constexpr (kDampingWork && Shapes) in.energy->damping_torque.assign(n_owned, Vec3::Zero());
   }
   if constexpr (Record) in.record->clear();
 
@@ -45,26 +55,40 @@ DeterministicForceResult compute(const DeterministicForceInput& in) {
       if constexpr (E::wall_friction) {
         if (spring.stiffness != 0.0) spring = TangentialSpring{};
       }
+      if constexpr (Shapes) l.wall_r_star[e] = 0.0;
       l.wall_force_on_particle[e].setZero();
       continue;
     }
     ContactKinematics kin;
     kin.normal = -wall.normal;
-    kin.overlap = ri - gap;
-    kin.lever_i = gap * kin.normal;
+    bool shaped = false;
+    if constexpr (Shapes) shaped = p.is_ellipsoid(i);
+    if (shaped) {
+      if (!shaped_wall_geometry((*in.posed)[i], p.x[i], wall, l.wall_r_star[e], kin)) {
+        if constexpr (E::wall_friction) {
+          if (spring.stiffness != 0.0) spring = TangentialSpring{};
+        }
+        l.wall_force_on_particle[e].setZero();
+        continue;
+      }
+      wp.r_star = l.wall_r_star[e];
+    } else {
+      kin.overlap = ri - gap;
+      kin.lever_i = gap * kin.normal;
+      wp.r_star = ri;
+    }
     kin.lever_j = Vec3::Zero();
     kin.v_i = p.v[i];
     kin.v_j = Vec3::Zero();
-    if constexpr (E::rotation) {
+    if constexpr (kRotation) {
       kin.omega_i = p.omega[i];
       kin.omega_j = Vec3::Zero();
     }
     wp.friction = wall.friction;
-    wp.r_star = ri;
     wp.m_star = p.mass(i);
     ContactEnergy ce;
     const ContactForce cf =
-        contact_response<E::wall_friction, E::damping, E::rotation, E::energy>(wp, kin, spring, ce);
+        contact_response<E::wall_friction, E::damping, kRotation, E::energy>(wp, kin, spring, ce);
     l.wall_force_on_particle[e] = cf.on_i;
     if constexpr (E::energy) {
       in.energy->elastic_normal[i] += ce.elastic_normal;
@@ -73,12 +97,19 @@ DeterministicForceResult compute(const DeterministicForceInput& in) {
       out.dissipated.dissipated_friction += ce.dissipated_friction;
       out.dissipated.tangential_stiffness_change += ce.tangential_stiffness_change;
       if constexpr (kDampingWork) in.energy->damping_force[i] -= cf.damping * kin.normal;
+      if constexpr (kDampingWork && Shapes)
+        in.energy->damping_torque[i] -= kin.lever_i.cross(cf.damping * kin.normal);
     }
-    if constexpr (Record) in.record->push_back({i, -c.wall - 1, p.x[i] + gap * kin.normal, cf.on_i});
+    if constexpr (Record) in.record->push_back({i, -c.wall - 1, p.x[i] + kin.lever_i, cf.on_i});
     p.force[i] += cf.on_i;
-    if constexpr (E::rotation) p.torque[i] += gap * kin.normal.cross(cf.on_i);
+    if constexpr (kRotation) {
+      if (shaped)
+        p.torque[i] += kin.lever_i.cross(cf.on_i);
+      else
+        p.torque[i] += gap * kin.normal.cross(cf.on_i);
+    }
     ++out.wall_contacts;
-    out.max_overlap_ratio = std::max(out.max_overlap_ratio, kin.overlap / ri);
+    out.max_overlap_ratio = std::max(out.max_overlap_ratio, kin.overlap / (Shapes ? p.min_semi_axis(i) : ri));
   }
 
   // 2. Pairs into their slots, in the canonical orientation (lo = lower global id).
@@ -98,35 +129,58 @@ DeterministicForceResult compute(const DeterministicForceInput& in) {
       if constexpr (E::friction) {
         if (l.spring[k].stiffness != 0.0) l.spring[k] = TangentialSpring{};
       }
+      if constexpr (Shapes) {
+        if (!l.memory[k].empty()) l.memory[k] = ShapedContactMemory{};
+      }
       continue;
     }
-    const double dist = std::sqrt(dist2);
-    const double delta = rsum - dist;
     ContactKinematics kin;
-    kin.normal = d * (1.0 / dist);
-    kin.overlap = delta;
-    const double arm_i = ri - 0.5 * delta;
-    const double arm_j = rj - 0.5 * delta;
-    kin.lever_i = arm_i * kin.normal;
-    kin.lever_j = -arm_j * kin.normal;
+    double arm_i = 0.0, arm_j = 0.0;  // sphere pairs: lever lengths along the normal
+    bool shaped = false;
+    if constexpr (Shapes) shaped = p.is_ellipsoid(i) || p.is_ellipsoid(j);
+    if (shaped) {
+      // The serial loop's geometry with lo as body i: every rank holding the pair computes
+      // the same normal (lo to hi), memory and kinematics.
+      if (!shaped_pair_geometry(p, *in.posed, i, j, l.memory[k], *in.solver_stats, kin, cp.r_star)) {
+        l.touching[k] = 0;
+        if constexpr (E::friction) {
+          if (l.spring[k].stiffness != 0.0) l.spring[k] = TangentialSpring{};
+        }
+        continue;
+      }
+    } else {
+      const double dist = std::sqrt(dist2);
+      const double delta = rsum - dist;
+      kin.normal = d * (1.0 / dist);
+      kin.overlap = delta;
+      arm_i = ri - 0.5 * delta;
+      arm_j = rj - 0.5 * delta;
+      kin.lever_i = arm_i * kin.normal;
+      kin.lever_j = -arm_j * kin.normal;
+      cp.r_star = ri * rj / rsum;
+    }
+    const double delta = kin.overlap;
     kin.v_i = p.v[i];
     kin.v_j = p.v[j];
-    if constexpr (E::rotation) {
+    if constexpr (kRotation) {
       kin.omega_i = p.omega[i];
       kin.omega_j = p.omega[j];
     }
-    cp.r_star = ri * rj / rsum;
     cp.m_star = 1.0 / (p.inv_mass[i] + p.inv_mass[j]);
     TangentialSpring& spring = E::friction ? l.spring[k] : dummy_spring;
     ContactEnergy ce;
     const ContactForce cf =
-        contact_response<E::friction, E::damping, E::rotation, E::energy>(cp, kin, spring, ce);
+        contact_response<E::friction, E::damping, kRotation, E::energy>(cp, kin, spring, ce);
     l.touching[k] = 1;
     l.force[k] = cf.on_i;
     if constexpr (E::energy) {
       l.elastic_normal[k] = ce.elastic_normal;
       l.elastic_tangential[k] = ce.elastic_tangential;
       if constexpr (kDampingWork) l.damping_on_lo[k] = -cf.damping * kin.normal;
+      if constexpr (kDampingWork && Shapes) {
+        l.damping_torque_lo[k] = -kin.lever_i.cross(cf.damping * kin.normal);
+        l.damping_torque_hi[k] = kin.lever_j.cross(cf.damping * kin.normal);
+      }
       if (i < n_owned) {
         out.dissipated.dissipated_damping += ce.dissipated_damping;
         out.dissipated.dissipated_friction += ce.dissipated_friction;
@@ -134,13 +188,18 @@ DeterministicForceResult compute(const DeterministicForceInput& in) {
       }
     }
     if constexpr (Record) in.record->push_back({i, j, p.x[i] + kin.lever_i, cf.on_i});
-    if constexpr (E::rotation) {
-      const Vec3 arm_x_f = kin.normal.cross(cf.on_i);
-      l.torque_lo[k] = arm_i * arm_x_f;
-      l.torque_hi[k] = arm_j * arm_x_f;
+    if constexpr (kRotation) {
+      if (shaped) {
+        l.torque_lo[k] = kin.lever_i.cross(cf.on_i);
+        l.torque_hi[k] = -kin.lever_j.cross(cf.on_i);
+      } else {
+        const Vec3 arm_x_f = kin.normal.cross(cf.on_i);
+        l.torque_lo[k] = arm_i * arm_x_f;
+        l.torque_hi[k] = arm_j * arm_x_f;
+      }
     }
     if (i < n_owned) ++out.pair_contacts;
-    const double r_min = std::min(ri, rj);
+    const double r_min = Shapes ? std::min(p.min_semi_axis(i), p.min_semi_axis(j)) : std::min(ri, rj);
     if (delta > max_ratio * r_min) max_ratio = delta / r_min;
   }
   out.max_overlap_ratio = max_ratio;
@@ -150,25 +209,28 @@ DeterministicForceResult compute(const DeterministicForceInput& in) {
   for (int i = 0; i < n_owned; ++i) {
     Vec3 f = p.force[i];
     Vec3 t = Vec3::Zero();
-    if constexpr (E::rotation) t = p.torque[i];
+    if constexpr (kRotation) t = p.torque[i];
     [[maybe_unused]] double en = 0.0, et = 0.0;
-    [[maybe_unused]] Vec3 fd = Vec3::Zero();
+    [[maybe_unused]] Vec3 fd = Vec3::Zero(), td = Vec3::Zero();
     if constexpr (E::energy) {
       en = in.energy->elastic_normal[i];
       et = in.energy->elastic_tangential[i];
     }
     if constexpr (kDampingWork) fd = in.energy->damping_force[i];
+    if constexpr (kDampingWork && Shapes) td = in.energy->damping_torque[i];
     for (int r = l.row_start[i]; r < l.row_start[i + 1]; ++r) {
       const int e = l.row[r];
       const int k = e >> 1;
       if (!l.touching[k]) continue;
       if (e & 1) {
         f -= l.force[k];
-        if constexpr (E::rotation) t += l.torque_hi[k];
+        if constexpr (kRotation) t += l.torque_hi[k];
         if constexpr (kDampingWork) fd -= l.damping_on_lo[k];
+        if constexpr (kDampingWork && Shapes) td += l.damping_torque_hi[k];
       } else {
         f += l.force[k];
-        if constexpr (E::rotation) t += l.torque_lo[k];
+        if constexpr (kRotation) t += l.torque_lo[k];
+        if constexpr (kDampingWork && Shapes) td += l.damping_torque_lo[k];
         if constexpr (E::energy) {
           en += l.elastic_normal[k];
           et += l.elastic_tangential[k];
@@ -181,17 +243,23 @@ DeterministicForceResult compute(const DeterministicForceInput& in) {
       in.energy->elastic_tangential[i] = et;
     }
     if constexpr (kDampingWork) in.energy->damping_force[i] = fd;
+    if constexpr (kDampingWork && Shapes) in.energy->damping_torque[i] = td;
     p.force[i] = f;
-    if constexpr (E::rotation) p.torque[i] = t;
+    if constexpr (kRotation) p.torque[i] = t;
   }
   return out;
 }
 
 }  // namespace
 
-DeterministicForceKernels select_deterministic_forces(const EffectSet& e) {
+DeterministicForceKernels select_deterministic_forces(const EffectSet& e, bool shapes) {
+  if (shapes) {
+    return with_effects(e, []<class E>() {
+      return DeterministicForceKernels{&compute<E, false, true>, &compute<E, true, true>};
+    });
+  }
   return with_effects(e, []<class E>() {
-    return DeterministicForceKernels{&compute<E, false>, &compute<E, true>};
+    return DeterministicForceKernels{&compute<E, false, false>, &compute<E, true, false>};
   });
 }
 

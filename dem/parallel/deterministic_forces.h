@@ -11,6 +11,7 @@
 #include "dem/contact/contact_response.h"
 #include "dem/contact/contact_sample.h"
 #include "dem/contact/effects.h"
+#include "dem/contact/ellipsoid_geometry.h"
 #include "dem/core/material.h"
 #include "dem/core/particle_store.h"
 #include "dem/parallel/contact_lists.h"
@@ -24,6 +25,7 @@ namespace upgrain::dem {
 struct OwnedEnergyTerms {
   std::vector<double> elastic_normal, elastic_tangential;
   std::vector<Vec3> damping_force;
+  std::vector<Vec3> damping_torque;  // its torque about the centroid (ellipsoid scenes)
 };
 
 struct DeterministicForceInput {
@@ -35,6 +37,10 @@ struct DeterministicForceInput {
   double dt = 0.0;
   OwnedEnergyTerms* energy = nullptr;            // required by the energy kernels
   std::vector<ContactSample>* record = nullptr;  // required by the recording kernels
+  // Ellipsoid kernels: every local grain posed once per evaluation (owned and ghosts), and
+  // the contact solver's counters of this rank, cumulative.
+  std::vector<PosedEllipsoid>* posed = nullptr;
+  ContactSolverStats* solver_stats = nullptr;
 };
 
 struct DeterministicForceResult {
@@ -57,6 +63,8 @@ struct DeterministicForceKernels {
   DeterministicForceKernel recording;
 };
 
-DeterministicForceKernels select_deterministic_forces(const EffectSet& effects);
+// `shapes`: the scene holds ellipsoids (the lists then keep contact memory); the contact
+// geometry and law are those of the serial loop (contact/shaped_contact.h).
+DeterministicForceKernels select_deterministic_forces(const EffectSet& effects, bool shapes = false);
 
 }  // namespace upgrain::dem

@@ -19,6 +19,20 @@ constexpr int kTagMigrate = 100;
 constexpr int kTagSprings = 200;
 constexpr int kTagGhosts = 300;
 constexpr int kTagRefresh = 400;
+constexpr int kTagShapes = 500;        // migration, next to kTagMigrate
+constexpr int kTagMemory = 600;        // migration, next to kTagSprings
+constexpr int kTagGhostShapes = 700;   // next to kTagGhosts
+constexpr int kTagOrientations = 800;  // next to kTagRefresh
+
+// The records of `history` that involve a particle of `leaving` (sorted), appended to out.
+template <class R>
+void records_of(const std::vector<R>& history, const std::vector<GlobalId>& leaving, std::vector<R>& out) {
+  for (const R& r : history) {
+    if (std::binary_search(leaving.begin(), leaving.end(), r.a) ||
+        (r.b >= 0 && std::binary_search(leaving.begin(), leaving.end(), r.b)))
+      out.push_back(r);
+  }
+}
 
 std::string block_name(const std::array<int, 3>& c) {
   std::ostringstream m;
@@ -83,6 +97,8 @@ void ParallelSimulation::migration_pass() {
     for (int s = 0; s < 2; ++s) {
       state_out_[s].clear();
       spring_out_[s].clear();
+      shape_out_[s].clear();
+      memory_out_[s].clear();
       leaving[s].clear();
     }
     // Compact the owned particles in place, packing the leavers.
@@ -93,52 +109,40 @@ void ParallelSimulation::migration_pass() {
         const int s = c < me[d] ? 0 : 1;
         const StateRecord r = pack_state(p_, static_cast<std::size_t>(i));
         state_out_[s].push_back(r);
+        if (shapes_) shape_out_[s].push_back(pack_shape(p_, static_cast<std::size_t>(i)));
         leaving[s].push_back(r.gid);
         continue;
       }
-      if (keep != i) {
-        p_.id[keep] = p_.id[i];
-        p_.radius[keep] = p_.radius[i];
-        p_.inv_mass[keep] = p_.inv_mass[i];
-        p_.inv_inertia[keep] = p_.inv_inertia[i];
-        p_.x[keep] = p_.x[i];
-        p_.v[keep] = p_.v[i];
-        p_.omega[keep] = p_.omega[i];
-        p_.force[keep] = p_.force[i];
-        p_.torque[keep] = p_.torque[i];
-      }
+      if (keep != i) copy_particle(p_, static_cast<std::size_t>(i), static_cast<std::size_t>(keep));
       ++keep;
     }
-    const std::size_t k = static_cast<std::size_t>(keep);
-    p_.id.resize(k);
-    p_.radius.resize(k);
-    p_.inv_mass.resize(k);
-    p_.inv_inertia.resize(k);
-    p_.x.resize(k);
-    p_.v.resize(k);
-    p_.omega.resize(k);
-    p_.force.resize(k);
-    p_.torque.resize(k);
+    truncate_store(p_, static_cast<std::size_t>(keep));
     n_owned_ = keep;
     // Every spring of a leaver goes with it (a copy stays: the partner may stay here).
     for (int s = 0; s < 2; ++s) {
       std::sort(leaving[s].begin(), leaving[s].end());
       if (leaving[s].empty()) continue;
-      for (const SpringRecord& r : history_) {
-        if (std::binary_search(leaving[s].begin(), leaving[s].end(), r.a) ||
-            (r.b >= 0 && std::binary_search(leaving[s].begin(), leaving[s].end(), r.b)))
-          spring_out_[s].push_back(r);
-      }
+      records_of(history_, leaving[s], spring_out_[s]);
+      // Ellipsoids: the contact memories go with them the same way.
+      if (shapes_) records_of(memory_history_, leaving[s], memory_out_[s]);
     }
     const std::array<int, 2> nb{dec.neighbor(d, 0), dec.neighbor(d, 1)};
     t = std::chrono::steady_clock::now();
     exchange_along_axis(comm_, nb, state_out_, state_in_, false, kTagMigrate + 10 * d);
     exchange_along_axis(comm_, nb, spring_out_, spring_in_, false, kTagSprings + 10 * d);
+    if (shapes_) {
+      exchange_along_axis(comm_, nb, shape_out_, shape_in_, false, kTagShapes + 10 * d);
+      exchange_along_axis(comm_, nb, memory_out_, memory_in_, false, kTagMemory + 10 * d);
+    }
     timings_.rebuild_messages += seconds_since(t);
     for (int s = 0; s < 2; ++s) {
       migrated_out_ += static_cast<long>(state_out_[s].size());
       for (const StateRecord& r : state_in_[s]) append_state(p_, r);
       history_.insert(history_.end(), spring_in_[s].begin(), spring_in_[s].end());
+      if (shapes_) {
+        for (const ShapeRecord& r : shape_in_[s]) append_shape(p_, r);
+        memory_history_.insert(memory_history_.end(), memory_in_[s].begin(), memory_in_[s].end());
+      }
     }
     n_owned_ = static_cast<int>(p_.size());
   }
@@ -152,6 +156,7 @@ void ParallelSimulation::build_ghosts() {
       std::vector<int>& send = ghost_send_[d][s];
       send.clear();
       ghost_out_[s].clear();
+      shape_out_[s].clear();
       if (dec.neighbor(d, s) == MPI_PROC_NULL) continue;
       // Everything within the interaction range of the face, ghosts of earlier stages
       // included (they cover the edges and corners).
@@ -170,11 +175,15 @@ void ParallelSimulation::build_ghosts() {
         put(r.v, p_.v[i]);
         put(r.omega, p_.omega[i]);
         ghost_out_[s].push_back(r);
+        if (shapes_) shape_out_[s].push_back(pack_shape(p_, static_cast<std::size_t>(i)));
       }
     }
     const std::chrono::steady_clock::time_point t = std::chrono::steady_clock::now();
     exchange_along_axis(comm_, {dec.neighbor(d, 0), dec.neighbor(d, 1)}, ghost_out_, ghost_in_, false,
                         kTagGhosts + 10 * d);
+    if (shapes_)
+      exchange_along_axis(comm_, {dec.neighbor(d, 0), dec.neighbor(d, 1)}, shape_out_, shape_in_, false,
+                          kTagGhostShapes + 10 * d);
     timings_.rebuild_messages += seconds_since(t);
     for (int s = 0; s < 2; ++s) {
       ghost_recv_start_[d][s] = static_cast<int>(p_.size());
@@ -190,6 +199,8 @@ void ParallelSimulation::build_ghosts() {
         p_.force.push_back(Vec3::Zero());
         p_.torque.push_back(Vec3::Zero());
       }
+      if (shapes_)
+        for (const ShapeRecord& r : shape_in_[s]) append_shape(p_, r);
     }
   }
 }
@@ -207,9 +218,17 @@ void ParallelSimulation::refresh_ghosts() {
         put(r.omega, p_.omega[send[k]]);
       }
       motion_in_[s].resize(static_cast<std::size_t>(ghost_recv_count_[d][s]));
+      if (shapes_) {
+        orientation_out_[s].resize(send.size());
+        for (std::size_t k = 0; k < send.size(); ++k) put(orientation_out_[s][k].q, p_.orientation[send[k]]);
+        orientation_in_[s].resize(static_cast<std::size_t>(ghost_recv_count_[d][s]));
+      }
     }
     exchange_along_axis(comm_, {dec.neighbor(d, 0), dec.neighbor(d, 1)}, motion_out_, motion_in_, true,
                         kTagRefresh + 10 * d);
+    if (shapes_)
+      exchange_along_axis(comm_, {dec.neighbor(d, 0), dec.neighbor(d, 1)}, orientation_out_, orientation_in_,
+                          true, kTagOrientations + 10 * d);
     for (int s = 0; s < 2; ++s) {
       const int start = ghost_recv_start_[d][s];
       for (std::size_t k = 0; k < motion_in_[s].size(); ++k) {
@@ -219,6 +238,9 @@ void ParallelSimulation::refresh_ghosts() {
         p_.v[i] = get(r.v);
         p_.omega[i] = get(r.omega);
       }
+      if (shapes_)
+        for (std::size_t k = 0; k < orientation_in_[s].size(); ++k)
+          p_.orientation[static_cast<std::size_t>(start) + k] = get_quaternion(orientation_in_[s][k].q);
     }
   }
 }

@@ -13,25 +13,37 @@ namespace upgrain::dem {
 
 namespace {
 
-// Rank 0's particles on every rank, so that every rank derives the same box and radii.
-std::vector<StateRecord> broadcast_particles(const ParticleStore& p, MPI_Comm comm) {
+// In chunks below 2 GB (int counts).
+template <class T>
+void broadcast_records(std::vector<T>& all, MPI_Comm comm) {
+  constexpr std::size_t kChunk = (1u << 30) / sizeof(T);
+  for (std::size_t s = 0; s < all.size(); s += kChunk) {
+    const std::size_t c = std::min(kChunk, all.size() - s);
+    MPI_Bcast(all.data() + s, static_cast<int>(c * sizeof(T)), MPI_BYTE, 0, comm);
+  }
+}
+
+// Rank 0's particles on every rank, so that every rank derives the same box and radii;
+// their shapes in `shapes` (same order) when rank 0's store has them.
+std::vector<StateRecord> broadcast_particles(const ParticleStore& p, MPI_Comm comm,
+                                             std::vector<ShapeRecord>& shapes) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   std::vector<StateRecord> all;
-  long n = 0;
+  long n[2] = {0, 0};  // count, has shapes
   if (rank == 0) {
-    n = static_cast<long>(p.size());
+    n[0] = static_cast<long>(p.size());
+    n[1] = p.has_shapes() ? 1 : 0;
     all.reserve(p.size());
     for (std::size_t i = 0; i < p.size(); ++i) all.push_back(pack_state(p, i));
+    if (p.has_shapes())
+      for (std::size_t i = 0; i < p.size(); ++i) shapes.push_back(pack_shape(p, i));
   }
-  MPI_Bcast(&n, 1, MPI_LONG, 0, comm);
-  all.resize(static_cast<std::size_t>(n));
-  // In chunks below 2 GB (int counts).
-  constexpr std::size_t kChunk = (1u << 30) / sizeof(StateRecord);
-  for (std::size_t s = 0; s < all.size(); s += kChunk) {
-    const std::size_t c = std::min(kChunk, all.size() - s);
-    MPI_Bcast(all.data() + s, static_cast<int>(c * sizeof(StateRecord)), MPI_BYTE, 0, comm);
-  }
+  MPI_Bcast(n, 2, MPI_LONG, 0, comm);
+  all.resize(static_cast<std::size_t>(n[0]));
+  broadcast_records(all, comm);
+  shapes.resize(n[1] != 0 ? all.size() : 0);
+  broadcast_records(shapes, comm);
   return all;
 }
 
@@ -64,14 +76,17 @@ ParallelSimulation::ParallelSimulation(const SceneConfig& scene, const ParticleS
       kernels_(select_deterministic_forces(scene.effects)),
       energy_tracking_(scene.effects.energy_tracking),
       material_(ContactMaterial::from(scene.particles.material, scene.friction, scene.damping_ratio)) {
-  if (particles.has_shapes())
-    throw Error(
-        "the MPI DEM does not yet carry ellipsoids (orientation, semi-axes, contact normals): run "
-        "ellipsoid scenes on one rank");
   if (!scene.effects.wall_friction) {
     for (auto& w : walls_) w.friction = 0.0;
   }
-  const std::vector<StateRecord> all = broadcast_particles(particles, comm);
+  std::vector<ShapeRecord> shapes;
+  const std::vector<StateRecord> all = broadcast_particles(particles, comm, shapes);
+  shapes_ = !shapes.empty();
+  if (shapes_) {
+    // As Simulation: ellipsoids turn under normal forces as well.
+    rotation_ = scene.effects.rotation;
+    kernels_ = select_deterministic_forces(scene.effects, true);
+  }
   n_global_ = static_cast<long>(all.size());
   for (const StateRecord& r : all) max_radius_ = std::max(max_radius_, r.radius);
   // As Simulation: the skin in units of the largest diameter.
@@ -85,8 +100,11 @@ ParallelSimulation::ParallelSimulation(const SceneConfig& scene, const ParticleS
   balance_.cost = options.balance_cost;
   balance_.next_step = options.balance_at_start ? 0 : options.balance_interval;
   comm_ = decomp_->comm();
-  for (const StateRecord& r : all)
-    if (decomp_->owner_of(get(r.x)) == decomp_->rank()) append_state(p_, r);
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    if (decomp_->owner_of(get(all[k].x)) != decomp_->rank()) continue;
+    append_state(p_, all[k]);
+    if (shapes_) append_shape(p_, shapes[k]);
+  }
   n_owned_ = static_cast<int>(p_.size());
   rebuild();
   evaluate_forces();
@@ -109,13 +127,19 @@ void ParallelSimulation::step() {
     moved = moved || (p_.x[i] - x_at_build_[i]).squaredNorm() > limit2;
   }
   if (rotation_) {
-    for (int i = 0; i < n; ++i) p_.omega[i] += half * p_.inv_inertia[i] * p_.torque[i];
+    if (shapes_)
+      rotation_first_half(p_, static_cast<std::size_t>(n), half, dt_);
+    else
+      for (int i = 0; i < n; ++i) p_.omega[i] += half * p_.inv_inertia[i] * p_.torque[i];
   }
   // Second half of the work of the previous step's damping forces, with v(k+1/2), as
   // Simulation::step (the owned particles are still those of that evaluation).
   if (!energy_terms_.damping_force.empty()) {
     double work = 0.0;
     for (int i = 0; i < n; ++i) work += energy_terms_.damping_force[i].dot(p_.v[i]);
+    // Ellipsoids: the damping force misses the centroid and works on the rotation too.
+    for (std::size_t i = 0; i < energy_terms_.damping_torque.size(); ++i)
+      work += energy_terms_.damping_torque[i].dot(p_.omega[i]);
     dissipated_damping_ -= half * work;
   }
   // One reduction per step carries both global decisions: rebuild now (every rank at the
@@ -143,7 +167,10 @@ void ParallelSimulation::step() {
   const Clock::time_point t4 = Clock::now();
   for (int i = 0; i < n_owned_; ++i) p_.v[i] += half * (p_.force[i] * p_.inv_mass[i] + g_);
   if (rotation_) {
-    for (int i = 0; i < n_owned_; ++i) p_.omega[i] += half * p_.inv_inertia[i] * p_.torque[i];
+    if (shapes_)
+      rotation_second_half(p_, static_cast<std::size_t>(n_owned_), half);
+    else
+      for (int i = 0; i < n_owned_; ++i) p_.omega[i] += half * p_.inv_inertia[i] * p_.torque[i];
   }
   ++step_;
   const Clock::time_point t5 = Clock::now();
@@ -168,17 +195,10 @@ void ParallelSimulation::rebuild() {
   // Springs of touching contacts, keyed by global ids, before local indices change.
   history_.clear();
   lists_.collect_springs(p_, history_);
+  memory_history_.clear();
+  if (shapes_) lists_.collect_memory(p_, memory_history_);
   // Drop the ghosts; they are rebuilt below from the new owners.
-  const std::size_t n = static_cast<std::size_t>(n_owned_);
-  p_.id.resize(n);
-  p_.radius.resize(n);
-  p_.inv_mass.resize(n);
-  p_.inv_inertia.resize(n);
-  p_.x.resize(n);
-  p_.v.resize(n);
-  p_.omega.resize(n);
-  p_.force.resize(n);
-  p_.torque.resize(n);
+  truncate_store(p_, static_cast<std::size_t>(n_owned_));
   migrate();
   long count = n_owned_;
   long total = 0;
@@ -196,9 +216,16 @@ void ParallelSimulation::rebuild() {
   history_.erase(std::unique(history_.begin(), history_.end(),
                              [](const SpringRecord& a, const SpringRecord& b) { return a.same_key(b); }),
                  history_.end());
+  // The same for the contact memories: a straddling pair is evaluated on both ranks from
+  // the same inputs, in the same orientation (lo as body i).
+  std::sort(memory_history_.begin(), memory_history_.end());
+  memory_history_.erase(
+      std::unique(memory_history_.begin(), memory_history_.end(),
+                  [](const MemoryRecord& a, const MemoryRecord& b) { return a.same_key(b); }),
+      memory_history_.end());
   sort_owned_by_cell();
   build_ghosts();
-  lists_.build(p_, n_owned_, max_radius_, skin_, walls_, history_);
+  lists_.build(p_, n_owned_, max_radius_, skin_, walls_, history_, shapes_ ? &memory_history_ : nullptr);
   x_at_build_.assign(p_.x.begin(), p_.x.begin() + n_owned_);
   ++rebuilds_;
   if (balance_.measure_after) measure_balance_after();
@@ -228,6 +255,8 @@ void ParallelSimulation::evaluate_forces() {
   in.dt = dt_;
   in.energy = &energy_terms_;
   in.record = &contacts_;
+  in.posed = &posed_;
+  in.solver_stats = &solver_stats_;
   recorded_ = record_next_;
   if (!record_next_) contacts_.clear();
   const DeterministicForceResult r = record_next_ ? kernels_.recording(in) : kernels_.plain(in);
@@ -251,6 +280,20 @@ StepDiagnostics ParallelSimulation::step_diagnostics() const {
   d.wall_contacts = counts[1];
   d.max_overlap_ratio = overlap;
   d.neighbor_builds = rebuilds_;
+  // Summed over ranks: a pair straddling two ranks is solved on both, so the counts exceed
+  // those of one rank (diagnostics only).
+  const ContactSolverStats& s = solver_stats_;
+  std::int64_t c[8] = {s.calls,     s.warm_starts, s.warm_rejected, s.newton_iterations,
+                       s.fallbacks, s.failures,    s.uncertified,   s.proven_apart};
+  MPI_Allreduce(MPI_IN_PLACE, c, 8, MPI_INT64_T, MPI_SUM, comm_);
+  d.contact_solver.calls = c[0];
+  d.contact_solver.warm_starts = c[1];
+  d.contact_solver.warm_rejected = c[2];
+  d.contact_solver.newton_iterations = c[3];
+  d.contact_solver.fallbacks = c[4];
+  d.contact_solver.failures = c[5];
+  d.contact_solver.uncertified = c[6];
+  d.contact_solver.proven_apart = c[7];
   return d;
 }
 
@@ -267,9 +310,10 @@ void ParallelSimulation::remove_wall(const std::string& name) {
 void ParallelSimulation::check_finite() const {
   std::string message;
   for (int i = 0; i < n_owned_; ++i) {
-    if (!p_.x[i].allFinite() || !p_.v[i].allFinite() || !p_.omega[i].allFinite()) {
+    const bool orientation_ok = !shapes_ || p_.orientation[i].coeffs().allFinite();
+    if (!p_.x[i].allFinite() || !p_.v[i].allFinite() || !p_.omega[i].allFinite() || !orientation_ok) {
       std::ostringstream m;
-      m << "particle " << p_.id[i] << " has a non-finite position or velocity at step " << step_
+      m << "particle " << p_.id[i] << " has a non-finite position, velocity or orientation at step " << step_
         << " (t = " << step_ * dt_ << " s)";
       message = m.str();
       break;
@@ -279,6 +323,27 @@ void ParallelSimulation::check_finite() const {
 }
 
 ParticleStore ParallelSimulation::gather_sorted_by_id() const {
+  if (shapes_) {
+    struct Shaped {
+      StateRecord state;
+      ShapeRecord shape;
+    };
+    std::vector<Shaped> mine;
+    mine.reserve(static_cast<std::size_t>(n_owned_));
+    for (int i = 0; i < n_owned_; ++i)
+      mine.push_back(
+          {pack_state(p_, static_cast<std::size_t>(i)), pack_shape(p_, static_cast<std::size_t>(i))});
+    std::vector<Shaped> all = gather_to_root(mine, comm_);
+    std::sort(all.begin(), all.end(),
+              [](const Shaped& a, const Shaped& b) { return a.state.gid < b.state.gid; });
+    ParticleStore out;
+    out.reserve(all.size());
+    for (const Shaped& r : all) {
+      append_state(out, r.state);
+      append_shape(out, r.shape);
+    }
+    return out;
+  }
   std::vector<StateRecord> mine;
   mine.reserve(static_cast<std::size_t>(n_owned_));
   for (int i = 0; i < n_owned_; ++i) mine.push_back(pack_state(p_, static_cast<std::size_t>(i)));
@@ -358,7 +423,9 @@ EnergyBalance ParallelSimulation::energy() const {
     Record& r = mine[i];
     r.gid = p_.id[i];
     r.e[0] = 0.5 * m * p_.v[i].squaredNorm();
-    r.e[1] = rotation_ ? 0.5 * p_.omega[i].squaredNorm() / p_.inv_inertia[i] : 0.0;
+    r.e[1] = !rotation_ ? 0.0
+             : shapes_  ? p_.rotational_energy(static_cast<std::size_t>(i))
+                        : 0.5 * p_.omega[i].squaredNorm() / p_.inv_inertia[i];
     r.e[2] = -m * g_.dot(p_.x[i]);
     r.e[3] = elastic ? energy_terms_.elastic_normal[i] : 0.0;
     r.e[4] = elastic ? energy_terms_.elastic_tangential[i] : 0.0;

@@ -3,7 +3,8 @@
 // load balance, load_balance.h), ghosts over the 26 neighbours by the three-stage x/y/z
 // exchange, migration with contact history at neighbour-list rebuilds, and a force sum
 // whose result does not depend on the number of ranks, bit for bit (docs/parallel.md). The
-// integrator is Simulation::step's velocity Verlet, operation for operation.
+// integrator is Simulation::step's velocity Verlet, operation for operation, with its
+// rotation splitting for ellipsoids (docs/parallel.md, "Ellipsoids").
 #include <mpi.h>
 
 #include <array>
@@ -201,6 +202,9 @@ class ParallelSimulation {
   Vec3 g_ = Vec3::Zero();
   double dt_ = 0.0;
   bool rotation_ = false;
+  // Ellipsoids (docs/parallel.md, "Ellipsoids"): shape records travel next to the state
+  // records, contact memory next to the springs; the same on every rank (rank 0's scene).
+  bool shapes_ = false;
   long step_ = 0;
   long rebuilds_ = 0;
   long migrated_out_ = 0;
@@ -226,6 +230,9 @@ class ParallelSimulation {
   ContactMaterial material_;
   std::vector<Vec3> x_at_build_;
   std::vector<SpringRecord> history_;
+  std::vector<MemoryRecord> memory_history_;
+  std::vector<PosedEllipsoid> posed_;
+  ContactSolverStats solver_stats_;  // this rank's, cumulative
   struct {
     long interval = 0;
     BalanceCost cost = BalanceCost::particles;
@@ -247,6 +254,9 @@ class ParallelSimulation {
   std::array<std::vector<MotionRecord>, 2> motion_out_, motion_in_;
   std::array<std::vector<StateRecord>, 2> state_out_, state_in_;
   std::array<std::vector<SpringRecord>, 2> spring_out_, spring_in_;
+  std::array<std::vector<ShapeRecord>, 2> shape_out_, shape_in_;
+  std::array<std::vector<OrientationRecord>, 2> orientation_out_, orientation_in_;
+  std::array<std::vector<MemoryRecord>, 2> memory_out_, memory_in_;
 };
 
 // Gathered contacts as ContactSamples indexing a store sorted by id (gather_sorted_by_id):

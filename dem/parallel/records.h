@@ -37,6 +37,29 @@ struct SpringRecord {
   bool same_key(const SpringRecord& o) const { return a == o.a && b == o.b; }
 };
 
+// The shape of an ellipsoid scene's particle (every grain; spheres as a = b = c): sent next
+// to a GhostRecord or StateRecord, in the same order, only when the scene has shapes, so
+// sphere runs send nothing more.
+struct ShapeRecord {
+  double semi_axes[3], orientation[4], inertia_body[3];  // orientation as x, y, z, w
+};
+
+// A ghost's orientation refresh, next to its MotionRecord (ellipsoid scenes).
+struct OrientationRecord {
+  double q[4];  // x, y, z, w
+};
+
+// One pair's ellipsoid contact memory keyed by global ids, a < b, the normal from a to b
+// (canonical: a is body i); or a wall contact of particle a with wall w as b = -1 - w,
+// r_star only.
+struct MemoryRecord {
+  GlobalId a, b;
+  double normal[3];
+  double r_star;
+  bool operator<(const MemoryRecord& o) const { return a < o.a || (a == o.a && b < o.b); }
+  bool same_key(const MemoryRecord& o) const { return a == o.a && b == o.b; }
+};
+
 // One contact keyed by global ids (a < b, force on a; or wall w as b = -1 - w), for
 // gathered output.
 struct ContactRecord {
@@ -46,6 +69,8 @@ struct ContactRecord {
 };
 
 static_assert(std::is_trivially_copyable_v<ContactRecord>);
+static_assert(std::is_trivially_copyable_v<ShapeRecord> && std::is_trivially_copyable_v<OrientationRecord> &&
+              std::is_trivially_copyable_v<MemoryRecord>);
 static_assert(std::is_trivially_copyable_v<GhostRecord> && std::is_trivially_copyable_v<MotionRecord> &&
               std::is_trivially_copyable_v<StateRecord> && std::is_trivially_copyable_v<SpringRecord>);
 
@@ -77,6 +102,68 @@ inline void append_state(ParticleStore& p, const StateRecord& r) {
   p.omega.push_back(get(r.omega));
   p.force.push_back(get(r.force));
   p.torque.push_back(get(r.torque));
+}
+
+}  // namespace upgrain::dem
+
+namespace upgrain::dem {
+
+inline void put(double* out, const Eigen::Quaterniond& q) {
+  out[0] = q.x(), out[1] = q.y(), out[2] = q.z(), out[3] = q.w();
+}
+inline Eigen::Quaterniond get_quaternion(const double* in) {
+  return Eigen::Quaterniond(in[3], in[0], in[1], in[2]);
+}
+
+// The shape of particle i of a store that has shapes, and back.
+inline ShapeRecord pack_shape(const ParticleStore& p, std::size_t i) {
+  ShapeRecord r{};
+  put(r.semi_axes, p.semi_axes[i]);
+  put(r.orientation, p.orientation[i]);
+  put(r.inertia_body, p.inertia_body[i]);
+  return r;
+}
+
+inline void append_shape(ParticleStore& p, const ShapeRecord& r) {
+  p.semi_axes.push_back(get(r.semi_axes));
+  p.orientation.push_back(get_quaternion(r.orientation));
+  p.inertia_body.push_back(get(r.inertia_body));
+}
+
+// Every array of a store (the shape arrays when present) cut to its first n particles.
+inline void truncate_store(ParticleStore& p, std::size_t n) {
+  p.id.resize(n);
+  p.radius.resize(n);
+  p.inv_mass.resize(n);
+  p.inv_inertia.resize(n);
+  p.x.resize(n);
+  p.v.resize(n);
+  p.omega.resize(n);
+  p.force.resize(n);
+  p.torque.resize(n);
+  if (!p.semi_axes.empty()) {
+    p.semi_axes.resize(n);
+    p.orientation.resize(n);
+    p.inertia_body.resize(n);
+  }
+}
+
+// Particle `from` copied over particle `to` (compaction).
+inline void copy_particle(ParticleStore& p, std::size_t from, std::size_t to) {
+  p.id[to] = p.id[from];
+  p.radius[to] = p.radius[from];
+  p.inv_mass[to] = p.inv_mass[from];
+  p.inv_inertia[to] = p.inv_inertia[from];
+  p.x[to] = p.x[from];
+  p.v[to] = p.v[from];
+  p.omega[to] = p.omega[from];
+  p.force[to] = p.force[from];
+  p.torque[to] = p.torque[from];
+  if (!p.semi_axes.empty()) {
+    p.semi_axes[to] = p.semi_axes[from];
+    p.orientation[to] = p.orientation[from];
+    p.inertia_body[to] = p.inertia_body[from];
+  }
 }
 
 }  // namespace upgrain::dem

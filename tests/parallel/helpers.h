@@ -23,11 +23,13 @@ inline int world_size() {
   return s;
 }
 
-// Bitwise equality of x, v and omega, particle by particle (both sorted by id). Reports
-// the count of differing numbers and the first difference, not one failure per number.
+// Bitwise equality of x, v and omega, and of the orientations when the stores have shapes,
+// particle by particle (both sorted by id). Reports the count of differing numbers and the
+// first difference, not one failure per number.
 inline void expect_bitwise_equal(const dem::ParticleStore& a, const dem::ParticleStore& b,
                                  const std::string& what) {
   ASSERT_EQ(a.size(), b.size()) << what;
+  ASSERT_EQ(a.has_shapes(), b.has_shapes()) << what;
   long differing = 0;
   std::string first;
   for (std::size_t i = 0; i < a.size(); ++i) {
@@ -44,6 +46,18 @@ inline void expect_bitwise_equal(const dem::ParticleStore& a, const dem::Particl
             << "xvw"[f] << "[" << d << "]: " << pairs[f][0] << " vs " << pairs[f][1];
           first = m.str();
         }
+      }
+    }
+    if (!a.has_shapes()) continue;
+    ASSERT_EQ(a.semi_axes[i], b.semi_axes[i]) << what;
+    for (int c = 0; c < 4; ++c) {
+      if (a.orientation[i].coeffs()[c] == b.orientation[i].coeffs()[c]) continue;
+      if (differing++ == 0) {
+        std::ostringstream m;
+        m.precision(17);
+        m << "particle " << a.id[i] << " orientation coefficient " << c << ": "
+          << a.orientation[i].coeffs()[c] << " vs " << b.orientation[i].coeffs()[c];
+        first = m.str();
       }
     }
   }
