@@ -5,7 +5,6 @@
 
 #include "dem/parallel/exchange.h"
 #include "dem/parallel/parallel_engine.h"
-#include "dem/scene/grain_shape.h"
 
 namespace upgrain::coupling {
 
@@ -19,8 +18,6 @@ EngineChoice choose_engine(const SceneInput& in, int ranks) {
       break;
   }
   if (ranks == 1) return {false, "one rank"};
-  if (dem::has_ellipsoids(in.scene.particles.shapes))
-    return {false, "ellipsoids, which the MPI engine does not carry yet"};
   return {true, std::to_string(ranks) + " ranks"};
 }
 

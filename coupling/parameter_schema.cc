@@ -53,7 +53,7 @@ const std::vector<ParameterSpec>& parameter_schema() {
        "Grain shapes as comma-separated aspect ratios 1:b/a:c/a, each with an optional number fraction "
        "after '@' (equal shares without), e.g. '1:1:1, 1:0.8:0.6, 1:0.8:0.4, 1:0.6:0.4' (the paper's four). "
        "Empty: spheres. The radius (or gradation) is each grain's major semi-axis a; orientations are "
-       "uniformly random. Ellipsoid scenes run on one rank."},
+       "uniformly random."},
       {"Particles", "density", "2650", K::real, 1.0, 1e5, "", "kg/m^3",
        "Grain density (specific gravity 2.65 in the paper)."},
       {"Particles", "youngs modulus", "5e9", K::real, 1e3, 1e13, "", "Pa",
@@ -123,7 +123,7 @@ const std::vector<ParameterSpec>& parameter_schema() {
        "Which engine runs the DEM under mpirun (docs/parallel.md). mpi: the MPI engine on every rank, "
        "particles divided among blocks, results and output bytes the same on any rank count. serial: the "
        "one-process engine on rank 0 (the continuum still uses every rank). auto: mpi on more than one "
-       "rank, serial on one rank and for ellipsoid scenes (the MPI engine does not carry ellipsoids yet)."},
+       "rank, serial on one."},
       {"Parallel", "blocks", "0, 0, 0", K::integer3, 0, 4096, "", "-",
        "Blocks of the MPI engine along x, y, z; their product must be the rank count. 0, 0, 0 = chosen to "
        "minimise the cut area for the rank count and the box."},

@@ -191,10 +191,6 @@ void validate_scene(SceneInput& in) {
         << ": give every count (their product is the rank count), or 0, 0, 0 to have them chosen";
       throw Error(m.str());
     }
-    if (in.parallel.engine == DemEngineChoice::mpi && dem::has_ellipsoids(s.particles.shapes))
-      throw Error(where +
-                  "Parallel/DEM engine = mpi, but Particles/shapes has ellipsoids, which the MPI engine does "
-                  "not carry yet; set 'DEM engine = auto' (ellipsoids then run on rank 0) or 'serial'");
   }
   namespace fs = std::filesystem;
   const fs::path& folder = in.output.folder;
