@@ -64,6 +64,10 @@ ParallelSimulation::ParallelSimulation(const SceneConfig& scene, const ParticleS
       kernels_(select_deterministic_forces(scene.effects)),
       energy_tracking_(scene.effects.energy_tracking),
       material_(ContactMaterial::from(scene.particles.material, scene.friction, scene.damping_ratio)) {
+  if (scene.effects.rolling_resistance)
+    throw Error(
+        "the MPI DEM does not yet have rolling resistance: run scenes with Effects/rolling resistance on one "
+        "rank");
   if (particles.has_shapes())
     throw Error(
         "the MPI DEM does not yet carry ellipsoids (orientation, semi-axes, contact normals): run "
