@@ -18,6 +18,8 @@ EngineChoice choose_engine(const SceneInput& in, int ranks) {
       break;
   }
   if (ranks == 1) return {false, "one rank"};
+  if (in.scene.effects.rolling_resistance)
+    return {false, "Effects/rolling resistance, which the MPI engine does not have yet"};
   return {true, std::to_string(ranks) + " ranks"};
 }
 

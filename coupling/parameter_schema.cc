@@ -42,6 +42,10 @@ const std::vector<ParameterSpec>& parameter_schema() {
        "Integrate the angular velocity from contact torques. Off: grains do not rotate."},
       {"Effects", "energy tracking", "true", K::boolean, 0, 0, "", "-",
        "Accumulate elastic energy and dissipation per contact for the energy balance."},
+      {"Effects", "rolling resistance", "false", K::boolean, 0, 0, "", "-",
+       "Rolling resistance at every contact: elastic-plastic spring-dashpot (Iwashita and Oda 1998; Ai et "
+       "al. "
+       "2011, model C), |M_r| <= mu_r R* F_n. Not part of the paper's law. Needs rotation; one rank only."},
 
       {"Particles", "count", "2000", K::integer, 1, 1e9, "", "-", "Number of grains."},
       {"Particles", "radius", "1.5e-3", K::real, 1e-9, 10.0, "", "m",
@@ -65,6 +69,11 @@ const std::vector<ParameterSpec>& parameter_schema() {
        "Coulomb coefficient between particles."},
       {"Contact", "damping ratio", "0.5", K::real, 0.0, 10.0, "", "-",
        "zeta in c_n = 2 zeta sqrt(m* k_n) (paper eq. 21)."},
+      {"Contact", "rolling friction coefficient", "0.05", K::real, 0.0, 1.0, "", "-",
+       "mu_r of the rolling resistance (Effects/rolling resistance): plastic limit mu_r R* F_n, rolling "
+       "stiffness 2.25 k_n mu_r^2 R*^2. Particle-particle and particle-wall."},
+      {"Contact", "rolling damping ratio", "0.3", K::real, 0.0, 10.0, "", "-",
+       "eta_r of the rolling dashpot C_r = eta_r 2 sqrt(I_r k_r), active below the plastic limit."},
 
       {"Container", "length x", "0.045", K::real, 1e-6, 1e4, "", "m",
        "Inner length of the box along x (walls at x = 0 and x = length x)."},

@@ -16,8 +16,8 @@ enum class DemEngineChoice { automatic, serial, mpi };
 struct ParallelInput {
   DemEngineChoice engine = DemEngineChoice::automatic;
   std::array<int, 3> blocks{0, 0, 0};  // all 0: chosen from the rank count and the box
-  double balance_interval = 0.01;       // s of simulated time; 0 = fixed blocks
-  bool balance_by_pairs = false;        // cost: pair slots instead of particles
+  double balance_interval = 0.01;      // s of simulated time; 0 = fixed blocks
+  bool balance_by_pairs = false;       // cost: pair slots instead of particles
 };
 
 struct SceneInput {

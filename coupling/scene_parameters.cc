@@ -140,6 +140,7 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   s.effects.wall_friction = prm.get_bool("wall friction");
   s.effects.rotation = prm.get_bool("rotation");
   s.effects.energy_tracking = prm.get_bool("energy tracking");
+  s.effects.rolling_resistance = prm.get_bool("rolling resistance");
   prm.leave_subsection();
 
   prm.enter_subsection("Particles");
@@ -155,6 +156,8 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   prm.enter_subsection("Contact");
   s.friction = prm.get_double("friction coefficient");
   s.damping_ratio = prm.get_double("damping ratio");
+  s.rolling_friction = prm.get_double("rolling friction coefficient");
+  s.rolling_damping_ratio = prm.get_double("rolling damping ratio");
   prm.leave_subsection();
 
   prm.enter_subsection("Container");

@@ -19,13 +19,20 @@ struct EnergyBalance {
   // Cumulative energy created (> 0) in the tangential springs by their stiffness following
   // the overlap (contact/contact_response.h); it enters the balance with a minus sign.
   double tangential_stiffness_change = 0.0;
+  // Rolling resistance (contact/rolling_resistance.h): energy of the rolling springs,
+  // cumulative plastic and viscous dissipation, cumulative energy created by k_r following
+  // the overlap (minus sign, as tangential_stiffness_change). Zero without the effect.
+  double elastic_rolling = 0.0;
+  double dissipated_rolling = 0.0;
+  double rolling_stiffness_change = 0.0;
   // Kinetic energy taken out by a relaxation to equilibrium (dem/relaxation.h).
   double removed_by_relaxation = 0.0;
 
   [[nodiscard]] double kinetic() const { return kinetic_translational + kinetic_rotational; }
   [[nodiscard]] double total() const {
     return kinetic() + potential + elastic_normal + elastic_tangential + dissipated_damping +
-           dissipated_friction + removed_by_relaxation - tangential_stiffness_change;
+           dissipated_friction + removed_by_relaxation - tangential_stiffness_change + elastic_rolling +
+           dissipated_rolling - rolling_stiffness_change;
   }
 };
 

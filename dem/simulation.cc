@@ -22,9 +22,18 @@ Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, std::v
       kernels_(select_force_kernels(scene.effects, p_.has_shapes())),
       g_(scene.effects.gravity ? Vec3(0, 0, -scene.gravity) : Vec3::Zero()),
       dt_(scene.time_step),
-      // Spheres turn only under friction; ellipsoids under normal forces as well.
-      rotation_(scene.effects.rotation &&
-                (scene.effects.friction || scene.effects.wall_friction || p_.has_shapes())) {
+      // Spheres turn only under friction or rolling resistance; ellipsoids under normal forces
+      // as well.
+      rotation_(scene.effects.rotation && (scene.effects.friction || scene.effects.wall_friction ||
+                                           scene.effects.rolling_resistance || p_.has_shapes())) {
+  if (scene.effects.rolling_resistance) {
+    if (!scene.effects.rotation)
+      throw Error(
+          "rolling resistance needs rotation: set Effects/rotation = true or Effects/rolling resistance = "
+          "false");
+    neighbors_.keep_rolling_springs();
+    wall_neighbors_.keep_rolling_springs();
+  }
   if (p_.has_shapes()) {
     neighbors_.keep_contact_memory();
     wall_neighbors_.keep_contact_radii();
@@ -37,6 +46,7 @@ Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, std::v
   ctx_.walls = &walls_;
   ctx_.wall_neighbors = &wall_neighbors_;
   ctx_.material = ContactMaterial::from(scene.particles.material, scene.friction, scene.damping_ratio);
+  ctx_.rolling = {scene.rolling_friction, scene.rolling_damping_ratio};
   ctx_.dt = dt_;
   rebuild_neighbors();
   evaluate_forces();
@@ -59,6 +69,8 @@ void Simulation::evaluate_forces() {
   dissipated_damping_ += ctx_.energy.dissipated_damping;
   dissipated_friction_ += ctx_.energy.dissipated_friction;
   stiffness_change_ += ctx_.energy.tangential_stiffness_change;
+  dissipated_rolling_ += ctx_.energy.dissipated_rolling;
+  rolling_stiffness_change_ += ctx_.energy.rolling_stiffness_change;
   if (ctx_.max_overlap_ratio > kRunawayOverlapRatio) {
     std::ostringstream m;
     m << "runaway overlap at step " << step_ << " (t = " << time_ << " s): an overlap reached "
@@ -91,6 +103,12 @@ void Simulation::step() {
     for (std::size_t i = 0; i < ctx_.damping_torque.size(); ++i)
       work += ctx_.damping_torque[i].dot(p_.omega[i]);
     dissipated_damping_ -= half * work;
+  }
+  // The same for the rolling dashpot (contact/rolling_resistance.h).
+  if (!ctx_.rolling_damping_torque.empty()) {
+    double work = 0.0;
+    for (std::size_t i = 0; i < n; ++i) work += ctx_.rolling_damping_torque[i].dot(p_.omega[i]);
+    dissipated_rolling_ -= half * work;
   }
   if (rebuild) rebuild_neighbors();
   evaluate_forces();
@@ -169,6 +187,9 @@ EnergyBalance Simulation::energy() const {
   e.dissipated_damping = dissipated_damping_;
   e.dissipated_friction = dissipated_friction_;
   e.tangential_stiffness_change = stiffness_change_;
+  e.elastic_rolling = ctx_.energy.elastic_rolling;
+  e.dissipated_rolling = dissipated_rolling_;
+  e.rolling_stiffness_change = rolling_stiffness_change_;
   e.removed_by_relaxation = removed_by_relaxation_;
   return e;
 }

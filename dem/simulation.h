@@ -95,6 +95,8 @@ class Simulation {
   double dissipated_damping_ = 0.0;
   double dissipated_friction_ = 0.0;
   double stiffness_change_ = 0.0;
+  double dissipated_rolling_ = 0.0;
+  double rolling_stiffness_change_ = 0.0;
   double removed_by_relaxation_ = 0.0;
   EnergyBalance e0_;
 };

@@ -56,6 +56,12 @@ struct ContactEnergy {
   // this term is what it creates (> 0) or destroys (< 0). Accounted separately so the
   // balance error measures the integration (docs/contact-law.md, energy).
   double tangential_stiffness_change = 0.0;
+  // Rolling resistance (contact/rolling_resistance.h): the spring's energy |M_r|^2 / (2 k_r),
+  // its plastic and viscous dissipation (increment), and the energy its stiffness change
+  // creates, as for the tangential spring.
+  double elastic_rolling = 0.0;
+  double dissipated_rolling = 0.0;
+  double rolling_stiffness_change = 0.0;
 };
 
 struct ContactForce {

@@ -13,21 +13,26 @@ struct EffectSet {
   bool wall_friction = true;    // tangential Mindlin spring + Coulomb at walls
   bool rotation = true;         // integrate angular velocity from contact torques
   bool energy_tracking = true;  // accumulate dissipation and elastic energy per contact
+  // Rolling resistance (elastic-plastic spring-dashpot, contact/rolling_resistance.h) at
+  // every contact. Off by default: not part of the paper's law. Needs rotation.
+  bool rolling_resistance = false;
 
   // Tangential history is only carried when some tangential force exists.
   [[nodiscard]] bool needs_history() const { return friction || wall_friction; }
 };
 
-template <bool Friction, bool Damping, bool WallFriction, bool Rotation, bool Energy>
+template <bool Friction, bool Damping, bool WallFriction, bool Rotation, bool Energy, bool Rolling = false>
 struct Effects {
   static constexpr bool friction = Friction;
   static constexpr bool damping = Damping;
   static constexpr bool wall_friction = WallFriction;
-  // Spheres only feel torque from tangential forces: no friction, no rotation work.
-  static constexpr bool rotation = Rotation && (Friction || WallFriction);
+  // Spheres only feel torque from tangential forces and rolling resistance: without them,
+  // no rotation work.
+  static constexpr bool rotation = Rotation && (Friction || WallFriction || Rolling);
   // Non-spherical grains turn under normal forces too (dem/contact/force_kernel.cc).
   static constexpr bool rotation_requested = Rotation;
   static constexpr bool energy = Energy;
+  static constexpr bool rolling = Rolling && Rotation;
 };
 
 // Turns the run-time effect set into the matching Effects<...> type, once per run: calls
@@ -46,6 +51,25 @@ auto with_effects(const EffectSet& e, Make make) {
   auto wall = [&]<bool F, bool D>() {
     return e.wall_friction ? rotation.template operator()<F, D, true>()
                            : rotation.template operator()<F, D, false>();
+  };
+  auto damping = [&]<bool F>() {
+    return e.damping ? wall.template operator()<F, true>() : wall.template operator()<F, false>();
+  };
+  return e.friction ? damping.template operator()<true>() : damping.template operator()<false>();
+}
+
+// The same ladder for scenes with rolling resistance (serial engine only): rotation is on
+// (Simulation refuses rolling resistance without it), so only friction, damping, wall friction
+// and energy tracking vary. Scenes without it keep the instantiations of with_effects.
+template <class Make>
+auto with_rolling_effects(const EffectSet& e, Make make) {
+  auto energy = [&]<bool F, bool D, bool W>() {
+    return e.energy_tracking ? make.template operator()<Effects<F, D, W, true, true, true>>()
+                             : make.template operator()<Effects<F, D, W, true, false, true>>();
+  };
+  auto wall = [&]<bool F, bool D>() {
+    return e.wall_friction ? energy.template operator()<F, D, true>()
+                           : energy.template operator()<F, D, false>();
   };
   auto damping = [&]<bool F>() {
     return e.damping ? wall.template operator()<F, true>() : wall.template operator()<F, false>();

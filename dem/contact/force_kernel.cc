@@ -14,6 +14,14 @@ Ellipsoid ellipsoid_of(const ParticleStore& p, std::size_t i) {
   return {p.x[i], p.orientation[i], p.semi_axes[i]};
 }
 
+// Inertia of grain i for the rolling dashpot: its moment about its centroid (an ellipsoid's
+// smallest principal moment, so the dashpot is never over-estimated) plus m l^2 for the
+// lever l to the contact point (Ai et al. 2011, with the lever for the radius).
+double rolling_inertia(const ParticleStore& p, std::size_t i, const Vec3& lever) {
+  const double own = p.is_ellipsoid(i) ? p.inertia_body[i].minCoeff() : 1.0 / p.inv_inertia[i];
+  return own + p.mass(i) * lever.squaredNorm();
+}
+
 template <class E, bool Record, bool Shapes>
 void compute_forces(ForceContext& ctx) {
   ParticleStore& p = *ctx.particles;
@@ -27,6 +35,10 @@ void compute_forces(ForceContext& ctx) {
   // need friction (Effects::rotation assumes spheres).
   constexpr bool kRotation = Shapes ? E::rotation_requested : E::rotation;
   std::vector<ShapedContactMemory>* memory = Shapes ? &ctx.neighbors->contact_memory() : nullptr;
+  constexpr bool kRolling = E::rolling;
+  std::vector<RollingSpring>* rolling = kRolling ? &ctx.neighbors->rolling_springs() : nullptr;
+  constexpr bool kRollingWork = kRolling && E::energy;
+  const RollingParameters rp = ctx.rolling;
 
   constexpr bool kDampingWork = E::damping && E::energy;
   for (std::size_t i = 0; i < n; ++i) {
@@ -35,6 +47,7 @@ void compute_forces(ForceContext& ctx) {
   }
   if constexpr (kDampingWork) ctx.damping_force.assign(n, Vec3::Zero());
   if constexpr (kDampingWork && Shapes) ctx.damping_torque.assign(n, Vec3::Zero());
+  if constexpr (kRollingWork) ctx.rolling_damping_torque.assign(n, Vec3::Zero());
   if constexpr (Shapes) {
     ctx.posed.resize(n);
     for (std::size_t i = 0; i < n; ++i) ctx.posed[i] = PosedEllipsoid::from(ellipsoid_of(p, i));
@@ -44,6 +57,7 @@ void compute_forces(ForceContext& ctx) {
   long contacts = 0;
   double max_ratio = 0.0;
   TangentialSpring dummy_spring;
+  Vec3 rolling_viscous;  // the dashpot part of one contact's rolling torque
 
   ContactParameters cp{mat.e_star_pp, mat.g_star_pp, 0.0, 0.0, mat.friction_pp, mat.damping_ratio, ctx.dt};
   for (std::size_t i = 0; i < n; ++i) {
@@ -66,6 +80,9 @@ void compute_forces(ForceContext& ctx) {
           // As the springs: write only when the pair had a memory.
           if (!(*memory)[k].empty()) (*memory)[k] = ShapedContactMemory{};
         }
+        if constexpr (kRolling) {
+          if ((*rolling)[k].stiffness != 0.0) (*rolling)[k] = RollingSpring{};
+        }
         continue;
       }
       ContactKinematics kin;
@@ -76,6 +93,9 @@ void compute_forces(ForceContext& ctx) {
         if (!shaped_pair_geometry(p, ctx.posed, i, j, (*memory)[k], ctx.solver_stats, kin, cp.r_star)) {
           if constexpr (kTangential) {
             if (springs[k].stiffness != 0.0) springs[k] = TangentialSpring{};
+          }
+          if constexpr (kRolling) {
+            if ((*rolling)[k].stiffness != 0.0) (*rolling)[k] = RollingSpring{};
           }
           continue;
         }
@@ -121,6 +141,20 @@ void compute_forces(ForceContext& ctx) {
           p.torque[j] += arm_j * arm_x_f;
         }
       }
+      if constexpr (kRolling) {
+        const double k_n = hertz::normal_stiffness(cp.e_star, cp.r_star, kin.overlap);
+        const double inertia_i = rolling_inertia(p, i, kin.lever_i);
+        const double inertia_j = rolling_inertia(p, j, kin.lever_j);
+        const Vec3 m_r = rolling_resistance<E::energy>(
+            rp, kin.normal, kin.omega_i - kin.omega_j, cp.r_star, k_n, cf.normal,
+            inertia_i * inertia_j / (inertia_i + inertia_j), cp.dt, (*rolling)[k], energy, rolling_viscous);
+        ti += m_r;
+        p.torque[j] -= m_r;
+        if constexpr (kRollingWork) {
+          ctx.rolling_damping_torque[i] += rolling_viscous;
+          ctx.rolling_damping_torque[j] -= rolling_viscous;
+        }
+      }
       ++contacts;
       const double delta = kin.overlap;
       const double r_min =
@@ -155,6 +189,9 @@ void compute_forces(ForceContext& ctx) {
         if constexpr (kWallTangential) {
           if (spring.stiffness != 0.0) spring = TangentialSpring{};
         }
+        if constexpr (kRolling) {
+          if (near.rolling[k].stiffness != 0.0) near.rolling[k] = RollingSpring{};
+        }
         if constexpr (Shapes) near.r_star[k] = 0.0;
         continue;
       }
@@ -167,6 +204,9 @@ void compute_forces(ForceContext& ctx) {
         if (!shaped_wall_geometry(ctx.posed[i], p.x[i], wall, r_held, kin)) {
           if constexpr (kWallTangential) {
             if (spring.stiffness != 0.0) spring = TangentialSpring{};
+          }
+          if constexpr (kRolling) {
+            if (near.rolling[k].stiffness != 0.0) near.rolling[k] = RollingSpring{};
           }
           continue;
         }
@@ -200,6 +240,15 @@ void compute_forces(ForceContext& ctx) {
         else
           p.torque[i] += gap * kin.normal.cross(cf.on_i);
       }
+      if constexpr (kRolling) {
+        // The wall neither turns nor moves: omega_j = 0, and the grain's own inertia.
+        const double k_n = hertz::normal_stiffness(wp.e_star, wp.r_star, kin.overlap);
+        const Vec3 m_r = rolling_resistance<E::energy>(rp, kin.normal, kin.omega_i, wp.r_star, k_n, cf.normal,
+                                                       rolling_inertia(p, i, kin.lever_i), wp.dt,
+                                                       near.rolling[k], energy, rolling_viscous);
+        p.torque[i] += m_r;
+        if constexpr (kRollingWork) ctx.rolling_damping_torque[i] += rolling_viscous;
+      }
       ++wall_contacts;
       max_ratio = std::max(max_ratio, kin.overlap / (Shapes ? p.min_semi_axis(i) : ri));
     }
@@ -215,6 +264,16 @@ void compute_forces(ForceContext& ctx) {
 }  // namespace
 
 ForceKernels select_force_kernels(const EffectSet& e, bool shapes) {
+  if (e.rolling_resistance) {
+    if (shapes) {
+      return with_rolling_effects(e, []<class E>() {
+        return ForceKernels{&compute_forces<E, false, true>, &compute_forces<E, true, true>};
+      });
+    }
+    return with_rolling_effects(e, []<class E>() {
+      return ForceKernels{&compute_forces<E, false, false>, &compute_forces<E, true, false>};
+    });
+  }
   if (shapes) {
     return with_effects(e, []<class E>() {
       return ForceKernels{&compute_forces<E, false, true>, &compute_forces<E, true, true>};

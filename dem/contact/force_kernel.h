@@ -9,6 +9,7 @@
 #include "dem/contact/contact_sample.h"
 #include "dem/contact/effects.h"
 #include "dem/contact/ellipsoid_geometry.h"
+#include "dem/contact/rolling_resistance.h"
 #include "dem/core/material.h"
 #include "dem/core/particle_store.h"
 #include "dem/neighbor/verlet_list.h"
@@ -22,6 +23,7 @@ struct ForceContext {
   const std::vector<PlaneWall>* walls = nullptr;
   WallNeighborList* wall_neighbors = nullptr;
   ContactMaterial material;
+  RollingParameters rolling;  // used by the kernels of scenes with rolling resistance
   double dt = 0.0;
 
   // Results of one evaluation.
@@ -35,6 +37,9 @@ struct ForceContext {
   std::vector<Vec3> damping_force;
   // Its torque about the centroids (ellipsoid scenes: the normal misses the centroid).
   std::vector<Vec3> damping_torque;
+  // Viscous part of the rolling resistance torque on each particle (rolling resistance with
+  // energy tracking), for the second half of its work.
+  std::vector<Vec3> rolling_damping_torque;
   // Ellipsoid contact solver counters, cumulative over the run (reported in the log).
   ContactSolverStats solver_stats;
   // Every grain posed once per evaluation (rotation and shape matrices; ellipsoid scenes).

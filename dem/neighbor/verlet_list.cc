@@ -13,6 +13,7 @@ struct CarriedSpring {
   GlobalId lo, hi;
   TangentialSpring spring;
   ShapedContactMemory memory;  // normal from lo to hi (ellipsoid scenes; else empty)
+  RollingSpring rolling;       // torque on lo (rolling resistance; else empty)
   bool operator<(const CarriedSpring& o) const { return lo < o.lo || (lo == o.lo && hi < o.hi); }
 };
 
@@ -37,26 +38,30 @@ void VerletList::rebuild(ParticleStore& p) {
   // 1. Springs of active contacts, keyed by the pair of global ids and oriented as the
   //    force on the particle with the smaller id.
   std::vector<CarriedSpring> history;
-  const bool carry = (with_history_ || with_memory_) && !partners_.empty();
+  const bool carry = (with_history_ || with_memory_ || with_rolling_) && !partners_.empty();
   if (carry) {
     auto spring_at = [&](int k) { return with_history_ ? springs_[k] : TangentialSpring{}; };
     auto memory_at = [&](int k) { return with_memory_ ? memory_[k] : ShapedContactMemory{}; };
+    auto rolling_at = [&](int k) { return with_rolling_ ? rolling_[k] : RollingSpring{}; };
     std::size_t active = 0;
     for (std::size_t k = 0; k < partners_.size(); ++k)
-      active += spring_at(static_cast<int>(k)).stiffness != 0.0 || !memory_at(static_cast<int>(k)).empty();
+      active += spring_at(static_cast<int>(k)).stiffness != 0.0 || !memory_at(static_cast<int>(k)).empty() ||
+                rolling_at(static_cast<int>(k)).stiffness != 0.0;
     history.reserve(active);
     const int n_old = static_cast<int>(offsets_.size()) - 1;
     for (int i = 0; i < n_old; ++i) {
       for (int k = offsets_[i]; k < offsets_[i + 1]; ++k) {
         const TangentialSpring s = spring_at(k);
         const ShapedContactMemory m = memory_at(k);
-        if (s.stiffness == 0.0 && m.empty()) continue;  // nothing to carry
+        const RollingSpring r = rolling_at(k);
+        if (s.stiffness == 0.0 && m.empty() && r.stiffness == 0.0) continue;  // nothing to carry
         const GlobalId a = p.id[i];
         const GlobalId b = p.id[partners_[k]];
         if (a < b)
-          history.push_back({a, b, s, m});
+          history.push_back({a, b, s, m, r});
         else
-          history.push_back({b, a, TangentialSpring{-s.force, s.stiffness}, m.reversed()});
+          history.push_back({b, a, TangentialSpring{-s.force, s.stiffness}, m.reversed(),
+                             RollingSpring{-r.torque, r.stiffness}});
       }
     }
   }
@@ -106,17 +111,20 @@ void VerletList::rebuild(ParticleStore& p) {
   std::sort(history.begin(), history.end());
   springs_.assign(with_history_ ? partners_.size() : 0, TangentialSpring{});
   memory_.assign(with_memory_ ? partners_.size() : 0, ShapedContactMemory{});
+  rolling_.assign(with_rolling_ ? partners_.size() : 0, RollingSpring{});
   if (!history.empty()) {
     for (int i = 0; i < n; ++i) {
       for (int k = offsets_[i]; k < offsets_[i + 1]; ++k) {
         const GlobalId a = p.id[i];
         const GlobalId b = p.id[partners_[k]];
-        const CarriedSpring key{std::min(a, b), std::max(a, b), {}, {}};
+        const CarriedSpring key{std::min(a, b), std::max(a, b), {}, {}, {}};
         const auto it = std::lower_bound(history.begin(), history.end(), key);
         if (it == history.end() || it->lo != key.lo || it->hi != key.hi) continue;
         if (with_history_)
           springs_[k] = a < b ? it->spring : TangentialSpring{-it->spring.force, it->spring.stiffness};
         if (with_memory_) memory_[k] = a < b ? it->memory : it->memory.reversed();
+        if (with_rolling_)
+          rolling_[k] = a < b ? it->rolling : RollingSpring{-it->rolling.torque, it->rolling.stiffness};
       }
     }
   }

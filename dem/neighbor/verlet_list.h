@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "dem/contact/contact_response.h"
+#include "dem/contact/rolling_resistance.h"
 #include "dem/core/particle_store.h"
 #include "dem/core/types.h"
 #include "dem/neighbor/cell_grid.h"
@@ -43,6 +44,10 @@ class VerletList {
   // like the springs.
   void keep_contact_memory() { with_memory_ = true; }
   [[nodiscard]] std::vector<ShapedContactMemory>& contact_memory() { return memory_; }
+  // Scenes with rolling resistance: each slot also keeps its pair's rolling spring (torque on
+  // i), carried over rebuilds like the springs.
+  void keep_rolling_springs() { with_rolling_ = true; }
+  [[nodiscard]] std::vector<RollingSpring>& rolling_springs() { return rolling_; }
   [[nodiscard]] long builds() const { return builds_; }
   [[nodiscard]] double skin() const { return skin_; }
   [[nodiscard]] std::size_t num_pairs() const { return partners_.size(); }
@@ -53,11 +58,13 @@ class VerletList {
   double skin_;
   bool with_history_;
   bool with_memory_ = false;
+  bool with_rolling_ = false;
   long builds_ = 0;
   std::vector<int> offsets_;                 // CSR: pairs of i are partners_[offsets_[i] .. offsets_[i+1])
   std::vector<int> partners_;                // j > i in the current local order
   std::vector<TangentialSpring> springs_;    // tangential spring per pair slot
   std::vector<ShapedContactMemory> memory_;  // per pair slot, normal from i to j
+  std::vector<RollingSpring> rolling_;       // per pair slot, torque on i (rolling resistance)
   std::vector<Vec3> x_at_build_;
 };
 

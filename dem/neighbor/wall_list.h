@@ -7,6 +7,7 @@
 
 #include "dem/boundary/plane_wall.h"
 #include "dem/contact/contact_response.h"
+#include "dem/contact/rolling_resistance.h"
 #include "dem/core/particle_store.h"
 
 namespace upgrain::dem {
@@ -18,6 +19,7 @@ class WallNeighborList {
     std::vector<GlobalId> id;              // global id, for carrying springs over rebuilds
     std::vector<TangentialSpring> spring;  // empty when the scene has no wall friction
     std::vector<double> r_star;            // Hertz radius frozen at first touch (ellipsoid scenes)
+    std::vector<RollingSpring> rolling;    // rolling spring, torque on the grain (rolling resistance)
   };
 
   WallNeighborList(double skin, bool with_history) : skin_(skin), with_history_(with_history) {}
@@ -27,6 +29,8 @@ class WallNeighborList {
 
   // Ellipsoid scenes: keep each entry's frozen Hertz radius (contact_response.h).
   void keep_contact_radii() { with_radii_ = true; }
+  // Scenes with rolling resistance: keep each entry's rolling spring.
+  void keep_rolling_springs() { with_rolling_ = true; }
   [[nodiscard]] std::vector<Entries>& walls() { return lists_; }
   [[nodiscard]] const std::vector<Entries>& walls() const { return lists_; }
 
@@ -34,6 +38,7 @@ class WallNeighborList {
   double skin_;
   bool with_history_;
   bool with_radii_ = false;
+  bool with_rolling_ = false;
   std::vector<Entries> lists_;
 };
 

@@ -76,6 +76,10 @@ ParallelSimulation::ParallelSimulation(const SceneConfig& scene, const ParticleS
       kernels_(select_deterministic_forces(scene.effects)),
       energy_tracking_(scene.effects.energy_tracking),
       material_(ContactMaterial::from(scene.particles.material, scene.friction, scene.damping_ratio)) {
+  if (scene.effects.rolling_resistance)
+    throw Error(
+        "the MPI DEM does not yet have rolling resistance: run scenes with Effects/rolling resistance on one "
+        "rank (Parallel/DEM engine = serial)");
   if (!scene.effects.wall_friction) {
     for (auto& w : walls_) w.friction = 0.0;
   }

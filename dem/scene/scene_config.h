@@ -61,6 +61,9 @@ struct SceneConfig {
   double time_step = 5e-6;     // s
   double end_time = 0.5;       // s
   double neighbor_skin = 0.2;  // Verlet skin in units of the largest diameter
+  // Rolling resistance, when effects.rolling_resistance (docs/contact-law.md).
+  double rolling_friction = 0.05;      // mu_r: plastic limit |M_r| <= mu_r R* F_n
+  double rolling_damping_ratio = 0.3;  // eta_r: dashpot C_r = eta_r 2 sqrt(I_r k_r)
   TimeStepRule time_step_rule;
 };
 

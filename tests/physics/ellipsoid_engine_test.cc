@@ -49,6 +49,9 @@ void expect_solver_clean(const Simulation& sim) {
   EXPECT_EQ(st.uncertified, 0);
 }
 
+// Time within which the disc with rolling resistance must be at rest.
+constexpr double kDiscRestTime = 1.0;
+
 }  // namespace
 
 // A free triaxial body with its angular velocity near the intermediate axis tumbles; the
@@ -88,7 +91,7 @@ TEST(EllipsoidEngine, TorqueFreeTumblingKeepsMomentumAndEnergy) {
 // It does not come fully to rest within the test: on its face it rocks (rolls on the gently
 // curved face) with little normal motion, and the paper's contact law has no rolling
 // resistance to damp that (docs/ellipsoids.md; measured: 5.7 % of the drop energy left after
-// 3 s, at damping ratio 0.5 as at 1.0).
+// 3 s, at damping ratio 0.5 as at 1.0). The next test adds the optional rolling resistance.
 TEST(EllipsoidHardCases, ThinDiscLandsOnItsFaceWithoutGainingEnergy) {
   const double a = 5e-3, c = 0.5e-3;
   SceneConfig s = test::bare_scene(1.0);
@@ -124,6 +127,50 @@ TEST(EllipsoidHardCases, ThinDiscLandsOnItsFaceWithoutGainingEnergy) {
   EXPECT_LT(q.x[0].z(), 2.0 * c);
   EXPECT_LT(largest_rise, 1e-6 * (e0 - e_rest));  // measured 6e-8: sampling noise of the elastic energy
   EXPECT_LT(previous - e_rest, 0.1 * (e0 - e_rest));
+  expect_solver_clean(sim);
+}
+
+// The same drop with rolling resistance (issue 4, item 6; dem/contact/rolling_resistance.h,
+// default mu_r = 0.05 and eta_r = 0.3): the rocking on the face is damped and the disc comes to
+// rest lying on its face, its kinetic energy below 1e-6 of the drop energy within 1 s; the
+// energy balance, with the rolling channels, stays closed.
+TEST(EllipsoidHardCases, ThinDiscWithRollingResistanceComesToRestOnItsFace) {
+  const double a = 5e-3, c = 0.5e-3;
+  SceneConfig s = test::bare_scene(1.0);
+  s.effects = {true, true, true, true, true, true, true};
+  s.damping_ratio = 0.5;
+  s.container.lx = s.container.ly = 0.1;
+  s.time_step = safe_step(s, a, {1.0, 0.1, 1.0}, 0.5);
+  ParticleStore p;
+  p.add_ellipsoid(0, Vec3(a, a, c), 2650, Vec3(0.05, 0.05, a + 2e-3), tilt(0.7, Vec3(1, 0.3, 0)),
+                  Vec3::Zero(), Vec3::Zero());
+  std::vector<PlaneWall> floor = {{"floor", Vec3::Zero(), Vec3::UnitZ(), 0.5}};
+  Simulation sim(s, p, floor);
+  const double weight = sim.particles().mass(0) * 9.81;
+  const double drop = sim.energy().potential - weight * c;  // released on the way to rest
+  const long steps = static_cast<long>(kDiscRestTime / s.time_step);
+  double t_rest = -1.0;
+  for (long k = 1; k <= steps; ++k) {
+    sim.step();
+    if (t_rest < 0 && sim.energy().kinetic() < 1e-6 * drop) t_rest = k * s.time_step;
+    if (t_rest > 0 && sim.energy().kinetic() >= 1e-6 * drop) t_rest = -1.0;  // not at rest yet
+  }
+  const ParticleStore& q = sim.particles();
+  const Vec3 axis = q.orientation[0] * Vec3::UnitZ();
+  // Face down: tilted by at most the rolling angle atan(mu_r) (the plastic limit can hold it
+  // there; R* is the face's curvature radius a^2/c), so the centroid at most 1.1 c high.
+  EXPECT_GT(std::abs(axis.z()), std::cos(std::atan(s.rolling_friction)))
+      << "disc normal " << axis.transpose();
+  EXPECT_LT(q.x[0].z(), 1.1 * c);
+  EXPECT_LT(sim.energy().kinetic(), 1e-6 * drop);
+  EXPECT_GT(t_rest, 0.0);
+  EXPECT_LT(std::abs(sim.energy_balance_error()), 1e-2);
+  EXPECT_GT(sim.energy().dissipated_rolling, 0.0);
+  std::printf(
+      "disc with rolling resistance: kinetic/drop %.3e at %.2f s, at rest (below 1e-6) from %.3f s, "
+      "tilt %.3e rad, balance error %.3e, rolling dissipation %.3e of the drop\n",
+      sim.energy().kinetic() / drop, kDiscRestTime, t_rest, std::acos(std::min(1.0, std::abs(axis.z()))),
+      sim.energy_balance_error(), sim.energy().dissipated_rolling / drop);
   expect_solver_clean(sim);
 }
 

@@ -1,0 +1,84 @@
+#pragma once
+// Rolling resistance of one contact: the elastic-plastic spring-dashpot model ("type C") of
+// Iwashita and Oda (1998, J. Eng. Mech. 124:285) as assessed by Ai, Chen, Rotter and Ooi
+// (2011, Powder Technol. 206:269), the model LIGGGHTS calls `rolling_friction epsd2`, with
+// the dashpot of Ai et al. Incremental, like the Mindlin spring of contact_response.h: the
+// spring torque is carried per contact and turned with the contact plane. Equations and
+// choices (rolling radius of ellipsoids, inertia of the dashpot): docs/contact-law.md.
+#include <cmath>
+
+#include "dem/contact/contact_response.h"
+#include "dem/core/types.h"
+
+namespace upgrain::dem {
+
+// History of one contact's rolling spring.
+struct RollingSpring {
+  Vec3 torque = Vec3::Zero();  // spring torque on body i (body j receives -torque)
+  double stiffness = 0.0;      // k_r when the torque was last updated (0: new contact)
+};
+
+struct RollingParameters {
+  double friction = 0.0;       // mu_r: plastic limit |M_r| <= mu_r R* F_n
+  double damping_ratio = 0.0;  // eta_r: dashpot C_r = eta_r 2 sqrt(I_r k_r)
+};
+
+// Rolling stiffness k_r = 2.25 k_n mu_r^2 R*^2 (Iwashita and Oda 1998; Ai et al. 2011),
+// with k_n the tangent Hertz stiffness 2 E* sqrt(R* delta).
+inline double rolling_stiffness(double k_n, double mu_r, double r_star) {
+  return 2.25 * k_n * mu_r * mu_r * r_star * r_star;
+}
+
+// Torque of the rolling resistance on body i (j receives its opposite).
+//   n: unit contact normal; omega_rel = omega_i - omega_j; r_star: rolling radius;
+//   k_n: tangent normal stiffness; f_n: normal force (after damping and clamp, as the
+//   Coulomb cap); inertia: the pair's rolling inertia I_r (for the dashpot); dt: time step.
+// `viscous` receives the dashpot part of the torque (zero while the spring is at its limit),
+// for the second half of its work (docs/integrator.md).
+template <bool Energy>
+[[gnu::always_inline]] inline Vec3 rolling_resistance(const RollingParameters& p, const Vec3& n,
+                                                      const Vec3& omega_rel, double r_star, double k_n,
+                                                      double f_n, double inertia, double dt, RollingSpring& s,
+                                                      ContactEnergy& energy, Vec3& viscous) {
+  const double k_r = rolling_stiffness(k_n, p.friction, r_star);
+  Vec3& m = s.torque;
+  // Carry the stored torque into the current contact plane, keeping its magnitude.
+  const double old_norm2 = m.squaredNorm();
+  if (old_norm2 > 0.0) {
+    m -= m.dot(n) * n;
+    const double new_norm2 = m.squaredNorm();
+    if (new_norm2 > 0.0) m *= std::sqrt(old_norm2 / new_norm2);
+    if constexpr (Energy) {
+      if (s.stiffness > 0.0)
+        energy.rolling_stiffness_change += 0.5 * old_norm2 * (1.0 / k_r - 1.0 / s.stiffness);
+    }
+  }
+  // Relative rolling: the part of omega_i - omega_j perpendicular to the normal (the normal
+  // part is twisting, not resisted here).
+  const Vec3 w_r = omega_rel - omega_rel.dot(n) * n;
+  m -= k_r * dt * w_r;  // dM_r = -k_r dtheta_r (Ai et al. 2011)
+  s.stiffness = k_r;
+  const double limit = p.friction * r_star * f_n;  // full mobilisation (Ai et al. 2011)
+  const double trial2 = m.squaredNorm();
+  viscous = Vec3::Zero();
+  if (trial2 > limit * limit) {
+    const double trial = std::sqrt(trial2);
+    if constexpr (Energy) energy.dissipated_rolling += limit * (trial - limit) / k_r;
+    m *= limit / trial;  // plastic: the spring is rescaled, the dashpot is off (Ai et al., f = 0)
+  } else if (p.damping_ratio > 0.0) {
+    // Dashpot C_r = eta_r C_r,crit, C_r,crit = 2 sqrt(I_r k_r) (Ai et al. 2011).
+    viscous = -(2.0 * p.damping_ratio * std::sqrt(inertia * k_r)) * w_r;
+    // The total torque stays within the plastic limit too: the dashpot is cut so that
+    // |M_k + M_d| <= mu_r R* F_n. Without this, a spring just below a limit that grows with a
+    // fluctuating F_n lets a dashpot torque far above the limit through while rolling fast.
+    const Vec3 total = m + viscous;
+    const double total2 = total.squaredNorm();
+    if (total2 > limit * limit) viscous = total * (limit / std::sqrt(total2)) - m;
+    // The v(k-1/2) half of its work, as the normal damping (contact_response.h).
+    if constexpr (Energy) energy.dissipated_rolling -= 0.5 * viscous.dot(w_r) * dt;
+  }
+  if constexpr (Energy) energy.elastic_rolling += 0.5 * m.squaredNorm() / k_r;
+  return m + viscous;
+}
+
+}  // namespace upgrain::dem
