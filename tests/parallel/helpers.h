@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <random>
 #include <sstream>
 #include <string>
 
@@ -102,6 +103,21 @@ inline dem::SceneConfig patch_scene() {
   s.damping_ratio = 0.3;
   s.time_step = 2e-5;
   return s;
+}
+
+// A cube of n^3 spheres whose neighbours touch (slight overlap), spinning, so contacts with
+// tangential springs travel with the particles across blocks.
+inline void add_touching_cube(dem::ParticleStore& p, int n, double r, const dem::Vec3& corner,
+                              const dem::Vec3& v, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double pitch = 2.0 * r * 0.999;
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b)
+      for (int c = 0; c < n; ++c) {
+        const dem::Vec3 x = corner + pitch * dem::Vec3(a, b, c);
+        p.add_sphere(static_cast<dem::GlobalId>(p.size()), r, 2650, x,
+                     v + 0.05 * dem::Vec3(u(rng), u(rng), u(rng)), 200.0 * dem::Vec3(u(rng), u(rng), u(rng)));
+      }
 }
 
 // A smaller cousin of tests/regression/deposition_test.cc's scene.

@@ -47,19 +47,6 @@ ParticleStore lattice(const std::array<int, 3>& n, double r, const Vec3& corner,
   return p;
 }
 
-// A cube of n^3 touching spheres (slight overlap), spinning: their tangential springs
-// must travel with them.
-void add_touching_cube(ParticleStore& p, int n, double r, const Vec3& corner, const Vec3& v,
-                       std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const double pitch = 2.0 * r * 0.999;
-  for (int a = 0; a < n; ++a)
-    for (int b = 0; b < n; ++b)
-      for (int c = 0; c < n; ++c)
-        p.add_sphere(static_cast<GlobalId>(p.size()), r, 2650, corner + pitch * Vec3(a, b, c),
-                     v + 0.05 * Vec3(u(rng), u(rng), u(rng)), 200.0 * Vec3(u(rng), u(rng), u(rng)));
-}
-
 long global_sum(long v) {
   long s = 0;
   MPI_Allreduce(&v, &s, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
@@ -211,7 +198,7 @@ TEST(LoadBalance, PlaneMovedByMoreThanABlockLosesNoParticle) {
   const SceneConfig s = free_scene();
   std::mt19937_64 rng(9);
   ParticleStore p;
-  add_touching_cube(p, 4, 2e-3, Vec3(0.0465, 0.004, 0.008), Vec3(0.0, 8.0, 0.0), rng);
+  test::add_touching_cube(p, 4, 2e-3, Vec3(0.0465, 0.004, 0.008), Vec3(0.0, 8.0, 0.0), rng);
   ParallelOptions o;
   o.box = Box{Vec3::Zero(), Vec3(0.06, 0.03, 0.03)};
   o.blocks = {size, 1, 1};

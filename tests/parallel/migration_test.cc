@@ -14,21 +14,6 @@ using namespace upgrain::dem;
 
 namespace {
 
-// A cube of n^3 spheres whose neighbours touch (slight overlap), so contacts with
-// tangential springs travel with the particles across blocks.
-void add_touching_cube(ParticleStore& p, int n, double r, const Vec3& corner, const Vec3& v,
-                       std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const double pitch = 2.0 * r * 0.999;
-  for (int a = 0; a < n; ++a)
-    for (int b = 0; b < n; ++b)
-      for (int c = 0; c < n; ++c) {
-        const Vec3 x = corner + pitch * Vec3(a, b, c);
-        p.add_sphere(static_cast<GlobalId>(p.size()), r, 2650, x, v + 0.05 * Vec3(u(rng), u(rng), u(rng)),
-                     200.0 * Vec3(u(rng), u(rng), u(rng)));
-      }
-}
-
 SceneConfig free_scene() {
   SceneConfig s = test::bare_scene(1e-5);
   s.effects = {false, true, true, false, true, true};  // no gravity, no walls
@@ -46,7 +31,7 @@ TEST(Migration, CrossingFacesEdgesAndCornersInTheSameStep) {
   std::mt19937_64 rng(3);
   ParticleStore p;
   const double r = 2e-3;
-  add_touching_cube(p, 4, r, Vec3(0.022, 0.022, 0.022), Vec3(2.0, 2.0, 2.0), rng);
+  test::add_touching_cube(p, 4, r, Vec3(0.022, 0.022, 0.022), Vec3(2.0, 2.0, 2.0), rng);
   ParallelOptions o;
   o.box = Box{Vec3::Zero(), Vec3(0.06, 0.06, 0.06)};
   const ParallelDiagnostics d = test::expect_rank_independent(s, p, {}, o, o, 800);
@@ -64,9 +49,9 @@ TEST(Migration, BlockEmptiedAndRefilled) {
   std::mt19937_64 rng(5);
   ParticleStore p;
   const double r = 2e-3;
-  add_touching_cube(p, 3, r, Vec3(0.004, 0.011, 0.011), Vec3(5.0, 0, 0), rng);
+  test::add_touching_cube(p, 3, r, Vec3(0.004, 0.011, 0.011), Vec3(5.0, 0, 0), rng);
   // B starts beyond the box's end: the outer blocks are open.
-  add_touching_cube(p, 3, r, Vec3(0.070, 0.011, 0.041), Vec3(-5.0, 0, 0), rng);
+  test::add_touching_cube(p, 3, r, Vec3(0.070, 0.011, 0.041), Vec3(-5.0, 0, 0), rng);
   ParallelOptions o;
   o.box = Box{Vec3::Zero(), Vec3(0.06, 0.03, 0.06)};
   o.blocks = {test::world_size(), 1, 1};
