@@ -176,16 +176,18 @@ int main(int argc, char** argv) {
   const GrainShape shape{0.8, 0.6, 1.0};
   const Timing ellipsoids = settle_and_time(n, r / std::cbrt(0.8 * 0.6), {shape}, steps, cache_dir);
   const ContactSolverStats& st = ellipsoids.solver;
-  const double tests = static_cast<double>(st.calls + st.proven_apart);
+  const double tests = static_cast<double>(st.calls + st.proven_apart + st.still_apart);
   std::printf(
       "upgrain ellipsoid_bed particles %ld steps %ld sphere_particle_steps_per_second %.4e "
       "ellipsoid_particle_steps_per_second %.4e cost_ratio %.3f sphere_contacts_per_particle %.3f "
       "ellipsoid_contacts_per_particle %.3f narrow_phase_tests_per_second %.4e solver_calls_per_second %.4e "
-      "proven_apart_share %.3f newton_steps_per_call %.3f warm_share %.4f fallbacks %lld failures %lld\n",
+      "proven_apart_share %.3f still_apart_share %.3f newton_steps_per_call %.3f warm_share %.4f fallbacks "
+      "%lld failures %lld\n",
       n, steps, spheres.particle_steps_per_second, ellipsoids.particle_steps_per_second,
       spheres.particle_steps_per_second / ellipsoids.particle_steps_per_second, spheres.contacts_per_particle,
       ellipsoids.contacts_per_particle, tests / ellipsoids.seconds,
       static_cast<double>(st.calls) / ellipsoids.seconds, static_cast<double>(st.proven_apart) / tests,
+      static_cast<double>(st.still_apart) / tests,
       static_cast<double>(st.newton_iterations) / static_cast<double>(std::max<std::int64_t>(st.calls, 1)),
       static_cast<double>(st.warm_starts) / static_cast<double>(std::max<std::int64_t>(st.calls, 1)),
       static_cast<long long>(st.fallbacks), static_cast<long long>(st.failures));

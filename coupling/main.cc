@@ -70,11 +70,14 @@ void print_deposition(const upgrain::coupling::SceneInput& in, const upgrain::de
   if (cs.calls > 0)
     std::printf(
         "  ellipsoid contacts: %lld solver calls (%lld warm, %.2f Newton steps per call), %lld proven "
-        "apart before the solver, %lld fallbacks, %lld uncertified, %lld not converged\n",
+        "apart before the solver, %lld still apart by an earlier proof, %lld fallbacks, %lld uncertified, "
+        "%lld "
+        "not converged\n",
         static_cast<long long>(cs.calls), static_cast<long long>(cs.warm_starts),
         static_cast<double>(cs.newton_iterations) / static_cast<double>(cs.calls),
-        static_cast<long long>(cs.proven_apart), static_cast<long long>(cs.fallbacks),
-        static_cast<long long>(cs.uncertified), static_cast<long long>(cs.failures));
+        static_cast<long long>(cs.proven_apart), static_cast<long long>(cs.still_apart),
+        static_cast<long long>(cs.fallbacks), static_cast<long long>(cs.uncertified),
+        static_cast<long long>(cs.failures));
   if (r.final_stress) {
     const dem::GridStress& g = *r.final_stress;
     const dem::RegularGrid& grid = r.final_grid;

@@ -41,9 +41,12 @@ struct TangentialSpring {
 struct ShapedContactMemory {
   Vec3 normal = Vec3::Zero();
   double r_star = 0.0;
+  // A pair proven apart: the gap still proven after the grains' motion since (m; 0 when none,
+  // and not carried by migration records: a pair without one is evaluated).
+  double gap_budget = 0.0;
 
   [[nodiscard]] bool empty() const { return r_star == 0.0 && normal == Vec3::Zero(); }
-  [[nodiscard]] ShapedContactMemory reversed() const { return {-normal, r_star}; }
+  [[nodiscard]] ShapedContactMemory reversed() const { return {-normal, r_star, gap_budget}; }
 };
 
 struct ContactEnergy {

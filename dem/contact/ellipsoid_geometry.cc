@@ -15,18 +15,30 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr int kMaxIterations = 30;        // per Newton run; a warm start takes 2-3
 constexpr double kAngleConverged = 1e-6;  // rad: a last step this small is taken unchecked
 
-// The pair in its own frame (D1): lengths relative to c2 and multiplied by a power of two
-// `scale` that brings the smallest semi-axis of the pair into [1, 2). Only c1 - c2 enters, so
-// positions far from the origin cost no digits, and the power-of-two scaling is exact.
-struct PairFrame {
-  double scale = 1.0;
-  Vec3 d;                      // (c1 - c2) * scale
-  Mat3 m1, m2;                 // M_i = R_i diag(a_i^2, b_i^2, c_i^2) R_i^T, scaled
+// The pair in its own frame (D1): only c1 - c2 enters, so positions far from the origin cost
+// no digits. Every quantity of the solver scales with the pair's size, and scaling by a power
+// of two commutes with rounding, so the solver's result is the same bits in any power-of-two
+// unit: it runs in metres (the shape matrices of the posed grains are used in place, not
+// copied) and only a grain size outside [2^-200, 2^200] m, where 1/h^3 could leave the range
+// of doubles, is carried to a unit that brings the smallest semi-axis into [1, 2).
+class PairFrame {
+ public:
+  PairFrame(const PosedEllipsoid& e1, const PosedEllipsoid& e2);
+  PairFrame(const PairFrame&) = delete;  // m1, m2 may point into the frame itself
+  PairFrame& operator=(const PairFrame&) = delete;
+
+  double scale = 1.0;        // the power of two (1 for every physical grain size)
+  Vec3 d;                    // (c1 - c2) * scale
+  const Mat3* m1 = nullptr;  // M_i = R_i diag(a_i^2, b_i^2, c_i^2) R_i^T, scaled
+  const Mat3* m2 = nullptr;
   const Mat3* rot1 = nullptr;  // R_i (columns: body axes in the world), not scaled
   const Mat3* rot2 = nullptr;
   Vec3 ax1, ax2;         // semi-axes, scaled
-  double size = 1.0;     // |d| + a1 + a2: magnitude of the terms of the gradient
+  double size = 1.0;     // |d|_1 + a1 + a2: bounds the terms of f and its gradient (round-off scale)
   double certify = 0.0;  // c1^2/a1 + c2^2/a2: smallest radius of curvature of B1 - B2 (D4)
+
+ private:
+  Mat3 m1_scaled_, m2_scaled_;  // only for grain sizes outside [2^-200, 2^200] m
 };
 
 // A_i v = R_i diag(1/a^2, 1/b^2, 1/c^2) R_i^T v: the normal direction of the surface point
@@ -35,49 +47,46 @@ Vec3 inverse_shape_times(const Mat3& rot, const Vec3& axes, const Vec3& v) {
   return rot * (rot.transpose() * v).cwiseQuotient(axes.cwiseAbs2());
 }
 
-Mat3 shape_matrix(const Mat3& rot, const Vec3& axes) {
-  Mat3 m = Mat3::Zero();
-  for (int k = 0; k < 3; ++k) m += axes[k] * axes[k] * rot.col(k) * rot.col(k).transpose();
-  return m;
+// 2^-floor(log2 c): the power of two that brings c into [1, 2).
+double scale_for(double c) { return std::ldexp(1.0, -std::ilogb(c)); }
+
+PairFrame::PairFrame(const PosedEllipsoid& e1, const PosedEllipsoid& e2) {
+  const double minor = std::min(e1.minor, e2.minor);
+  constexpr double kLow = 0x1p-200, kHigh = 0x1p200;
+  scale = (minor >= kLow && minor <= kHigh) ? 1.0 : scale_for(minor);
+  d = e1.centre - e2.centre;
+  rot1 = &e1.rot;
+  rot2 = &e2.rot;
+  ax1 = e1.semi_axes;
+  ax2 = e2.semi_axes;
+  m1 = &e1.shape;
+  m2 = &e2.shape;
+  double major = e1.major + e2.major;
+  double min_radius = e1.min_radius + e2.min_radius;
+  if (scale != 1.0) {  // exact: equal to the same expressions of the scaled lengths bit for bit
+    d *= scale;
+    ax1 *= scale;
+    ax2 *= scale;
+    m1_scaled_ = e1.shape * (scale * scale);
+    m2_scaled_ = e2.shape * (scale * scale);
+    m1 = &m1_scaled_;
+    m2 = &m2_scaled_;
+    major *= scale;
+    min_radius *= scale;
+  }
+  size = d.cwiseAbs().sum() + major;
+  certify = min_radius;
 }
 
-// 2^-floor(log2 c): the power of two that brings c into [1, 2). From the exponent bits for
-// a normal c (ilogb and ldexp are two library calls on every pair frame otherwise).
-double scale_for(double c) {
-  const auto biased = static_cast<std::uint64_t>(std::bit_cast<std::uint64_t>(c) >> 52);
-  if (c > 0.0 && biased >= 1 && biased <= 2045) return std::bit_cast<double>((2046 - biased) << 52);
-  return std::ldexp(1.0, -std::ilogb(c));
-}
-
-// The posed ellipsoids must outlive the frame (it keeps their rotations by pointer).
-PairFrame make_frame(const PosedEllipsoid& e1, const PosedEllipsoid& e2) {
-  PairFrame p;
-  p.scale = scale_for(std::min(e1.minor, e2.minor));
-  const double scale2 = p.scale * p.scale;
-  p.d = (e1.centre - e2.centre) * p.scale;
-  p.rot1 = &e1.rot;
-  p.rot2 = &e2.rot;
-  p.ax1 = e1.semi_axes * p.scale;
-  p.ax2 = e2.semi_axes * p.scale;
-  p.m1 = e1.shape * scale2;  // exact: equal to shape_matrix(rot1, ax1)
-  p.m2 = e2.shape * scale2;
-  // Scaling by a power of two commutes with rounding: these equal the same expressions of
-  // the scaled semi-axes bit for bit.
-  p.size = p.d.norm() + e1.major * p.scale + e2.major * p.scale;
-  p.certify = (e1.min_radius + e2.min_radius) * p.scale;
-  return p;
-}
-
-// f(n) and the pieces its derivatives reuse (D2): u = M1 n, h1 = sqrt(n.u), v = M2 n,
-// h2 = sqrt(n.v); G = d + u/h1 + v/h2 = p1 - p2 (the two support points), f = n.G.
+// f(n) and the pieces its derivatives and the contact points reuse (D2): u = M1 n,
+// h1 = sqrt(n.u), v = M2 n, h2 = sqrt(n.v), f = n.d + h1 + h2. The gradient of f extended to
+// R^3, G = d + u/h1 + v/h2 = p1 - p2 (the two support points), is formed where needed.
 struct Eval {
   double f;
-  Vec3 g;  // G, the gradient of f extended to R^3 (homogeneous of degree 0)
   Vec3 u, v;
   double h1, h2;
 };
 
-// f alone (with u, v, h1, h2): all a separation proof needs.
 [[gnu::always_inline]] inline Eval evaluate_gap(const Vec3& d, const Mat3& m1, const Mat3& m2,
                                                 const Vec3& n) {
   Eval e;
@@ -89,27 +98,16 @@ struct Eval {
   return e;
 }
 
-[[gnu::always_inline]] inline void add_gradient(Eval& e, const Vec3& d) {
-  e.g = d + e.u * (1.0 / e.h1) + e.v * (1.0 / e.h2);
-}
-
-Eval evaluate(const Vec3& d, const Mat3& m1, const Mat3& m2, const Vec3& n) {
-  Eval e = evaluate_gap(d, m1, m2, n);
-  add_gradient(e, d);
-  return e;
-}
-
-Eval evaluate(const PairFrame& p, const Vec3& n) { return evaluate(p.d, p.m1, p.m2, n); }
+Eval evaluate(const PairFrame& p, const Vec3& n) { return evaluate_gap(p.d, *p.m1, *p.m2, n); }
 
 // An evaluation in world units carried into a frame: every piece scales by the frame's power
 // of two `scale`, exactly. `normal_scale` = 1/l carries an evaluation at l n to one at n:
-// u, v, h1, h2 and f scale with it, G (homogeneous of degree zero) does not.
+// u, v, h1, h2 and f scale with it.
 Eval scaled(Eval e, double scale, double normal_scale) {
   e.u *= scale * scale * normal_scale;
   e.v *= scale * scale * normal_scale;
   e.h1 *= scale * normal_scale;
   e.h2 *= scale * normal_scale;
-  e.g *= scale;
   e.f *= scale * normal_scale;
   return e;
 }
@@ -164,56 +162,77 @@ struct NewtonResult {
 // H3 = M1/h1 - u u^T/h1^3 + M2/h2 - v v^T/h2^3. Far from a minimum H may be indefinite: it is
 // shifted to positive definite (Levenberg), the step is capped at 0.5 rad and backtracked
 // until f decreases (Armijo), so every run descends and cannot cycle.
+// `at_start`: f at `start`, which must then be a unit vector (the caller's evaluation).
+//
+// The common case, a warm start one small step from the minimum, is straight-line code with
+// two square roots and four divisions: the gradient and the Hessian share the reciprocals
+// 1/h1, 1/h2; the convergence and definiteness tests compare squares and a determinant
+// instead of taking norms and eigenvalues; and a step below kAngleConverged is retracted to
+// the sphere by one Newton step for 1/sqrt (|n + x|^2 = 1 + |x|^2 <= 1 + 1e-12, so its error
+// is below 1e-24) instead of a normalisation.
 NewtonResult newton_on_sphere(const PairFrame& p, const Vec3& start, const Eval* at_start = nullptr) {
   NewtonResult r;
-  r.n = start.normalized();
+  r.n = at_start ? start : start.normalized();
   r.e = at_start ? *at_start : evaluate(p, r.n);
   const double tol_g = 16.0 * kEps * p.size;    // round-off level of the gradient
   const double noise_f = 64.0 * kEps * p.size;  // round-off level of f
+  const Mat3& m1 = *p.m1;
+  const Mat3& m2 = *p.m2;
   for (;;) {
+    const double r1 = 1.0 / r.e.h1, r2 = 1.0 / r.e.h2;
+    const Vec3 grad = p.d + r.e.u * r1 + r.e.v * r2;
     Vec3 t1, t2;
     tangent_basis(r.n, t1, t2);
-    const double g1 = t1.dot(r.e.g), g2 = t2.dot(r.e.g);
-    const double g_norm = std::sqrt(g1 * g1 + g2 * g2);
-    if (g_norm <= tol_g) {
+    const double g1 = t1.dot(grad), g2 = t2.dot(grad);
+    const double g_norm2 = g1 * g1 + g2 * g2;
+    if (g_norm2 <= tol_g * tol_g) {
       r.converged = true;
       return r;
     }
-    // H3 restricted to the tangent plane: with S = M1/h1 + M2/h2 one pair of products
-    // S t1, S t2 instead of four, and reciprocals instead of twelve divisions.
-    const double r1 = 1.0 / r.e.h1, r2 = 1.0 / r.e.h2;
-    const Mat3 s_mat = p.m1 * r1 + p.m2 * r2;
+    // H3 restricted to the tangent plane: with S = M1/h1 + M2/h2 (symmetric) one pair of
+    // products S t1, S t2 instead of four.
+    Mat3 s_mat;
+    for (int a = 0; a < 3; ++a)
+      for (int b = a; b < 3; ++b) s_mat(a, b) = s_mat(b, a) = m1(a, b) * r1 + m2(a, b) * r2;
     const Vec3 st1 = s_mat * t1, st2 = s_mat * t2;
     const double r1_3 = r1 * r1 * r1, r2_3 = r2 * r2 * r2;
     const double u1 = t1.dot(r.e.u), u2 = t2.dot(r.e.u), v1 = t1.dot(r.e.v), v2 = t2.dot(r.e.v);
     double h11 = t1.dot(st1) - u1 * u1 * r1_3 - v1 * v1 * r2_3 - r.e.f;
     double h22 = t2.dot(st2) - u2 * u2 * r1_3 - v2 * v2 * r2_3 - r.e.f;
     const double h12 = t1.dot(st2) - u1 * u2 * r1_3 - v1 * v2 * r2_3;
-    double l0, l1;
-    symmetric_eigenvalues_2x2(h11, h12, h22, l0, l1);
-    const double floor = 1e-3 * (std::abs(l0) + p.certify);
-    const bool shifted = l1 < floor;
+    // Not shifted when the smaller eigenvalue l1 >= 1e-3 (|l0| + certify). With l0 + l1 = tr H
+    // that is l1 >= kappa = 1e-3 (tr H + certify) / 1.001 > 0, i.e. H - kappa 1 positive
+    // semi-definite: its diagonal entry and determinant non-negative. No square root.
+    const double kappa = 1e-3 * (h11 + h22 + p.certify) / 1.001;
+    const double a11 = h11 - kappa, a22 = h22 - kappa;
+    const bool shifted = !(kappa > 0.0 && a11 >= 0.0 && a11 * a22 - h12 * h12 >= 0.0);
     if (shifted) {  // Levenberg shift to a positive-definite model
+      double l0, l1;
+      symmetric_eigenvalues_2x2(h11, h12, h22, l0, l1);
+      const double floor = 1e-3 * (std::abs(l0) + p.certify);
       h11 += floor - l1;
       h22 += floor - l1;
     }
     const double inv_det = 1.0 / (h11 * h22 - h12 * h12);
     double x1 = -(h22 * g1 - h12 * g2) * inv_det;
     double x2 = -(h11 * g2 - h12 * g1) * inv_det;
-    const double step = std::sqrt(x1 * x1 + x2 * x2);
+    const double step2 = x1 * x1 + x2 * x2;
     // The Newton step of a positive-definite Hessian estimates the angle between n and the
     // minimiser: below kAngleConverged, take it unchecked (it leaves an error ~ step^2) and stop.
-    if (!shifted && step <= kAngleConverged) {
-      r.n = (r.n + x1 * t1 + x2 * t2).normalized();
+    if (!shifted && step2 <= kAngleConverged * kAngleConverged) {
+      Vec3 n = r.n + x1 * t1 + x2 * t2;
+      n *= 1.5 - 0.5 * n.squaredNorm();
+      r.n = n;
       r.e = evaluate(p, r.n);
       ++r.iterations;
       r.converged = true;
       return r;
     }
     if (r.iterations >= kMaxIterations) return r;
-    if (step > 0.5) {
-      x1 *= 0.5 / step;
-      x2 *= 0.5 / step;
+    if (step2 > 0.25) {
+      const double cap = 0.5 / std::sqrt(step2);
+      x1 *= cap;
+      x2 *= cap;
     }
     const double slope = g1 * x1 + g2 * x2;  // < 0: a descent direction
     double alpha = 1.0;
@@ -233,7 +252,7 @@ NewtonResult newton_on_sphere(const PairFrame& p, const Vec3& start, const Eval*
     }
     ++r.iterations;
     if (!accepted) {  // no decrease at any step length: at the minimum to round-off, or stuck
-      r.converged = g_norm <= 1e3 * tol_g;
+      r.converged = g_norm2 <= 1e6 * tol_g * tol_g;
       return r;
     }
   }
@@ -320,11 +339,15 @@ void assemble(const PairFrame& p, const Vec3& centre1, const Vec3& centre2, cons
   g.depth = r.e.f * inv;
   g.touching = r.e.f > 0.0;
   g.normal = r.n;
-  const Vec3 arm1 = r.e.u / r.e.h1;   // p1 - c1, scaled (support point of body 1 along n)
-  const Vec3 arm2 = -r.e.v / r.e.h2;  // p2 - c2, scaled (support point of body 2 along -n)
+  const Vec3 arm1 = r.e.u * (1.0 / r.e.h1);   // p1 - c1, scaled (support point of body 1 along n)
+  const Vec3 arm2 = r.e.v * (-1.0 / r.e.h2);  // p2 - c2, scaled (support point of body 2 along -n)
+  // The levers from both centres to the mid-point, from c1 - c2 (exact for near centres), not
+  // from world positions.
+  g.lever1 = (arm1 - 0.5 * r.e.f * r.n) * inv;
+  g.lever2 = g.lever1 + p.d * inv;
   g.point1 = centre1 + arm1 * inv;
   g.point2 = centre2 + arm2 * inv;
-  g.point = centre1 + (arm1 - 0.5 * r.e.f * r.n) * inv;
+  g.point = centre1 + g.lever1;
   if (g.touching && curvatures) {  // curvatures feed the contact law only: skipped for gaps
     const PrincipalCurvatures k1 = curvatures_body(*p.rot1, p.ax1, p.rot1->transpose() * arm1);
     const PrincipalCurvatures k2 = curvatures_body(*p.rot2, p.ax2, p.rot2->transpose() * arm2);
@@ -351,7 +374,9 @@ ContactGeometry sphere_sphere_contact(const Vec3& c1, double r1, const Vec3& c2,
   g.touching = g.depth > 0.0;
   g.point1 = c1 + r1 * g.normal;
   g.point2 = c2 - r2 * g.normal;
-  g.point = c1 + (r1 - 0.5 * g.depth) * g.normal;
+  g.lever1 = (r1 - 0.5 * g.depth) * g.normal;
+  g.lever2 = -(r2 - 0.5 * g.depth) * g.normal;
+  g.point = c1 + g.lever1;
   g.curvature1[0] = g.curvature1[1] = 1.0 / r1;
   g.curvature2[0] = g.curvature2[1] = 1.0 / r2;
   Vec3 t2;
@@ -425,7 +450,7 @@ bool separated_frame(const PairFrame& p, double margin, Vec3* witness = nullptr)
   const Vec3 u0 = -p.d / dn;
   const double bound = -margin * p.scale;
   auto proves = [&](const Vec3& n) {
-    if (!(evaluate_gap(p.d, p.m1, p.m2, n).f < bound)) return false;
+    if (!(evaluate(p, n).f < bound)) return false;
     if (witness) *witness = n;
     return true;
   };
@@ -441,8 +466,29 @@ ContactGeometry support_function_contact(const Ellipsoid& e1, const Ellipsoid& e
   ++stats.calls;
   const PosedEllipsoid p1 = PosedEllipsoid::from(e1), p2 = PosedEllipsoid::from(e2);
   ContactGeometry g;
-  solve_frame(make_frame(p1, p2), e1.centre, e2.centre, stats, initial_normal, true, g);
+  const PairFrame p(p1, p2);
+  solve_frame(p, e1.centre, e2.centre, stats, initial_normal, true, g);
   return g;
+}
+
+Mat3 PosedEllipsoid::shape_of(const Mat3& rot, const Vec3& semi_axes) {
+  // Symmetric: its six distinct entries, from the columns of R weighted by the squared axes.
+  const double a2 = semi_axes[0] * semi_axes[0], b2 = semi_axes[1] * semi_axes[1];
+  const double c2 = semi_axes[2] * semi_axes[2];
+  const double r00 = rot(0, 0), r10 = rot(1, 0), r20 = rot(2, 0);
+  const double r01 = rot(0, 1), r11 = rot(1, 1), r21 = rot(2, 1);
+  const double r02 = rot(0, 2), r12 = rot(1, 2), r22 = rot(2, 2);
+  const double w00 = a2 * r00, w10 = a2 * r10, w20 = a2 * r20;
+  const double w01 = b2 * r01, w11 = b2 * r11, w21 = b2 * r21;
+  const double w02 = c2 * r02, w12 = c2 * r12, w22 = c2 * r22;
+  Mat3 m;
+  m(0, 0) = w00 * r00 + w01 * r01 + w02 * r02;
+  m(1, 1) = w10 * r10 + w11 * r11 + w12 * r12;
+  m(2, 2) = w20 * r20 + w21 * r21 + w22 * r22;
+  m(0, 1) = m(1, 0) = w00 * r10 + w01 * r11 + w02 * r12;
+  m(0, 2) = m(2, 0) = w00 * r20 + w01 * r21 + w02 * r22;
+  m(1, 2) = m(2, 1) = w10 * r20 + w11 * r21 + w12 * r22;
+  return m;
 }
 
 PosedEllipsoid PosedEllipsoid::from(const Ellipsoid& e) {
@@ -450,52 +496,176 @@ PosedEllipsoid PosedEllipsoid::from(const Ellipsoid& e) {
   q.centre = e.centre;
   q.rot = e.orientation.toRotationMatrix();
   q.semi_axes = e.semi_axes;
-  q.shape = shape_matrix(q.rot, e.semi_axes);
+  q.shape = shape_of(q.rot, e.semi_axes);
   q.major = e.semi_axes.maxCoeff();
   q.minor = e.semi_axes.minCoeff();
   q.min_radius = q.minor * q.minor / q.major;
   return q;
 }
 
-bool posed_contact(const PosedEllipsoid& e1, const PosedEllipsoid& e2, ContactSolverStats& stats,
-                   const std::optional<Vec3>& initial_normal, bool curvatures, ContactGeometry& g) {
+namespace {
+
+constexpr int kFastIterations = 4;  // Newton steps of the force loop's straight-line path
+
+// The force loop's usual case (docs/ellipsoid-contact.md, "In the force loop"): a pair near its
+// last normal, Newton from there in metres, as newton_on_sphere() but written out for the
+// symmetric shape matrices, with no frame, no copies and no line search. Gives up (false, with
+// nothing written or counted) whenever the general solver would do something else: an
+// indefinite model, a step above 0.1 rad or one that fails the Armijo test, more than
+// kFastIterations steps, or a result the certificate (D4) does not cover; the caller then runs
+// the general solver from the same start. `at` is f at the unit vector `start`.
+bool warm_newton(const PosedEllipsoid& e1, const PosedEllipsoid& e2, const Vec3& d, const Vec3& start,
+                 const Eval& at, ContactSolverStats& stats, PairContact& out) {
+  const Mat3& a = e1.shape;
+  const Mat3& b = e2.shape;
+  const double dx = d.x(), dy = d.y(), dz = d.z();
+  const double size = std::abs(dx) + std::abs(dy) + std::abs(dz) + e1.major + e2.major;
+  const double certify = e1.min_radius + e2.min_radius;
+  const double tol_g = 16.0 * kEps * size, noise_f = 64.0 * kEps * size;
+  double nx = start.x(), ny = start.y(), nz = start.z();
+  double ux = at.u.x(), uy = at.u.y(), uz = at.u.z(), vx = at.v.x(), vy = at.v.y(), vz = at.v.z();
+  double h1 = at.h1, h2 = at.h2, f = at.f;
+  // u = M1 n, v = M2 n, h = sqrt(n.Mn), f = n.d + h1 + h2 at a new n (M symmetric).
+  auto evaluate_at = [&](double x, double y, double z) {
+    ux = a(0, 0) * x + a(0, 1) * y + a(0, 2) * z;
+    uy = a(0, 1) * x + a(1, 1) * y + a(1, 2) * z;
+    uz = a(0, 2) * x + a(1, 2) * y + a(2, 2) * z;
+    vx = b(0, 0) * x + b(0, 1) * y + b(0, 2) * z;
+    vy = b(0, 1) * x + b(1, 1) * y + b(1, 2) * z;
+    vz = b(0, 2) * x + b(1, 2) * y + b(2, 2) * z;
+    h1 = std::sqrt(x * ux + y * uy + z * uz);
+    h2 = std::sqrt(x * vx + y * vy + z * vz);
+    f = x * dx + y * dy + z * dz + h1 + h2;
+  };
+  int iterations = 0;
+  for (;;) {
+    const double r1 = 1.0 / h1, r2 = 1.0 / h2;
+    const double gx = dx + ux * r1 + vx * r2, gy = dy + uy * r1 + vy * r2, gz = dz + uz * r1 + vz * r2;
+    // Tangent basis of n (tangent_basis(): Duff et al. 2017).
+    const double sign = std::copysign(1.0, nz);
+    const double ta = -1.0 / (sign + nz);
+    const double tb = nx * ny * ta;
+    const double t1x = 1.0 + sign * nx * nx * ta, t1y = sign * tb, t1z = -sign * nx;
+    const double t2x = tb, t2y = sign + ny * ny * ta, t2z = -ny;
+    const double g1 = t1x * gx + t1y * gy + t1z * gz, g2 = t2x * gx + t2y * gy + t2z * gz;
+    if (g1 * g1 + g2 * g2 <= tol_g * tol_g) break;  // at the minimum to round-off
+    if (iterations == kFastIterations) return false;
+    // Tangent Hessian: t_i^T S t_j - (t_i.u)(t_j.u)/h1^3 - (t_i.v)(t_j.v)/h2^3 - f delta_ij,
+    // S = M1/h1 + M2/h2.
+    const double sxx = a(0, 0) * r1 + b(0, 0) * r2, syy = a(1, 1) * r1 + b(1, 1) * r2;
+    const double szz = a(2, 2) * r1 + b(2, 2) * r2, sxy = a(0, 1) * r1 + b(0, 1) * r2;
+    const double sxz = a(0, 2) * r1 + b(0, 2) * r2, syz = a(1, 2) * r1 + b(1, 2) * r2;
+    const double s1x = sxx * t1x + sxy * t1y + sxz * t1z, s1y = sxy * t1x + syy * t1y + syz * t1z;
+    const double s1z = sxz * t1x + syz * t1y + szz * t1z;
+    const double s2x = sxx * t2x + sxy * t2y + sxz * t2z, s2y = sxy * t2x + syy * t2y + syz * t2z;
+    const double s2z = sxz * t2x + syz * t2y + szz * t2z;
+    const double r1_3 = r1 * r1 * r1, r2_3 = r2 * r2 * r2;
+    const double u1 = t1x * ux + t1y * uy + t1z * uz, u2 = t2x * ux + t2y * uy + t2z * uz;
+    const double v1 = t1x * vx + t1y * vy + t1z * vz, v2 = t2x * vx + t2y * vy + t2z * vz;
+    const double h11 = t1x * s1x + t1y * s1y + t1z * s1z - u1 * u1 * r1_3 - v1 * v1 * r2_3 - f;
+    const double h22 = t2x * s2x + t2y * s2y + t2z * s2z - u2 * u2 * r1_3 - v2 * v2 * r2_3 - f;
+    const double h12 = t1x * s2x + t1y * s2y + t1z * s2z - u1 * u2 * r1_3 - v1 * v2 * r2_3;
+    // newton_on_sphere()'s test for a model that needs no shift.
+    const double kappa = 1e-3 * (h11 + h22 + certify) / 1.001;
+    const double a11 = h11 - kappa, a22 = h22 - kappa;
+    if (!(kappa > 0.0 && a11 >= 0.0 && a11 * a22 - h12 * h12 >= 0.0)) return false;
+    const double inv_det = 1.0 / (h11 * h22 - h12 * h12);
+    const double x1 = -(h22 * g1 - h12 * g2) * inv_det;
+    const double x2 = -(h11 * g2 - h12 * g1) * inv_det;
+    const double step2 = x1 * x1 + x2 * x2;
+    if (!(step2 <= 1e-2)) return false;  // above 0.1 rad: the general solver's capped line search
+    const double slope = g1 * x1 + g2 * x2;
+    double mx = nx + x1 * t1x + x2 * t2x, my = ny + x1 * t1y + x2 * t2y, mz = nz + x1 * t1z + x2 * t2z;
+    const bool last = step2 <= kAngleConverged * kAngleConverged;
+    // |n + x|^2 = 1 + |x|^2: below 1e-12 one Newton step for 1/sqrt normalises to 1e-24.
+    const double norm2 = mx * mx + my * my + mz * mz;
+    const double to_unit = last ? 1.5 - 0.5 * norm2 : 1.0 / std::sqrt(norm2);
+    mx *= to_unit;
+    my *= to_unit;
+    mz *= to_unit;
+    const double f_before = f;
+    evaluate_at(mx, my, mz);
+    nx = mx;
+    ny = my;
+    nz = mz;
+    ++iterations;
+    if (last) break;  // taken unchecked, as newton_on_sphere()
+    if (!(f <= f_before + 1e-4 * slope || -slope <= noise_f)) return false;
+  }
+  if (!(f < certify * (1.0 - 1e-9))) return false;  // D4 does not cover it: the general solver
+  const double r1 = 1.0 / h1;
+  out.depth = f;
+  out.normal = Vec3(nx, ny, nz);
+  // The levers from both centres to the mid-point p1 - f n/2, with p1 - c1 = u/h1.
+  out.lever1 = Vec3(ux * r1 - 0.5 * f * nx, uy * r1 - 0.5 * f * ny, uz * r1 - 0.5 * f * nz);
+  out.lever2 = out.lever1 + d;
+  out.gaussian_radius = 0.0;
+  ++stats.warm_starts;
+  stats.newton_iterations += iterations;
+  return true;
+}
+
+// What the force loop keeps of a full result.
+bool to_pair_contact(const ContactGeometry& g, bool radius, PairContact& out) {
+  out.depth = g.depth;
+  out.normal = g.normal;
+  out.lever1 = g.lever1;
+  out.lever2 = g.lever2;
+  out.gaussian_radius = g.touching && radius ? gaussian_curvature_radius(g) : 0.0;
+  return g.touching;
+}
+
+}  // namespace
+
+bool posed_contact(const PosedEllipsoid& e1, const PosedEllipsoid& e2, const Vec3* last_normal, bool radius,
+                   ContactSolverStats& stats, PairContact& out) {
   if (e1.is_sphere() && e2.is_sphere()) {
     ++stats.calls;
-    g = sphere_sphere_contact(e1.centre, e1.semi_axes.x(), e2.centre, e2.semi_axes.x());
-    return true;
+    return to_pair_contact(sphere_sphere_contact(e1.centre, e1.semi_axes.x(), e2.centre, e2.semi_axes.x()),
+                           radius, out);
   }
-  // f(n) >= depth for every unit n: f < 0 at the pair's last normal proves a gap with one
-  // evaluation, the tightest bound for a pair that was near at the last step. Half the warm
-  // pairs of a bed end here, before their frame is built.
-  const bool warm = initial_normal && initial_normal->squaredNorm() > 0.5;
+  const bool warm = last_normal && last_normal->squaredNorm() > 0.5;
   if (!warm) {
-    const PairFrame p = make_frame(e1, e2);
-    if (separated_frame(p, 0.0, &g.normal)) {
+    const PairFrame p(e1, e2);
+    Vec3 witness;
+    if (separated_frame(p, 0.0, &witness)) {
       ++stats.proven_apart;
+      out.normal = witness;
+      out.depth = evaluate(p, witness).f / p.scale;
       return false;
     }
     ++stats.calls;
-    solve_frame(p, e1.centre, e2.centre, stats, initial_normal, curvatures, g);
-    return true;
+    ContactGeometry g;
+    solve_frame(p, e1.centre, e2.centre, stats, std::nullopt, radius, g);
+    return to_pair_contact(g, radius, out);
   }
-  // f is homogeneous of degree one, f(l n) = l f(n) for l > 0: the proof needs no unit n,
-  // and the evaluation is carried to the unit normal by scaling only if the pair is solved.
-  const Vec3& m = *initial_normal;
+  // f is homogeneous of degree one, f(l n) = l f(n) for l > 0: the proof needs no unit n.
+  // Half the warm pairs of a bed end here, before anything else is computed.
+  const Vec3& m = *last_normal;
   const Vec3 d = e1.centre - e2.centre;
-  Eval at_m = evaluate_gap(d, e1.shape, e2.shape, m);
+  const Eval at_m = evaluate_gap(d, e1.shape, e2.shape, m);
   if (at_m.f < 0.0) {
     ++stats.proven_apart;
-    g.normal = m;
+    out.normal = m;
+    out.depth = at_m.f;
     return false;
   }
   ++stats.calls;
-  const double inv_len = 1.0 / std::sqrt(m.squaredNorm());
-  const Vec3 n = m * inv_len;
-  add_gradient(at_m, d);  // homogeneous of degree zero
-  const PairFrame p = make_frame(e1, e2);
+  // A stored normal is unit to round-off: the proof's evaluation is Newton's first. The
+  // straight-line path needs no curvatures (first touch takes the general one) and grain sizes
+  // in [2^-200, 2^200] m, where the pair frame is in metres.
+  const double mm = m.squaredNorm();
+  constexpr double kLow = 0x1p-200, kHigh = 0x1p200;
+  const bool unit = std::abs(mm - 1.0) <= 64.0 * kEps;
+  if (unit && !radius && std::min(e1.minor, e2.minor) >= kLow && std::max(e1.major, e2.major) <= kHigh &&
+      warm_newton(e1, e2, d, m, at_m, stats, out))
+    return out.depth > 0.0;
+  const PairFrame p(e1, e2);
+  const double inv_len = unit ? 1.0 : 1.0 / std::sqrt(mm);
   const Eval at_n = scaled(at_m, p.scale, inv_len);
-  solve_frame(p, e1.centre, e2.centre, stats, n, curvatures, g, &at_n);
-  return true;
+  ContactGeometry g;
+  solve_frame(p, e1.centre, e2.centre, stats, m * inv_len, radius, g, &at_n);
+  return to_pair_contact(g, radius, out);
 }
 
 ContactGeometry ellipsoid_sphere_contact(const Ellipsoid& e, const Vec3& centre, double radius,
@@ -520,7 +690,8 @@ ContactGeometry posed_plane_contact(const PosedEllipsoid& e, const Plane& plane,
   g.normal = -m;
   g.point1 = e.centre + arm;
   g.point2 = e.centre + (arm + g.depth * m);
-  g.point = e.centre + (arm + 0.5 * g.depth * m);
+  g.lever1 = arm + 0.5 * g.depth * m;
+  g.point = e.centre + g.lever1;
   if (!curvatures) return g;
   const PrincipalCurvatures k = curvatures_body(rot, e.semi_axes, rot.transpose() * arm);
   g.curvature1[0] = k.k[0];
@@ -532,13 +703,14 @@ ContactGeometry posed_plane_contact(const PosedEllipsoid& e, const Plane& plane,
 
 double support_gap_function(const Ellipsoid& e1, const Ellipsoid& e2, const Vec3& n) {
   const PosedEllipsoid p1 = PosedEllipsoid::from(e1), p2 = PosedEllipsoid::from(e2);
-  const PairFrame p = make_frame(p1, p2);
+  const PairFrame p(p1, p2);
   return evaluate(p, n).f / p.scale;
 }
 
 bool proven_separated(const Ellipsoid& e1, const Ellipsoid& e2, double margin) {
   const PosedEllipsoid p1 = PosedEllipsoid::from(e1), p2 = PosedEllipsoid::from(e2);
-  return separated_frame(make_frame(p1, p2), margin);
+  const PairFrame p(p1, p2);
+  return separated_frame(p, margin);
 }
 
 PrincipalCurvatures principal_curvatures(const Ellipsoid& e, const Vec3& surface_point) {

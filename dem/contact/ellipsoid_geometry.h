@@ -44,6 +44,8 @@ struct ContactGeometry {
   Vec3 point = Vec3::Zero();          // mid-way between point1 and point2
   Vec3 point1 = Vec3::Zero();         // on body 1's surface, the deepest point of 1 towards 2
   Vec3 point2 = Vec3::Zero();         // on body 2's surface; point1 - point2 = depth * normal
+  Vec3 lever1 = Vec3::Zero();         // point - centre of body 1 (torque arm)
+  Vec3 lever2 = Vec3::Zero();         // point - centre of body 2 (0 for a plane)
   double curvature1[2] = {0.0, 0.0};  // principal curvatures of body 1 at point1 (1/m), k[0] >= k[1];
                                       // computed for touching pairs only (0 for a gap)
   double curvature2[2] = {0.0, 0.0};  // the same for body 2 at point2 (0 for a plane)
@@ -64,6 +66,9 @@ struct ContactSolverStats {
   std::int64_t failures = 0;      // no start converged: best point returned, converged = false
   std::int64_t uncertified = 0;   // converged but deeper than the certificate covers
   std::int64_t proven_apart = 0;  // pairs rejected by proven_separated() before the solver
+  // Pairs whose last proof of separation still held: the gap it proved exceeded both grains'
+  // motion since (GrainPoses::motion), so no evaluation at all.
+  std::int64_t still_apart = 0;
 
   ContactSolverStats& operator+=(const ContactSolverStats& o) {
     calls += o.calls;
@@ -74,6 +79,7 @@ struct ContactSolverStats {
     failures += o.failures;
     uncertified += o.uncertified;
     proven_apart += o.proven_apart;
+    still_apart += o.still_apart;
     return *this;
   }
   // The counts of a span of a run: the totals at its end minus those at its start.
@@ -86,6 +92,7 @@ struct ContactSolverStats {
     failures -= o.failures;
     uncertified -= o.uncertified;
     proven_apart -= o.proven_apart;
+    still_apart -= o.still_apart;
     return *this;
   }
 };
@@ -104,22 +111,32 @@ struct PosedEllipsoid {
   double min_radius = 1.0;  // c^2 / a: the smallest radius of curvature of the surface
 
   static PosedEllipsoid from(const Ellipsoid& e);
+  // M = R diag(a^2, b^2, c^2) R^T (the one formula of both from() and GrainPoses).
+  static Mat3 shape_of(const Mat3& rot, const Vec3& semi_axes);
   [[nodiscard]] bool is_sphere() const {
     return semi_axes.x() == semi_axes.y() && semi_axes.y() == semi_axes.z();
   }
 };
 
-// The force loop's call: a conservative separation proof and, unless it succeeds (then
-// false, counted in stats.proven_apart), the solver of ellipsoid_contact() on one pair frame.
-// The proof is f(n) < 0 at `initial_normal` when one is given (f bounds the depth from above;
-// evaluated before the pair frame is built, since the frame's power-of-two scaling changes no
-// sign and no bit), else proven_separated()'s three directions. `curvatures` false skips the principal
-// curvatures (the contact law needs them only at a contact's first touch). Returns false when
-// proven apart, with g.normal the direction n of the proof (f(n) < 0: the next step's warm
-// start and one-evaluation proof), else true with the geometry in `g`, which must be a default
-// ContactGeometry (written in place: no copy of the result).
-bool posed_contact(const PosedEllipsoid& e1, const PosedEllipsoid& e2, ContactSolverStats& stats,
-                   const std::optional<Vec3>& initial_normal, bool curvatures, ContactGeometry& g);
+// What the force loops need of a pair with at least one ellipsoid.
+struct PairContact {
+  double depth = 0.0;            // > 0 overlap, < 0 gap, or an upper bound of it when proven apart
+  Vec3 normal = Vec3::UnitZ();   // from body 1 to body 2: the next step's warm start
+  Vec3 lever1 = Vec3::Zero();    // contact point minus centre 1 (touching pairs)
+  Vec3 lever2 = Vec3::Zero();    // contact point minus centre 2
+  double gaussian_radius = 0.0;  // R_e at the contact (touching, when asked for), else 0
+};
+
+// The force loop's call (docs/ellipsoid-contact.md, "In the force loop"). With the pair's last
+// normal m: f(m) < 0 proves the pair apart with one evaluation (f bounds the depth from above;
+// counted in stats.proven_apart); otherwise Newton runs from m, straight-line code for the usual
+// few small steps, the general solver of ellipsoid_contact() when a step is large, the model
+// indefinite or the result not certified. Without a last normal: proven_separated()'s three
+// directions, then the cold start. `radius` asks for the Gaussian-curvature radius (the contact
+// law needs it only at first touch). Returns true when touching. `out.normal` is always set:
+// the direction of the proof or the solver's normal.
+bool posed_contact(const PosedEllipsoid& e1, const PosedEllipsoid& e2, const Vec3* last_normal, bool radius,
+                   ContactSolverStats& stats, PairContact& out);
 
 // Ellipsoid-plane on a posed ellipsoid, optionally without curvatures.
 ContactGeometry posed_plane_contact(const PosedEllipsoid& e, const Plane& plane, bool curvatures);

@@ -10,10 +10,6 @@ namespace upgrain::dem {
 
 namespace {
 
-Ellipsoid ellipsoid_of(const ParticleStore& p, std::size_t i) {
-  return {p.x[i], p.orientation[i], p.semi_axes[i]};
-}
-
 // Inertia of grain i for the rolling dashpot: its moment about its centroid (an ellipsoid's
 // smallest principal moment, so the dashpot is never over-estimated) plus m l^2 for the
 // lever l to the contact point (Ai et al. 2011, with the lever for the radius).
@@ -48,10 +44,7 @@ void compute_forces(ForceContext& ctx) {
   if constexpr (kDampingWork) ctx.damping_force.assign(n, Vec3::Zero());
   if constexpr (kDampingWork && Shapes) ctx.damping_torque.assign(n, Vec3::Zero());
   if constexpr (kRollingWork) ctx.rolling_damping_torque.assign(n, Vec3::Zero());
-  if constexpr (Shapes) {
-    ctx.posed.resize(n);
-    for (std::size_t i = 0; i < n; ++i) ctx.posed[i] = PosedEllipsoid::from(ellipsoid_of(p, i));
-  }
+  if constexpr (Shapes) ctx.posed.update(p);
   if constexpr (Record) ctx.contacts.clear();
   ContactEnergy energy;
   long contacts = 0;
@@ -90,7 +83,7 @@ void compute_forces(ForceContext& ctx) {
       bool shaped = false;
       if constexpr (Shapes) shaped = p.is_ellipsoid(i) || p.is_ellipsoid(j);
       if (shaped) {
-        if (!shaped_pair_geometry(p, ctx.posed, i, j, (*memory)[k], ctx.solver_stats, kin, cp.r_star)) {
+        if (!shaped_pair_geometry(ctx.posed, i, j, (*memory)[k], ctx.solver_stats, kin, cp.r_star)) {
           if constexpr (kTangential) {
             if (springs[k].stiffness != 0.0) springs[k] = TangentialSpring{};
           }
@@ -201,7 +194,7 @@ void compute_forces(ForceContext& ctx) {
       if constexpr (Shapes) shaped = p.is_ellipsoid(i);
       if (shaped) {
         double& r_held = near.r_star[k];
-        if (!shaped_wall_geometry(ctx.posed[i], p.x[i], wall, r_held, kin)) {
+        if (!shaped_wall_geometry(ctx.posed[i], wall, r_held, kin)) {
           if constexpr (kWallTangential) {
             if (spring.stiffness != 0.0) spring = TangentialSpring{};
           }

@@ -9,6 +9,7 @@
 #include "dem/contact/contact_sample.h"
 #include "dem/contact/effects.h"
 #include "dem/contact/ellipsoid_geometry.h"
+#include "dem/contact/grain_poses.h"
 #include "dem/contact/rolling_resistance.h"
 #include "dem/core/material.h"
 #include "dem/core/particle_store.h"
@@ -42,8 +43,9 @@ struct ForceContext {
   std::vector<Vec3> rolling_damping_torque;
   // Ellipsoid contact solver counters, cumulative over the run (reported in the log).
   ContactSolverStats solver_stats;
-  // Every grain posed once per evaluation (rotation and shape matrices; ellipsoid scenes).
-  std::vector<PosedEllipsoid> posed;
+  // Every grain posed once per evaluation (rotation and shape matrices, motion bounds;
+  // ellipsoid scenes).
+  GrainPoses posed;
   // Every contact of the evaluation, in the loop's order (recording kernels only).
   std::vector<ContactSample> contacts;
 };

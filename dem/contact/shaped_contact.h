@@ -8,43 +8,53 @@
 #include "dem/boundary/plane_wall.h"
 #include "dem/contact/contact_response.h"
 #include "dem/contact/ellipsoid_geometry.h"
+#include "dem/contact/grain_poses.h"
 #include "dem/core/particle_store.h"
 
 namespace upgrain::dem {
 
 // Geometry of a pair with at least one ellipsoid (docs/ellipsoids.md): bounding spheres
-// (already tested by the caller), then on one pair frame a conservative separation proof and
-// the support-function solver warm-started from the pair's previous normal. Returns false
-// when apart. `memory` keeps the last normal of a near pair (the next step's warm start) and
-// the Hertz radius of a touching one; its normal points from i to j.
-inline bool shaped_pair_geometry(const ParticleStore& p, const std::vector<PosedEllipsoid>& posed,
-                                 std::size_t i, std::size_t j, ShapedContactMemory& memory,
-                                 ContactSolverStats& stats, ContactKinematics& kin, double& r_star) {
-  const bool first_touch = memory.r_star == 0.0;  // curvatures are needed only then
-  ContactGeometry g;
-  if (!posed_contact(posed[i], posed[j], stats,
-                     memory.normal != Vec3::Zero() ? std::optional<Vec3>(memory.normal) : std::nullopt,
-                     first_touch, g)) {
-    // Proven apart: the direction of the proof is the pair's next warm start and, while the
-    // pair stays apart, proves it again with one evaluation.
-    memory.normal = g.normal;
+// (already tested by the caller), then, unless the pair's last proof of separation still holds,
+// posed_contact(): a separation proof at the pair's last normal and the support-function solver
+// warm-started there. Returns false when apart. `memory` keeps the last normal of a near pair
+// (the next step's warm start), the gap still proven for an apart one, and the Hertz radius of
+// a touching one; its normal points from i to j.
+inline bool shaped_pair_geometry(const GrainPoses& poses, std::size_t i, std::size_t j,
+                                 ShapedContactMemory& memory, ContactSolverStats& stats,
+                                 ContactKinematics& kin, double& r_star) {
+  // Separation budget (docs/ellipsoid-contact.md): the depth is at most f(m), and f(m) grows by
+  // at most the grains' motion bounds, so the gap proven at the last evaluation, less the motion
+  // since, is still a gap. A pair that stays apart is proven once, not every step.
+  if (memory.gap_budget > 0.0) {
+    memory.gap_budget -= poses.motion(i) + poses.motion(j);
+    if (memory.gap_budget > 0.0) {
+      ++stats.still_apart;
+      return false;
+    }
+  }
+  const bool first_touch = memory.r_star == 0.0;  // the Hertz radius is needed only then
+  PairContact c;
+  const bool touching = posed_contact(
+      poses[i], poses[j], memory.normal != Vec3::Zero() ? &memory.normal : nullptr, first_touch, stats, c);
+  // The normal of the proof or the solver: the pair's next warm start.
+  memory.normal = c.normal;
+  if (!touching) {
     memory.r_star = 0.0;
+    // -depth is the proven gap (f's round-off is below 1e-14 of the pair's size; the margin is
+    // ten times that).
+    memory.gap_budget = -c.depth - 1e-13 * (poses[i].major + poses[j].major);
     return false;
   }
-  memory.normal = g.normal;
-  if (!g.touching) {
-    memory.r_star = 0.0;
-    return false;
-  }
-  kin.normal = g.normal;
-  kin.overlap = g.depth;
-  kin.lever_i = g.point - p.x[i];
-  kin.lever_j = g.point - p.x[j];
+  memory.gap_budget = 0.0;
+  kin.normal = c.normal;
+  kin.overlap = c.depth;
+  kin.lever_i = c.lever1;
+  kin.lever_j = c.lever2;
   // Elliptic Hertz through the Gaussian-curvature radius (Johnson 1985, eq. 4.25), taken at
   // first touch and held while the contact lasts: the normal force is then the gradient of
   // the Hertz potential (8/15) E* sqrt(R*) delta^(5/2), since d(delta) is the normal at the
   // contact point (envelope theorem), and the contact law is conservative.
-  if (first_touch) memory.r_star = gaussian_curvature_radius(g);
+  if (first_touch) memory.r_star = c.gaussian_radius;
   r_star = memory.r_star;
   return true;
 }
@@ -53,15 +63,15 @@ inline bool shaped_pair_geometry(const ParticleStore& p, const std::vector<Posed
 // (docs/ellipsoid-contact.md). Returns false when apart (then r_held = 0). Sets the overlap
 // and lever of `kin` (the caller sets kin.normal = -wall.normal) and the Hertz radius, held
 // from first touch in r_held, as for pairs.
-inline bool shaped_wall_geometry(const PosedEllipsoid& posed, const Vec3& x, const PlaneWall& wall,
-                                 double& r_held, ContactKinematics& kin) {
+inline bool shaped_wall_geometry(const PosedEllipsoid& posed, const PlaneWall& wall, double& r_held,
+                                 ContactKinematics& kin) {
   const ContactGeometry g = posed_plane_contact(posed, Plane{wall.point, wall.normal}, r_held == 0.0);
   if (!g.touching) {
     r_held = 0.0;
     return false;
   }
   kin.overlap = g.depth;
-  kin.lever_i = g.point - x;
+  kin.lever_i = g.lever1;
   if (r_held == 0.0) r_held = gaussian_curvature_radius(g);
   return true;
 }

@@ -26,12 +26,7 @@ DeterministicForceResult compute(const DeterministicForceInput& in) {
     p.force[i].setZero();
     if constexpr (kRotation) p.torque[i].setZero();
   }
-  if constexpr (Shapes) {
-    const std::size_t n = p.size();
-    in.posed->resize(n);
-    for (std::size_t i = 0; i < n; ++i)
-      (*in.posed)[i] = PosedEllipsoid::from(Ellipsoid{p.x[i], p.orientation[i], p.semi_axes[i]});
-  }
+  if constexpr (Shapes) in.posed->update(p);
   if constexpr (E::energy) {
     in.energy->elastic_normal.assign(n_owned, 0.0);
     in.energy->elastic_tangential.assign(n_owned, 0.0);
@@ -64,7 +59,7 @@ DeterministicForceResult compute(const DeterministicForceInput& in) {
     bool shaped = false;
     if constexpr (Shapes) shaped = p.is_ellipsoid(i);
     if (shaped) {
-      if (!shaped_wall_geometry((*in.posed)[i], p.x[i], wall, l.wall_r_star[e], kin)) {
+      if (!shaped_wall_geometry((*in.posed)[i], wall, l.wall_r_star[e], kin)) {
         if constexpr (E::wall_friction) {
           if (spring.stiffness != 0.0) spring = TangentialSpring{};
         }
@@ -141,7 +136,7 @@ DeterministicForceResult compute(const DeterministicForceInput& in) {
     if (shaped) {
       // The serial loop's geometry with lo as body i: every rank holding the pair computes
       // the same normal (lo to hi), memory and kinematics.
-      if (!shaped_pair_geometry(p, *in.posed, i, j, l.memory[k], *in.solver_stats, kin, cp.r_star)) {
+      if (!shaped_pair_geometry(*in.posed, i, j, l.memory[k], *in.solver_stats, kin, cp.r_star)) {
         l.touching[k] = 0;
         if constexpr (E::friction) {
           if (l.spring[k].stiffness != 0.0) l.spring[k] = TangentialSpring{};

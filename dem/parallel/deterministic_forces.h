@@ -12,6 +12,7 @@
 #include "dem/contact/contact_sample.h"
 #include "dem/contact/effects.h"
 #include "dem/contact/ellipsoid_geometry.h"
+#include "dem/contact/grain_poses.h"
 #include "dem/core/material.h"
 #include "dem/core/particle_store.h"
 #include "dem/parallel/contact_lists.h"
@@ -39,7 +40,7 @@ struct DeterministicForceInput {
   std::vector<ContactSample>* record = nullptr;  // required by the recording kernels
   // Ellipsoid kernels: every local grain posed once per evaluation (owned and ghosts), and
   // the contact solver's counters of this rank, cumulative.
-  std::vector<PosedEllipsoid>* posed = nullptr;
+  GrainPoses* posed = nullptr;
   ContactSolverStats* solver_stats = nullptr;
 };
 

@@ -287,9 +287,9 @@ StepDiagnostics ParallelSimulation::step_diagnostics() const {
   // Summed over ranks: a pair straddling two ranks is solved on both, so the counts exceed
   // those of one rank (diagnostics only).
   const ContactSolverStats& s = solver_stats_;
-  std::int64_t c[8] = {s.calls,     s.warm_starts, s.warm_rejected, s.newton_iterations,
-                       s.fallbacks, s.failures,    s.uncertified,   s.proven_apart};
-  MPI_Allreduce(MPI_IN_PLACE, c, 8, MPI_INT64_T, MPI_SUM, comm_);
+  std::int64_t c[9] = {s.calls,    s.warm_starts, s.warm_rejected, s.newton_iterations, s.fallbacks,
+                       s.failures, s.uncertified, s.proven_apart,  s.still_apart};
+  MPI_Allreduce(MPI_IN_PLACE, c, 9, MPI_INT64_T, MPI_SUM, comm_);
   d.contact_solver.calls = c[0];
   d.contact_solver.warm_starts = c[1];
   d.contact_solver.warm_rejected = c[2];
@@ -298,6 +298,7 @@ StepDiagnostics ParallelSimulation::step_diagnostics() const {
   d.contact_solver.failures = c[5];
   d.contact_solver.uncertified = c[6];
   d.contact_solver.proven_apart = c[7];
+  d.contact_solver.still_apart = c[8];
   return d;
 }
 

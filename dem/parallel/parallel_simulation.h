@@ -231,7 +231,7 @@ class ParallelSimulation {
   std::vector<Vec3> x_at_build_;
   std::vector<SpringRecord> history_;
   std::vector<MemoryRecord> memory_history_;
-  std::vector<PosedEllipsoid> posed_;
+  GrainPoses posed_;
   ContactSolverStats solver_stats_;  // this rank's, cumulative
   struct {
     long interval = 0;

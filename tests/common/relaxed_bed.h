@@ -55,8 +55,10 @@ struct RelaxedBed {
 
 // Deposits until the kinetic energy is below `rest_ratio` of the potential energy
 // released, then relaxes (when relax is true).
+// `max_steps` bounds the FIRE steps: a budget, not a tolerance (the residual must still reach
+// `tolerance`).
 inline RelaxedBed relaxed_bed(const dem::SceneConfig& s, double rest_ratio = 1e-4, bool relax = true,
-                              double tolerance = 1e-9) {
+                              double tolerance = 1e-9, long max_steps = dem::RelaxationOptions{}.max_steps) {
   RelaxedBed b;
   b.sim = std::make_unique<dem::Simulation>(s, dem::fill_container(s));
   const long chunk = 2000, limit = 2000000;
@@ -68,6 +70,7 @@ inline RelaxedBed relaxed_bed(const dem::SceneConfig& s, double rest_ratio = 1e-
   if (relax) {
     dem::RelaxationOptions o;
     o.force_tolerance = tolerance;
+    o.max_steps = max_steps;
     b.total_energy_before = b.sim->energy().total();
     b.relaxation = dem::relax_to_equilibrium(*b.sim, o);
     b.total_energy_after = b.sim->energy().total();

@@ -19,7 +19,10 @@ using namespace upgrain::dem;
 TEST(EllipsoidBed, RelaxedBagiStressIsSymmetricAndTheBedStaysAtRest) {
   const long count = 69;  // the smallest bed of the paper's Table 3
   const SceneConfig s = test::paper_ellipsoid_bed_scene(count);
-  test::RelaxedBed bed = test::relaxed_bed(s);
+  // FIRE's step count on this frictional ellipsoid bed follows the packing, which changes with
+  // round-off of the deposition: 129,249, 183,952 and 259,003 steps to 1e-9 with three versions
+  // of the contact code. Its budget is therefore generous; the tolerance is unchanged.
+  test::RelaxedBed bed = test::relaxed_bed(s, 1e-4, true, 1e-9, 1000000);
   ASSERT_TRUE(bed.sim->particles().has_shapes());
   const int one[3] = {1, 1, 1};
   const GridStress g = test::bed_stress(*bed.sim, one);
