@@ -69,6 +69,14 @@ class DemEngine {
   // After the same step: the stress per compute grid (MPI block), on every rank; none for
   // an engine without blocks.
   [[nodiscard]] virtual std::optional<ComputeGridStress> compute_grid_stress() { return std::nullopt; }
+  // The compute grids (MPI blocks) now: the blocks, clipped to the decomposition box, on every
+  // rank, and the block (owner rank) of each particle of the last whole_state(), in its order,
+  // on the root. None for an engine without blocks.
+  struct ComputeGrids {
+    std::vector<Box> block;
+    std::vector<int> owner;
+  };
+  [[nodiscard]] virtual std::optional<ComputeGrids> compute_grids() { return std::nullopt; }
   virtual RelaxationResult relax(const RelaxationOptions& options) = 0;
   [[nodiscard]] virtual EngineLoad load() const = 0;
 

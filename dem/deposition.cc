@@ -82,11 +82,37 @@ DepositionResult run_deposition(DemEngine& sim, const SceneConfig& scene, const 
   // reference), by backward differences over the last outputs (strain/grid_stress_rates.h).
   std::optional<StressRateHistory> rate_history;
   if (strain_on) rate_history.emplace(output->grid_strain.rate_formula);
+  // MPI runs: the same strain per compute grid (block), the sets by owner rank at t0
+  // (Lagrangian) or now (Eulerian); no stress rates there, since a block's stress is neither
+  // that of a fixed place nor of fixed material (docs/strain.md, "Compute grids").
+  std::optional<io::ComputeGridStrainRecorder> block_strain_out;
+  std::optional<StrainReference> block_reference;
+  std::vector<Box> reference_blocks;
+  std::optional<GridStrain> last_block_strain;
   auto evaluate_strain = [&](const RegularGrid& grid, const GridStress* stress) {
     const double t0 = output->grid_strain.reference_time;
     if (!strain_reference && t0 > 0.0 && sim.time() < t0 - 0.5 * scene.time_step) return;
     const ParticleStore& p = sim.whole_state();
+    const std::optional<DemEngine::ComputeGrids> blocks = sim.compute_grids();  // collective
     sim.on_root([&] {
+      if (blocks) {
+        const int count = static_cast<int>(blocks->block.size());
+        if (!block_reference) {
+          block_reference =
+              make_strain_reference(p.id, p.x, blocks->owner, count, sim.time(), sim.step_count());
+          reference_blocks = blocks->block;
+        }
+        GridStrain b =
+            partition_strain(*block_reference, blocks->owner, {p.id, p.x, p.v}, sim.time(), sim.step_count(),
+                             output->grid_strain.kernel, last_block_strain ? &*last_block_strain : nullptr);
+        if (!block_strain_out) block_strain_out.emplace(output->folder);
+        const bool lagrangian = output->grid_strain.kernel.set == StrainSet::lagrangian;
+        if (lagrangian)
+          block_strain_out->record(b, reference_blocks, block_reference->id, block_reference->cell);
+        else
+          block_strain_out->record(b, blocks->block, p.id, blocks->owner);
+        last_block_strain = std::move(b);
+      }
       if (!strain_reference)
         strain_reference = make_strain_reference(p.id, p.x, grid, sim.time(), sim.step_count());
       GridStrain g = grid_strain(*strain_reference, grid, {p.id, p.x, p.v}, sim.time(), sim.step_count(),

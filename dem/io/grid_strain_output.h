@@ -6,10 +6,12 @@
 // grid_strain.csv (a row per evaluation, cell and definition). docs/strain.md.
 #include <array>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "dem/io/csv_series.h"
+#include "dem/parallel/decomposition.h"
 #include "dem/strain/grid_strain.h"
 #include "dem/strain/grid_stress_rates.h"
 
@@ -59,6 +61,31 @@ class GridStrainRecorder {
 //     formula, outputs_used, order, difference (how sigma_dot was taken).
 void write_grid_strain(const std::filesystem::path& path, const GridStrain& strain,
                        const GridStressRates* rates = nullptr);
+
+// Strain per compute grid of an MPI run (docs/strain.md, "Compute grids"): one HDF5 file per
+// evaluation under compute_grid_strain/ and the table compute_grid_strain.csv (a row per
+// evaluation, block and definition). The blocks depend on the rank count and move with the load
+// balance, so, unlike the fixed grid's, these files are not rank-independent.
+class ComputeGridStrainRecorder {
+ public:
+  // Creates folder/compute_grid_strain/.
+  explicit ComputeGridStrainRecorder(std::filesystem::path folder);
+  // `blocks`: the boxes of the blocks whose particles make the sets (Lagrangian: at t0,
+  // Eulerian: now); `id`, `member`: the block of each particle of a set, ascending ids.
+  void record(const GridStrain& strain, const std::vector<Box>& blocks, std::span<const GlobalId> id,
+              std::span<const int> member);
+
+ private:
+  std::filesystem::path folder_;
+  CsvSeries csv_;
+};
+
+// Layout: the attributes of write_grid_strain; /blocks/{lo, hi} (blocks x 3), /blocks/particles;
+// /sets/id, /sets/block (the block of each particle of a set); the definition groups of
+// write_grid_strain, one entry per block, without rates.
+void write_compute_grid_strain(const std::filesystem::path& path, const GridStrain& strain,
+                               const std::vector<Box>& blocks, std::span<const GlobalId> id,
+                               std::span<const int> member);
 
 // "best fit" -> "best_fit": the name used for groups, columns and fields.
 std::string field_name(StrainDefinition d);

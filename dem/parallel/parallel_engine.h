@@ -40,6 +40,9 @@ class ParallelEngine final : public DemEngine {
   [[nodiscard]] std::optional<ComputeGridStress> compute_grid_stress() override {
     return sim_.compute_grid_stress();
   }
+  [[nodiscard]] std::optional<ComputeGrids> compute_grids() override {
+    return ComputeGrids{sim_.compute_grid_blocks(), sim_.gather_owners_sorted_by_id()};
+  }
   RelaxationResult relax(const RelaxationOptions& options) override;
   [[nodiscard]] EngineLoad load() const override;
 

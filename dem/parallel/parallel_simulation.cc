@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <sstream>
+#include <utility>
 
 #include "dem/core/error.h"
 #include "dem/neighbor/cell_grid.h"
@@ -378,6 +380,39 @@ GridStress ParallelSimulation::grid_stress(const RegularGrid& grid) const {
   if (!recorded_)
     throw Error("parallel grid stress: no contacts recorded at the last step (request_contacts())");
   return parallel_grid_stress(p_, n_owned_, contacts_, grid, grain_dynamics(), comm_);
+}
+
+std::vector<int> ParallelSimulation::gather_owners_sorted_by_id() const {
+  const int rank = decomp_->rank();
+  const int size = decomp_->size();
+  std::vector<std::int64_t> mine(static_cast<std::size_t>(n_owned_));
+  for (int i = 0; i < n_owned_; ++i) mine[static_cast<std::size_t>(i)] = static_cast<std::int64_t>(p_.id[i]);
+  const int count = n_owned_;
+  std::vector<int> counts(rank == 0 ? size : 0), displs(rank == 0 ? size : 0);
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_);
+  std::vector<std::int64_t> all;
+  if (rank == 0) {
+    int total = 0;
+    for (int r = 0; r < size; ++r) {
+      displs[r] = total;
+      total += counts[r];
+    }
+    all.resize(static_cast<std::size_t>(total));
+  }
+  MPI_Gatherv(mine.data(), count, MPI_INT64_T, all.data(), counts.data(), displs.data(), MPI_INT64_T, 0,
+              comm_);
+  if (rank != 0) return {};
+  std::vector<std::pair<std::int64_t, int>> owned(all.size());
+  for (int r = 0; r < size; ++r)
+    for (int k = displs[r]; k < displs[r] + counts[r]; ++k) owned[static_cast<std::size_t>(k)] = {all[k], r};
+  std::sort(owned.begin(), owned.end());
+  std::vector<int> owner(owned.size());
+  for (std::size_t k = 0; k < owned.size(); ++k) owner[k] = owned[k].second;
+  return owner;
+}
+
+std::vector<Box> ParallelSimulation::compute_grid_blocks() const {
+  return dem::compute_grid_blocks(*decomp_);
 }
 
 ComputeGridStress ParallelSimulation::compute_grid_stress() const {

@@ -109,6 +109,12 @@ class ParallelSimulation {
   // Collective: the whole state sorted by global id on rank 0 (empty on the other ranks),
   // with the forces and torques of the last evaluation.
   [[nodiscard]] ParticleStore gather_sorted_by_id() const;
+  // Collective: the rank that owns each particle, in the order of gather_sorted_by_id() (its
+  // compute grid: the block that held its centroid at the last migration), on rank 0; empty
+  // elsewhere.
+  [[nodiscard]] std::vector<int> gather_owners_sorted_by_id() const;
+  // The compute grids, block r of rank r (parallel_stress.h, compute_grid_blocks).
+  [[nodiscard]] std::vector<Box> compute_grid_blocks() const;
 
   // Asks the next force evaluation (the next step()) to record the contacts of the owned
   // particles (DeterministicForceKernels::recording: local indices, pairs with a = the

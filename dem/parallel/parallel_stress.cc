@@ -165,12 +165,8 @@ GridStress parallel_grid_stress(const ParticleStore& local, int n_owned,
   return g;
 }
 
-ComputeGridStress parallel_compute_grid_stress(const ParticleStore& local, int n_owned,
-                                               const std::vector<ContactSample>& contacts,
-                                               const Decomposition& d, const GrainDynamics& dynamics) {
-  const int size = d.size();
-  ComputeGridStress out;
-  out.block.resize(size);
+std::vector<Box> compute_grid_blocks(const Decomposition& d) {
+  std::vector<Box> block(static_cast<std::size_t>(d.size()));
   const auto& dims = d.blocks();
   for (int k = 0; k < dims[2]; ++k)
     for (int j = 0; j < dims[1]; ++j)
@@ -181,8 +177,17 @@ ComputeGridStress parallel_compute_grid_stress(const ParticleStore& local, int n
           b.lo[a] = d.plane(a, c[a]);
           b.hi[a] = d.plane(a, c[a] + 1);
         }
-        out.block[d.rank_of_block(c)] = clip(b, d.box());
+        block[d.rank_of_block(c)] = clip(b, d.box());
       }
+  return block;
+}
+
+ComputeGridStress parallel_compute_grid_stress(const ParticleStore& local, int n_owned,
+                                               const std::vector<ContactSample>& contacts,
+                                               const Decomposition& d, const GrainDynamics& dynamics) {
+  const int size = d.size();
+  ComputeGridStress out;
+  out.block = compute_grid_blocks(d);
   // One cell: this rank's owned particles. Ghosts are outside it.
   std::vector<int> cell(local.size(), -1);
   std::fill(cell.begin(), cell.begin() + n_owned, 0);

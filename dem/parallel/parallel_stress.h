@@ -49,6 +49,10 @@ GridStress parallel_grid_stress(const ParticleStore& local, int n_owned,
                                 const std::vector<ContactSample>& contacts, const RegularGrid& grid,
                                 const GrainDynamics& dynamics, MPI_Comm comm);
 
+// The compute grids (one block per rank), block r at index r, clipped to the decomposition
+// box (the outer blocks are open). Not collective: every rank knows the planes.
+std::vector<Box> compute_grid_blocks(const Decomposition& decomposition);
+
 // The compute grids: each rank's block is one cell holding its owned particles
 // (black-black contacts internal, black-green external with the force on the black
 // particle, walls external). Cell r is rank r's block, clipped to the decomposition box

@@ -90,26 +90,34 @@ DelaunayTetrahedra delaunay_tetrahedra(std::span<const Vec3> points) {
   return d;
 }
 
-TessellationGradient gradient_over_tetrahedra(const DelaunayTetrahedra& tessellation,
-                                              std::span<const Vec3> reference,
-                                              std::span<const Vec3> current) {
+namespace {
+
+// sum_t db_t adj(da_t) / sum_t det(da_t) over the tetrahedra; with `carried`, every det(da_t)
+// must be positive (CGAL's own cells are positively oriented for the points they were made of).
+TessellationGradient average_gradient(const DelaunayTetrahedra& tessellation, std::span<const Vec3> a,
+                                      std::span<const Vec3> b, bool carried) {
   if (!tessellation.valid) return invalid(tessellation.reason);
-  if (reference.size() != current.size()) return invalid("reference and current sets differ in length");
-  for (const Vec3& y : current)
+  if (a.size() != b.size()) return invalid("reference and current sets differ in length");
+  for (const Vec3& y : b)
     if (!y.allFinite()) return invalid("a position is not finite");
+  if (carried)
+    for (const Vec3& y : a)
+      if (!y.allFinite()) return invalid("a position is not finite");
   // Edge vectors about the first point of each set: they carry no digits of the distance to
   // the origin.
-  const Vec3 x0 = reference[0], y0 = current[0];
-  Mat3 weighted = Mat3::Zero();  // sum_t dx_t adj(dX_t)
-  double det_sum = 0.0;          // sum_t det(dX_t) = 6 V
+  const Vec3 x0 = a[0], y0 = b[0];
+  Mat3 weighted = Mat3::Zero();  // sum_t db_t adj(da_t)
+  double det_sum = 0.0;          // sum_t det(da_t) = 6 V
   for (const std::array<int, 4>& id : tessellation.tetrahedra) {
-    Mat3 dx_ref, dx_cur;
+    Mat3 da, db;
     for (int e = 0; e < 3; ++e) {
-      dx_ref.col(e) = (reference[id[e + 1]] - x0) - (reference[id[0]] - x0);
-      dx_cur.col(e) = (current[id[e + 1]] - y0) - (current[id[0]] - y0);
+      da.col(e) = (a[id[e + 1]] - x0) - (a[id[0]] - x0);
+      db.col(e) = (b[id[e + 1]] - y0) - (b[id[0]] - y0);
     }
-    weighted += dx_cur * adjugate(dx_ref);
-    det_sum += dx_ref.determinant();  // CGAL's finite cells are positively oriented
+    const double det = da.determinant();
+    if (carried && !(det > 0.0)) return invalid("a tetrahedron has inverted");
+    weighted += db * adjugate(da);
+    det_sum += det;
   }
   if (!(det_sum > 0.0)) return invalid("the tessellation has no volume");
   TessellationGradient t;
@@ -118,6 +126,20 @@ TessellationGradient gradient_over_tetrahedra(const DelaunayTetrahedra& tessella
   t.volume = det_sum / 6.0;
   t.tetrahedra = static_cast<long>(tessellation.tetrahedra.size());
   return t;
+}
+
+}  // namespace
+
+TessellationGradient gradient_over_tetrahedra(const DelaunayTetrahedra& tessellation,
+                                              std::span<const Vec3> reference,
+                                              std::span<const Vec3> current) {
+  return average_gradient(tessellation, reference, current, false);
+}
+
+TessellationGradient gradient_over_carried_tetrahedra(const DelaunayTetrahedra& tessellation,
+                                                      std::span<const Vec3> positions,
+                                                      std::span<const Vec3> values) {
+  return average_gradient(tessellation, positions, values, true);
 }
 
 TessellationGradient equivalent_continuum_deformation(std::span<const Vec3> reference,

@@ -10,7 +10,9 @@
 //   F = sum_t V_t F_t / sum_t V_t = sum_t dx_t adj(dX_t) / sum_t det(dX_t),
 // which needs no inverse: slivers of near-zero volume carry near-zero weight instead of
 // blowing up. An affine motion x = F X + c gives dx_t = F dX_t, hence exactly F.
-// L is the same with (X, x) replaced by (x, v), tessellating the current positions.
+// L is the same with (X, x) replaced by (x, v), over a tessellation of the current positions:
+// the reference tetrahedra carried to them while none has inverted (gradient_over_carried_
+// tetrahedra), else a new one.
 #include <array>
 #include <span>
 #include <string>
@@ -46,6 +48,17 @@ DelaunayTetrahedra delaunay_tetrahedra(std::span<const Vec3> points);
 // finite, or the tetrahedra have no volume.
 TessellationGradient gradient_over_tetrahedra(const DelaunayTetrahedra& tessellation,
                                               std::span<const Vec3> reference, std::span<const Vec3> current);
+
+// The same over the tetrahedra of `tessellation` carried to new positions: the Delaunay cells
+// of a set's reference positions, now spanned by its current `positions`, averaging the
+// gradient of `values` (velocities: L). Valid while every tetrahedron keeps a positive volume,
+// so that they still tessellate the region the set occupies now; invalid with the reason "a
+// tetrahedron has inverted" otherwise (take a new tessellation then), or for the reasons of
+// gradient_over_tetrahedra(). On each tetrahedron L_t = dF_t/dt F_t^-1 exactly, so F and L
+// are averages over the same cells.
+TessellationGradient gradient_over_carried_tetrahedra(const DelaunayTetrahedra& tessellation,
+                                                      std::span<const Vec3> positions,
+                                                      std::span<const Vec3> values);
 
 // F from reference and current positions: the tessellation is that of the reference
 // positions (delaunay_tetrahedra, then gradient_over_tetrahedra). Invalid with the reason

@@ -38,27 +38,37 @@ void CellStrainFields::resize(int cells) {
 }
 
 StrainReference make_strain_reference(std::span<const GlobalId> id, std::span<const Vec3> x,
-                                      const RegularGrid& grid, double time, long step) {
-  if (id.size() != x.size())
+                                      std::span<const int> cell, int cells, double time, long step) {
+  if (id.size() != x.size() || id.size() != cell.size())
     throw Error("strain reference: " + std::to_string(id.size()) + " ids but " + std::to_string(x.size()) +
-                " positions");
+                " positions and " + std::to_string(cell.size()) + " cells");
   std::vector<std::size_t> order(id.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
   StrainReference r;
   r.time = time;
   r.step = step;
-  r.grid = grid;
+  r.cells = cells;
   r.id.reserve(id.size());
   r.x.reserve(id.size());
   r.cell.reserve(id.size());
   for (std::size_t k : order) {
     if (!r.id.empty() && r.id.back() == id[k])
       throw Error("strain reference: global id " + std::to_string(id[k]) + " appears twice");
+    if (cell[k] >= cells) throw Error("strain reference: cell " + std::to_string(cell[k]) + " out of range");
     r.id.push_back(id[k]);
     r.x.push_back(x[k]);
-    r.cell.push_back(grid.cell_of(x[k]));
+    r.cell.push_back(cell[k] < 0 ? -1 : cell[k]);
   }
+  return r;
+}
+
+StrainReference make_strain_reference(std::span<const GlobalId> id, std::span<const Vec3> x,
+                                      const RegularGrid& grid, double time, long step) {
+  std::vector<int> cell(x.size());
+  for (std::size_t k = 0; k < x.size(); ++k) cell[k] = grid.cell_of(x[k]);
+  StrainReference r = make_strain_reference(id, x, cell, grid.num_cells(), time, step);
+  r.grid = grid;
   return r;
 }
 
@@ -148,7 +158,19 @@ void evaluate_cell(CellStrainFields& out, int c, StrainDefinition d, std::span<c
     }
   }
 
-  const Gradient l = gradient(d, x, v);
+  // L over the reference tetrahedra carried to the current positions while none has inverted
+  // (the same cells as F), else over a new tessellation of the current positions.
+  Gradient l;
+  bool carried = false;
+  if (d == StrainDefinition::tessellation && tetrahedra &&
+      x.size() >= static_cast<std::size_t>(kMinFitPoints) && fit_affine_map(x, v).valid) {
+    const TessellationGradient t = gradient_over_carried_tetrahedra(*tetrahedra, x, v);
+    if (t.valid && t.gradient.allFinite()) {
+      l.value = t.gradient;
+      carried = true;
+    }
+  }
+  if (!carried) l = gradient(d, x, v);
   out.l_reason[c] = l.reason;
   if (l.reason == StrainReason::valid) {
     out.velocity_gradient[c] = l.value;
@@ -193,15 +215,34 @@ GridStrain grid_strain(const StrainReference& reference, const RegularGrid& curr
                        const GridStrainOptions& options, const GridStrain* previous) {
   if (now.id.size() != now.x.size() || now.id.size() != now.v.size())
     throw Error("grid strain: the current state's ids, positions and velocities differ in length");
+  const bool lagrangian = options.set == StrainSet::lagrangian;
+  if (!lagrangian && current_grid.num_cells() != reference.cells)
+    throw Error("grid strain: the current grid has " + std::to_string(current_grid.num_cells()) +
+                " cells, the reference " + std::to_string(reference.cells));
+  std::vector<int> current_cell(lagrangian ? 0 : now.x.size());
+  for (std::size_t k = 0; k < current_cell.size(); ++k) current_cell[k] = current_grid.cell_of(now.x[k]);
+  GridStrain g = partition_strain(reference, current_cell, now, time, step, options, previous);
+  g.grid = lagrangian ? reference.grid : current_grid;
+  return g;
+}
+
+GridStrain partition_strain(const StrainReference& reference, std::span<const int> current_cell,
+                            const ParticleKinematics& now, double time, long step,
+                            const GridStrainOptions& options, const GridStrain* previous) {
+  if (now.id.size() != now.x.size() || now.id.size() != now.v.size())
+    throw Error("strain: the current state's ids, positions and velocities differ in length");
+  const bool lagrangian = options.set == StrainSet::lagrangian;
+  if (!lagrangian && current_cell.size() != now.id.size())
+    throw Error("strain: " + std::to_string(current_cell.size()) + " current cells for " +
+                std::to_string(now.id.size()) + " particles");
   GridStrain g;
   g.set = options.set;
   g.reference_time = reference.time;
   g.reference_step = reference.step;
   g.time = time;
   g.step = step;
-  g.grid = options.set == StrainSet::lagrangian ? reference.grid : current_grid;
-  const int cells = g.grid.num_cells();
-  if (previous && previous->grid.num_cells() != cells) previous = nullptr;
+  const int cells = reference.cells;
+  if (previous && static_cast<int>(previous->particles.size()) != cells) previous = nullptr;
 
   // The sorted id -> index map of the current state, built once, merged with the reference
   // (also sorted by id): matched pairs come out in id order, so each cell's set is ordered
@@ -219,17 +260,16 @@ GridStrain grid_strain(const StrainReference& reference, const RegularGrid& curr
   };
   std::vector<Match> matches;
   matches.reserve(std::min(current.size(), reference.id.size()));
-  const bool lagrangian = options.set == StrainSet::lagrangian;
   std::size_t k = 0, i = 0;
   while (k < reference.id.size() || i < current.size()) {
     if (i == current.size() || (k < reference.id.size() && reference.id[k] < current[i].first)) {
       if (lagrangian && reference.cell[k] >= 0) ++g.untracked;  // gone since t0
       ++k;
     } else if (k == reference.id.size() || current[i].first < reference.id[k]) {
-      if (!lagrangian && current_grid.cell_of(now.x[current[i].second]) >= 0) ++g.untracked;  // new since t0
+      if (!lagrangian && current_cell[current[i].second] >= 0) ++g.untracked;  // new since t0
       ++i;
     } else {
-      const int c = lagrangian ? reference.cell[k] : current_grid.cell_of(now.x[current[i].second]);
+      const int c = lagrangian ? reference.cell[k] : current_cell[current[i].second];
       if (c >= 0) matches.push_back({k, current[i].second, c});
       ++k;
       ++i;

@@ -54,15 +54,20 @@ std::string_view name_of(StrainReason r);
 struct StrainReference {
   double time = 0.0;
   long step = 0;
-  RegularGrid grid;          // the grid at t0: it defines the Lagrangian sets
+  RegularGrid grid;          // the grid at t0: it defines the Lagrangian sets (unused for other cells)
+  int cells = 0;             // the number of cells (sets)
   std::vector<GlobalId> id;  // ascending
   std::vector<Vec3> x;       // position at t0
-  std::vector<int> cell;     // cell of x in grid, -1 outside
+  std::vector<int> cell;     // cell of x at t0, -1 outside every cell
 };
 
 // Throws upgrain::Error on repeated ids or spans of different lengths.
 StrainReference make_strain_reference(std::span<const GlobalId> id, std::span<const Vec3> x,
                                       const RegularGrid& grid, double time, long step);
+// The same for cells that are not those of a grid (the MPI blocks: cell = the block that holds
+// the particle): `cell` gives each particle's cell in [0, cells), or -1.
+StrainReference make_strain_reference(std::span<const GlobalId> id, std::span<const Vec3> x,
+                                      std::span<const int> cell, int cells, double time, long step);
 
 // The current particle state (any order).
 struct ParticleKinematics {
@@ -142,5 +147,12 @@ struct GridStrain {
 GridStrain grid_strain(const StrainReference& reference, const RegularGrid& current_grid,
                        const ParticleKinematics& now, double time, long step,
                        const GridStrainOptions& options, const GridStrain* previous = nullptr);
+
+// The same over any partition into reference.cells sets: Lagrangian sets from reference.cell,
+// Eulerian ones from `current_cell` (the cell of each particle of `now`, -1 for none). The
+// result's grid is left empty. grid_strain() is this with the cells of a RegularGrid.
+GridStrain partition_strain(const StrainReference& reference, std::span<const int> current_cell,
+                            const ParticleKinematics& now, double time, long step,
+                            const GridStrainOptions& options, const GridStrain* previous = nullptr);
 
 }  // namespace upgrain::dem

@@ -10,7 +10,7 @@ Usage: compare_rank_outputs.py REFERENCE_FOLDER OTHER_FOLDER...
   relative (the balance error, itself a ratio, to 1e-12 absolute; docs/parallel.md), and
   the timings and rank count.
 Report, plots, logs and the deal.II meshes (which carry their creation time) are skipped,
-and compute_grid_stress.csv, whose blocks are those of each rank count.
+and the compute-grid stress and strain, whose blocks are those of each rank count.
 """
 import csv
 import json
@@ -18,8 +18,10 @@ import os
 import sys
 
 SKIP_SUFFIXES = ('.md', '.png', '.log', '.pvtu', '.vtu', '.pvd')
-# The stress per MPI block: the blocks are the rank count's own (docs/stress.md).
-SKIP_FILES = {'compute_grid_stress.csv'}
+# The stress and strain per MPI block: the blocks are the rank count's own (docs/stress.md,
+# docs/strain.md).
+SKIP_FILES = {'compute_grid_stress.csv', 'compute_grid_strain.csv'}
+SKIP_FOLDERS = ('compute_grid_strain' + os.sep,)
 ROUND_OFF = {'dissipated_damping', 'dissipated_friction', 'tangential_stiffness_change', 'total',
              'balance_error', 'dissipated_damping_J', 'dissipated_friction_J',
              'tangential_stiffness_change_J', 'energy_balance_error'}
@@ -32,7 +34,9 @@ def files(folder):
     out = []
     for root, _, names in os.walk(folder):
         for n in names:
-            out.append(os.path.relpath(os.path.join(root, n), folder))
+            rel = os.path.relpath(os.path.join(root, n), folder)
+            if not rel.startswith(SKIP_FOLDERS):
+                out.append(rel)
     return sorted(out)
 
 

@@ -1,5 +1,6 @@
 # Runs the driver on one scene under mpiexec with each rank count of RANKS, then
-# compare_rank_outputs.py on the folders (the first is the reference).
+# compare_rank_outputs.py on the folders (the first is the reference). COMPUTE_GRIDS and
+# COMPUTE_GRID_STRAIN (optional) check each run's compute-grid stress and strain.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 set(folders "")
@@ -15,6 +16,14 @@ foreach(k ${RANKS})
                     OUTPUT_VARIABLE check ERROR_VARIABLE err)
     if(NOT code EQUAL 0)
       message(FATAL_ERROR "compute-grid stress on ${k} ranks:\n${check}\n${err}")
+    endif()
+    message(STATUS "${k} ranks: ${check}")
+  endif()
+  if(COMPUTE_GRID_STRAIN)
+    execute_process(COMMAND ${PYTHON} ${COMPUTE_GRID_STRAIN} ${WORK}/np${k} ${k} ${PARTICLES} RESULT_VARIABLE code
+                    OUTPUT_VARIABLE check ERROR_VARIABLE err)
+    if(NOT code EQUAL 0)
+      message(FATAL_ERROR "compute-grid strain on ${k} ranks:\n${check}\n${err}")
     endif()
     message(STATUS "${k} ranks: ${check}")
   endif()

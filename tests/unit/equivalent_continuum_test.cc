@@ -132,3 +132,38 @@ TEST(EquivalentContinuum, DegenerateSetsAreReportedNotNaN) {
   EXPECT_FALSE(t.valid);
   EXPECT_TRUE(t.gradient.allFinite());
 }
+
+// L over the reference tetrahedra carried to the current positions: exact for an affine
+// velocity field whatever the (non-inverting) deformation since t0, 2 m from the origin; the
+// volume is that of the deformed tessellation (det F times the reference one); a motion that
+// turns one tetrahedron inside out is refused with the reason, and a new tessellation of the
+// current positions then gives L again.
+TEST(EquivalentContinuum, CarriedTetrahedraGiveLWhileNoneHasInverted) {
+  const Vec3 lo = Vec3(2, 2, 2) / std::sqrt(3.0);
+  const std::vector<Vec3> ref = random_points(200, lo, 0.05, 5);
+  const DelaunayTetrahedra t = delaunay_tetrahedra(ref);
+  ASSERT_TRUE(t.valid);
+  const double ref_volume = gradient_over_tetrahedra(t, ref, ref).volume;
+  Mat3 velocity_gradient;
+  velocity_gradient << 0.3, -1.2, 0.4, 0.7, -0.1, 0.2, -0.5, 0.9, 0.25;
+  for (const Mat3& f : affine_maps()) {
+    std::vector<Vec3> x, v;
+    for (const Vec3& p : ref) {
+      x.push_back(f * p + Vec3(0.01, 0.02, -0.03));
+      v.push_back(velocity_gradient * x.back() + Vec3(1.0, -2.0, 0.5));
+    }
+    const TessellationGradient l = gradient_over_carried_tetrahedra(t, x, v);
+    ASSERT_TRUE(l.valid) << l.reason;
+    EXPECT_LE((l.gradient - velocity_gradient).norm(), 1e-11 * velocity_gradient.norm()) << l.gradient;
+    EXPECT_NEAR(l.volume, f.determinant() * ref_volume, 1e-12 * ref_volume);
+  }
+  // Push one vertex of the first tetrahedron through its opposite face.
+  std::vector<Vec3> x = ref, v(ref.size(), Vec3::Zero());
+  const std::array<int, 4>& tet = t.tetrahedra.front();
+  const Vec3 face = (ref[tet[1]] + ref[tet[2]] + ref[tet[3]]) / 3.0;
+  x[tet[0]] = face + 0.5 * (face - ref[tet[0]]);
+  const TessellationGradient inverted = gradient_over_carried_tetrahedra(t, x, v);
+  EXPECT_FALSE(inverted.valid);
+  EXPECT_EQ(inverted.reason, "a tetrahedron has inverted");
+  EXPECT_TRUE(gradient_over_tetrahedra(delaunay_tetrahedra(x), x, v).valid);
+}

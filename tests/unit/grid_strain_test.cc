@@ -337,3 +337,59 @@ TEST(GridStrain, ReferenceTessellationIsReusedWhileTheSetIsTheSame) {
     }
   }
 }
+
+// Cells that are not those of a grid (the MPI blocks of an MPI run): a partition given per
+// particle. With the grid's own cells it is grid_strain() bit for bit; with two "blocks"
+// (the packing split at x = 1.23, as a rank boundary) each block's F and L are the affine map's,
+// Lagrangian sets follow the blocks of t0 and Eulerian ones those of now; a cell index out of
+// range is refused.
+TEST(GridStrain, PartitionByBlocksIsTheSameComputation) {
+  const Packing p = make_packing(11);
+  Mat3 shear = Mat3::Identity();
+  shear(0, 2) = 0.4;
+  const Mat3 f = rotation(Vec3(0.2, 1, -0.3), 0.7) * shear;
+  Mat3 l;
+  l << 0.1, 0.4, -0.2, -0.3, 0.2, 0.5, 0.6, -0.1, -0.3;
+  const State s = move(p, f, Vec3(-0.1, 0.05, 0.2), l, Vec3::Zero(), 9);
+  // The grid's cells given per particle: the same result.
+  std::vector<int> cell(p.x.size());
+  for (std::size_t k = 0; k < p.x.size(); ++k) cell[k] = p.grid.cell_of(p.x[k]);
+  const StrainReference by_grid = make_strain_reference(p.id, p.x, p.grid, 0.0, 0);
+  const StrainReference by_cells = make_strain_reference(p.id, p.x, cell, p.grid.num_cells(), 0.0, 0);
+  const GridStrain a = grid_strain(by_grid, p.grid, s.view(), 1.0, 10, {});
+  const GridStrain b = partition_strain(by_cells, {}, s.view(), 1.0, 10, {});
+  for (StrainDefinition d : kBoth)
+    for (int c = 0; c < p.grid.num_cells(); ++c) {
+      EXPECT_EQ(a[d].deformation_gradient[c], b[d].deformation_gradient[c]);
+      EXPECT_EQ(a[d].velocity_gradient[c], b[d].velocity_gradient[c]);
+      EXPECT_EQ(a[d].f_reason[c], b[d].f_reason[c]);
+    }
+  // Two blocks split at x = 1.23 at t0; now the split of the moved packing at its median x.
+  std::vector<int> block_then(p.x.size());
+  for (std::size_t k = 0; k < p.x.size(); ++k) block_then[k] = p.x[k].x() < 1.23 ? 0 : 1;
+  std::vector<double> xs;
+  for (const Vec3& x : s.x) xs.push_back(x.x());
+  std::nth_element(xs.begin(), xs.begin() + static_cast<long>(xs.size() / 2), xs.end());
+  const double median = xs[xs.size() / 2];
+  std::vector<int> block_now(s.x.size());
+  for (std::size_t k = 0; k < s.x.size(); ++k) block_now[k] = s.x[k].x() < median ? 0 : 1;
+  const StrainReference blocks = make_strain_reference(p.id, p.x, block_then, 2, 0.0, 0);
+  for (StrainSet set : {StrainSet::lagrangian, StrainSet::eulerian}) {
+    GridStrainOptions o;
+    o.set = set;
+    const GridStrain g = partition_strain(blocks, block_now, s.view(), 1.0, 10, o);
+    ASSERT_EQ(g.particles.size(), 2u);
+    EXPECT_EQ(g.particles[0] + g.particles[1], static_cast<long>(p.id.size()));
+    if (set == StrainSet::eulerian) {
+      EXPECT_LE(std::abs(g.particles[0] - g.particles[1]), 1);
+    }
+    for (StrainDefinition d : kBoth)
+      for (int c = 0; c < 2; ++c) {
+        ASSERT_EQ(g[d].f_reason[c], StrainReason::valid) << name_of(d) << " block " << c;
+        EXPECT_LE((g[d].deformation_gradient[c] - f).norm(), 1e-12 * f.norm());
+        EXPECT_LE((g[d].velocity_gradient[c] - l).norm(), 1e-12 * l.norm());
+      }
+  }
+  const std::vector<int> bad(p.x.size(), 2);
+  EXPECT_THROW(make_strain_reference(p.id, p.x, bad, 2, 0.0, 0), upgrain::Error);
+}
