@@ -161,3 +161,74 @@ TEST(UnconstrainedCollapse, RunDepositionOpensTheWallsAtTheirTimeAndBalancesEner
   std::printf("run_deposition: %ld steps, %.3f s, balance %.2e, KE/released %.2e\n", r.steps,
               r.simulated_time, r.energy_balance_error, r.kinetic_to_released);
 }
+
+// The extent of ellipsoids along each axis: a grain reaches x_d +- h(e_d), its support value
+// h(n) = |D R^T n| (D = diag(a, b, c)), not its bounding radius.
+struct Extent {
+  double lo[3] = {1e9, 1e9, 1e9};
+  double hi[3] = {-1e9, -1e9, -1e9};
+};
+Extent ellipsoid_extent(const ParticleStore& p) {
+  Extent e;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Mat3 r = p.orientation[i].toRotationMatrix();
+    for (int d = 0; d < 3; ++d) {
+      const double h = r.row(d).transpose().cwiseProduct(p.semi_axes[i]).norm();
+      e.lo[d] = std::min(e.lo[d], p.x[i][d] - h);
+      e.hi[d] = std::max(e.hi[d], p.x[i][d] + h);
+    }
+  }
+  return e;
+}
+
+// The same collapse with the paper's ellipsoids (four shapes, a = 1.0-2.5 mm): the walls hold
+// the column, and once they go it spreads and slumps on every side; nothing sinks into the
+// floor, the quaternions stay unit and no contact solve fails.
+TEST(UnconstrainedCollapse, EllipsoidsSpreadToo) {
+  SceneConfig s = unconstrained_scene();
+  s.particles.count = 150;
+  s.particles.gradation = {{1.0e-3, 0.0}, {2.5e-3, 1.0}};
+  s.particles.shapes = {{1.0, 1.0, 1.0}, {0.8, 0.6, 1.0}, {0.8, 0.4, 1.0}, {0.6, 0.4, 1.0}};
+  s.container.lx = s.container.ly = 0.02;
+  s.container.side_walls_open_time = 0.2;
+  s.time_step = 0.9 * estimate_time_step(s).safe_step;
+  Simulation sim(s, fill_container(s));
+  ASSERT_TRUE(sim.particles().has_shapes());
+  sim.run(std::lround(s.container.side_walls_open_time / s.time_step));
+  const Shape before = shape(sim.particles());
+  const Extent held = ellipsoid_extent(sim.particles());
+  // The walls held the column: every grain inside the box up to its elastic overlap with a
+  // wall (a small fraction of the smallest semi-axis, 0.4 mm).
+  const double overlap = 0.02 * 0.4e-3;
+  for (int d = 0; d < 2; ++d) {
+    EXPECT_GE(held.lo[d], -overlap);
+    EXPECT_LE(held.hi[d], (d == 0 ? s.container.lx : s.container.ly) + overlap);
+  }
+  for (const WallRelease& r : wall_releases(s.container))
+    for (const std::string& w : r.walls) sim.remove_wall(w);
+  sim.run(std::lround(0.4 / s.time_step));
+  const Shape after = shape(sim.particles());
+  const Extent spread = ellipsoid_extent(sim.particles());
+  ASSERT_TRUE(after.finite);
+  EXPECT_NEAR(after.mass, before.mass, 1e-12 * before.mass);
+  // Past every former wall, and slumped.
+  for (int d = 0; d < 2; ++d) {
+    EXPECT_LT(spread.lo[d], 0.0);
+    EXPECT_GT(spread.hi[d], d == 0 ? s.container.lx : s.container.ly);
+  }
+  EXPECT_GT(after.radius_of_gyration, 1.5 * before.radius_of_gyration);
+  EXPECT_LT(spread.hi[2], 0.95 * held.hi[2]);
+  // No grain sank into the floor: its lowest surface point (support height along -z) stays
+  // within a small fraction of the smallest semi-axis of the floor.
+  EXPECT_GT(spread.lo[2], -overlap);
+  const ParticleStore& p = sim.particles();
+  for (std::size_t i = 0; i < p.size(); ++i) EXPECT_NEAR(p.orientation[i].norm(), 1.0, 1e-12);
+  EXPECT_EQ(sim.contact_solver_stats().failures, 0);
+  EXPECT_EQ(sim.contact_solver_stats().uncertified, 0);
+  std::printf(
+      "ellipsoid unconstrained collapse: top %.4f -> %.4f m, radius of gyration %.4f -> %.4f m, extent x "
+      "[%.4f, %.4f] y [%.4f, %.4f] m, lowest surface %.2e m, %lld solver calls\n",
+      held.hi[2], spread.hi[2], before.radius_of_gyration, after.radius_of_gyration, spread.lo[0],
+      spread.hi[0], spread.lo[1], spread.hi[1], spread.lo[2],
+      static_cast<long long>(sim.contact_solver_stats().calls));
+}
