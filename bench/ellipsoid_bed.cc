@@ -3,16 +3,19 @@
 // zeta = 0.5, dt = 1e-6 s) built twice in one run, once of spheres and once of ellipsoids
 // 1:0.8:0.6 of the same volume-equivalent radius (a = 1.5 mm / cbrt(0.48)) in uniformly
 // random orientations. Each bed is deposited soft, stiffened to 29 GPa in short steps (4,000
-// steps per stage, 10,000 at the end, at damping ratio 1), then timed
-// over `steps` steps from the settled state. Prints particle-steps per second of both,
-// narrow-phase tests per second (pairs past the bounding spheres: proven apart, or solved),
-// Newton steps per solve, and the ratio of an ellipsoid particle-step to a sphere one
-// (target: at most 4).
-//   bench_ellipsoid_bed [N [steps [cache_dir]]]   (defaults 2000 and 2000, no cache)
+// steps per stage, 10,000 at the end, at damping ratio 1), then timed over `steps` steps from
+// the settled state, in `rounds` rounds that alternate the two beds (spheres first in odd
+// rounds, ellipsoids first in even ones), so that a change of load on a shared machine falls on
+// both alike. Prints particle-steps per second of both (the best round of each), the ratio of
+// an ellipsoid particle-step to a sphere one from those best rounds (target: at most 4) and the
+// spread of the per-round ratios, narrow-phase tests per second (pairs past the bounding
+// spheres: still apart by an earlier proof, proven apart, or solved), and Newton steps per
+// solve.
+//   bench_ellipsoid_bed [N [steps [cache_dir [rounds]]]]   (defaults 2000, 2000, no cache, 5)
 // With `cache_dir`, the settled beds are written there on the first run and read back on
 // later ones (same N), so repeated timings and callgrind runs skip the settling. Under
-// callgrind (`valgrind --tool=callgrind --collect-atstart=no`) only the timed steps are
-// collected, one profile file per bed (`.1` spheres, `.2` ellipsoids).
+// callgrind (`valgrind --tool=callgrind`) there is one round, and each bed's timed steps are a
+// profile file of their own (`.1` spheres, `.2` ellipsoids; the counters are zeroed before).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -27,12 +30,18 @@
 #include "dem/simulation.h"
 #include "dem/time_step.h"
 
+#include <algorithm>
+#include <memory>
+#include <vector>
+
 #if __has_include(<valgrind/callgrind.h>)
 #include <valgrind/callgrind.h>
-#define UPGRAIN_TOGGLE_COLLECT() CALLGRIND_TOGGLE_COLLECT
+#define UPGRAIN_ON_VALGRIND() (RUNNING_ON_VALGRIND != 0)
+#define UPGRAIN_ZERO_STATS() CALLGRIND_ZERO_STATS
 #define UPGRAIN_DUMP_STATS(what) CALLGRIND_DUMP_STATS_AT(what)
 #else
-#define UPGRAIN_TOGGLE_COLLECT()
+#define UPGRAIN_ON_VALGRIND() false
+#define UPGRAIN_ZERO_STATS()
 #define UPGRAIN_DUMP_STATS(what)
 #endif
 
@@ -74,20 +83,33 @@ void for_each_array(ParticleStore& p, F&& f) {
   f(p.inertia_body);
 }
 
-struct Timing {
-  double particle_steps_per_second = 0.0;
-  double contacts_per_particle = 0.0;
-  ContactSolverStats solver;  // over the timed steps only
-  double seconds = 0.0;
+// A settled bed ready to be timed, and what its timed steps gave.
+struct Bed {
+  const char* what = "";
+  long n = 0;
+  std::unique_ptr<Simulation> sim;
+  ContactSolverStats before;  // the counters before the first timed step
+  double seconds = 0.0;       // all timed steps
+  std::vector<double> round_rates;
 };
+
+// Times `steps` steps of a bed (particle-steps per second), collected by callgrind if it runs.
+double time_steps(Bed& b, long steps) {
+  UPGRAIN_ZERO_STATS();  // a profile holds the timed steps only (dumped by the caller)
+  const auto t0 = std::chrono::steady_clock::now();
+  b.sim->run(steps);
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  b.seconds += s;
+  b.round_rates.push_back(static_cast<double>(b.n) * static_cast<double>(steps) / s);
+  return b.round_rates.back();
+}
 
 // Deposits `n` grains of `shapes` (empty: spheres of radius r) soft and stiffens them to the
 // benchmark material.
 ParticleStore settle(long n, double r, const std::vector<GrainShape>& shapes, double side);
 
-// The settled bed (from the cache or settled now), timed over `steps` steps.
-Timing settle_and_time(long n, double r, const std::vector<GrainShape>& shapes, long steps,
-                       const std::string& cache_dir) {
+// The settled bed (from the cache or settled now), stiff and warmed up for timing.
+Bed prepare(long n, double r, const std::vector<GrainShape>& shapes, const std::string& cache_dir) {
   const double side = std::cbrt(n * 4.0 / 3.0 * std::numbers::pi * std::pow(1.5e-3, 3) / 0.6);
   const char* what = shapes.empty() ? "spheres" : "ellipsoids";
   ParticleStore p;
@@ -114,22 +136,13 @@ Timing settle_and_time(long n, double r, const std::vector<GrainShape>& shapes, 
                  estimate_time_step(stiff).safe_step);
   for (auto& v : p.v) v.setZero();
   for (auto& w : p.omega) w.setZero();
-  Simulation sim(stiff, p);
-  sim.run(200);  // lists built, caches warm
-  const ContactSolverStats before = sim.contact_solver_stats();
-  const auto t0 = std::chrono::steady_clock::now();
-  UPGRAIN_TOGGLE_COLLECT();
-  sim.run(steps);
-  UPGRAIN_TOGGLE_COLLECT();
-  UPGRAIN_DUMP_STATS(what);  // one callgrind file per bed
-  Timing t;
-  t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  t.particle_steps_per_second = static_cast<double>(n) * static_cast<double>(steps) / t.seconds;
-  t.contacts_per_particle =
-      2.0 * static_cast<double>(sim.diagnostics().particle_contacts) / static_cast<double>(n);
-  t.solver = sim.contact_solver_stats();
-  t.solver -= before;
-  return t;
+  Bed b;
+  b.what = what;
+  b.n = n;
+  b.sim = std::make_unique<Simulation>(stiff, p);
+  b.sim->run(200);  // lists built, caches warm
+  b.before = b.sim->contact_solver_stats();
+  return b;
 }
 
 ParticleStore settle(long n, double r, const std::vector<GrainShape>& shapes, double side) {
@@ -171,23 +184,48 @@ int main(int argc, char** argv) {
   const long n = argc > 1 ? std::atol(argv[1]) : 2000;
   const long steps = argc > 2 ? std::atol(argv[2]) : 2000;
   const std::string cache_dir = argc > 3 ? argv[3] : "";
+  const long rounds = UPGRAIN_ON_VALGRIND() ? 1 : std::max(1L, argc > 4 ? std::atol(argv[4]) : 5L);
   const double r = 1.5e-3;
-  const Timing spheres = settle_and_time(n, r, {}, steps, cache_dir);
+  Bed spheres = prepare(n, r, {}, cache_dir);
   const GrainShape shape{0.8, 0.6, 1.0};
-  const Timing ellipsoids = settle_and_time(n, r / std::cbrt(0.8 * 0.6), {shape}, steps, cache_dir);
-  const ContactSolverStats& st = ellipsoids.solver;
+  Bed ellipsoids = prepare(n, r / std::cbrt(0.8 * 0.6), {shape}, cache_dir);
+  const long per_round = std::max(1L, steps / rounds);
+  std::vector<double> ratios;
+  for (long k = 0; k < rounds; ++k) {
+    if (UPGRAIN_ON_VALGRIND()) {  // one profile per bed
+      time_steps(spheres, per_round);
+      UPGRAIN_DUMP_STATS("spheres");
+      time_steps(ellipsoids, per_round);
+      UPGRAIN_DUMP_STATS("ellipsoids");
+    } else if (k % 2 == 0) {
+      time_steps(spheres, per_round);
+      time_steps(ellipsoids, per_round);
+    } else {
+      time_steps(ellipsoids, per_round);
+      time_steps(spheres, per_round);
+    }
+    ratios.push_back(spheres.round_rates.back() / ellipsoids.round_rates.back());
+  }
+  const double best_spheres = *std::max_element(spheres.round_rates.begin(), spheres.round_rates.end());
+  const double best_ellipsoids =
+      *std::max_element(ellipsoids.round_rates.begin(), ellipsoids.round_rates.end());
+  std::sort(ratios.begin(), ratios.end());
+  ContactSolverStats st = ellipsoids.sim->contact_solver_stats();
+  st -= ellipsoids.before;
+  auto contacts = [](const Bed& b) {
+    return 2.0 * static_cast<double>(b.sim->diagnostics().particle_contacts) / static_cast<double>(b.n);
+  };
   const double tests = static_cast<double>(st.calls + st.proven_apart + st.still_apart);
   std::printf(
-      "upgrain ellipsoid_bed particles %ld steps %ld sphere_particle_steps_per_second %.4e "
-      "ellipsoid_particle_steps_per_second %.4e cost_ratio %.3f sphere_contacts_per_particle %.3f "
-      "ellipsoid_contacts_per_particle %.3f narrow_phase_tests_per_second %.4e solver_calls_per_second %.4e "
-      "proven_apart_share %.3f still_apart_share %.3f newton_steps_per_call %.3f warm_share %.4f fallbacks "
-      "%lld failures %lld\n",
-      n, steps, spheres.particle_steps_per_second, ellipsoids.particle_steps_per_second,
-      spheres.particle_steps_per_second / ellipsoids.particle_steps_per_second, spheres.contacts_per_particle,
-      ellipsoids.contacts_per_particle, tests / ellipsoids.seconds,
-      static_cast<double>(st.calls) / ellipsoids.seconds, static_cast<double>(st.proven_apart) / tests,
-      static_cast<double>(st.still_apart) / tests,
+      "upgrain ellipsoid_bed particles %ld steps %ld rounds %ld sphere_particle_steps_per_second %.4e "
+      "ellipsoid_particle_steps_per_second %.4e cost_ratio %.3f round_ratio_min %.3f round_ratio_median %.3f "
+      "round_ratio_max %.3f sphere_contacts_per_particle %.3f ellipsoid_contacts_per_particle %.3f "
+      "narrow_phase_tests_per_second %.4e solver_calls_per_second %.4e still_apart_share %.3f "
+      "proven_apart_share %.3f newton_steps_per_call %.3f warm_share %.4f fallbacks %lld failures %lld\n",
+      n, per_round * rounds, rounds, best_spheres, best_ellipsoids, best_spheres / best_ellipsoids,
+      ratios.front(), ratios[ratios.size() / 2], ratios.back(), contacts(spheres), contacts(ellipsoids),
+      tests / ellipsoids.seconds, static_cast<double>(st.calls) / ellipsoids.seconds,
+      static_cast<double>(st.still_apart) / tests, static_cast<double>(st.proven_apart) / tests,
       static_cast<double>(st.newton_iterations) / static_cast<double>(std::max<std::int64_t>(st.calls, 1)),
       static_cast<double>(st.warm_starts) / static_cast<double>(std::max<std::int64_t>(st.calls, 1)),
       static_cast<long long>(st.fallbacks), static_cast<long long>(st.failures));

@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "dem/core/error.h"
-#include "dem/motion/rigid_rotation.h"
+#include "dem/motion/grain_rotation.h"
 
 namespace upgrain::dem {
 
@@ -126,33 +126,6 @@ void Simulation::step() {
 void Simulation::first_rotation_half(double half) { rotation_first_half(p_, p_.size(), half, dt_); }
 
 void Simulation::second_rotation_half(double half) { rotation_second_half(p_, p_.size(), half); }
-
-void rotation_first_half(ParticleStore& p, std::size_t n, double half, double dt) {
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!p.is_ellipsoid(i)) {
-      p.omega[i] += half * p.inv_inertia[i] * p.torque[i];
-      continue;
-    }
-    const Vec3& j = p.inertia_body[i];
-    const Vec3 inv_j = j.cwiseInverse();  // once for the splitting and for w
-    RigidRotationState s{p.orientation[i], j.cwiseProduct(p.orientation[i].conjugate() * p.omega[i])};
-    s.angular_momentum_body += s.orientation.conjugate() * (half * p.torque[i]);
-    free_rotation_step_inverse(s, inv_j, dt);
-    p.orientation[i] = s.orientation;
-    p.omega[i] = s.orientation * s.angular_momentum_body.cwiseProduct(inv_j);
-  }
-}
-
-void rotation_second_half(ParticleStore& p, std::size_t n, double half) {
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!p.is_ellipsoid(i)) {
-      p.omega[i] += half * p.inv_inertia[i] * p.torque[i];
-      continue;
-    }
-    const Eigen::Quaterniond& q = p.orientation[i];
-    p.omega[i] += q * ((q.conjugate() * (half * p.torque[i])).cwiseQuotient(p.inertia_body[i]));
-  }
-}
 
 void Simulation::remove_wall(const std::string& name) {
   for (PlaneWall& w : walls_) {

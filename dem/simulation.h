@@ -105,11 +105,4 @@ class Simulation {
 // beyond it the contact law is far outside its validity and the step is too large.
 inline constexpr double kRunawayOverlapRatio = 0.25;
 
-// The rotational halves of Simulation::step on particles [0, n) of a store (shared with
-// ParallelSimulation::step, operation for operation): spheres w += (h/2) T / I; ellipsoids
-// the symplectic splitting of rigid_rotation.h (first half, also turning the orientation)
-// and the body-frame kick (second half).
-void rotation_first_half(ParticleStore& p, std::size_t n, double half, double dt);
-void rotation_second_half(ParticleStore& p, std::size_t n, double half);
-
 }  // namespace upgrain::dem

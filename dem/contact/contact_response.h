@@ -28,6 +28,24 @@ struct ContactKinematics {
   Vec3 v_i, v_j, omega_i, omega_j;
 };
 
+// The geometry of two touching spheres (the force loops' sphere pairs): d = x_j - x_i with
+// |d|^2 = dist2 < (r_i + r_j)^2. Sets the normal (i to j), overlap and levers of `kin`, the lever
+// lengths along the normal and the effective radius r_i r_j / (r_i + r_j).
+[[gnu::always_inline]] inline void sphere_pair_kinematics(const Vec3& d, double dist2, double ri, double rj,
+                                                          ContactKinematics& kin, double& arm_i,
+                                                          double& arm_j, double& r_star) {
+  const double rsum = ri + rj;
+  const double dist = std::sqrt(dist2);
+  const double delta = rsum - dist;
+  kin.normal = d * (1.0 / dist);
+  kin.overlap = delta;
+  arm_i = ri - 0.5 * delta;
+  arm_j = rj - 0.5 * delta;
+  kin.lever_i = arm_i * kin.normal;
+  kin.lever_j = -arm_j * kin.normal;
+  r_star = ri * rj / rsum;
+}
+
 // History of one contact's incremental Mindlin spring.
 struct TangentialSpring {
   Vec3 force = Vec3::Zero();  // tangential force on body i

@@ -2,6 +2,8 @@
 // translation distance (docs/ellipsoid-contact.md has the derivations cited below as D1-D6).
 #include "dem/contact/ellipsoid_geometry.h"
 
+#include "dem/contact/warm_newton.h"
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -507,98 +509,66 @@ namespace {
 
 constexpr int kFastIterations = 4;  // Newton steps of the force loop's straight-line path
 
+}  // namespace
+
+// The straight-line path works in metres: grain sizes in [2^-200, 2^200] m (PairFrame).
+bool warm_path_applies(const PosedEllipsoid& e1, const PosedEllipsoid& e2) {
+  constexpr double kLow = 0x1p-200, kHigh = 0x1p200;
+  return std::min(e1.minor, e2.minor) >= kLow && std::max(e1.major, e2.major) <= kHigh;
+}
+
+// posed_contact() after the proof's evaluation q at the pair's last normal.
+bool warm_contact_after_proof(const PosedEllipsoid& e1, const PosedEllipsoid& e2,
+                              const warm::PairLanes<double>& p, warm::PointLanes<double>& q, bool radius,
+                              ContactSolverStats& stats, PairContact& out);
+
+namespace {
+
 // The force loop's usual case (docs/ellipsoid-contact.md, "In the force loop"): a pair near its
 // last normal, Newton from there in metres, as newton_on_sphere() but written out for the
 // symmetric shape matrices, with no frame, no copies and no line search. Gives up (false, with
 // nothing written or counted) whenever the general solver would do something else: an
 // indefinite model, a step above 0.1 rad or one that fails the Armijo test, more than
 // kFastIterations steps, or a result the certificate (D4) does not cover; the caller then runs
-// the general solver from the same start. `at` is f at the unit vector `start`.
-bool warm_newton(const PosedEllipsoid& e1, const PosedEllipsoid& e2, const Vec3& d, const Vec3& start,
-                 const Eval& at, ContactSolverStats& stats, PairContact& out) {
-  const Mat3& a = e1.shape;
-  const Mat3& b = e2.shape;
-  const double dx = d.x(), dy = d.y(), dz = d.z();
-  const double size = std::abs(dx) + std::abs(dy) + std::abs(dz) + e1.major + e2.major;
-  const double certify = e1.min_radius + e2.min_radius;
-  const double tol_g = 16.0 * kEps * size, noise_f = 64.0 * kEps * size;
-  double nx = start.x(), ny = start.y(), nz = start.z();
-  double ux = at.u.x(), uy = at.u.y(), uz = at.u.z(), vx = at.v.x(), vy = at.v.y(), vz = at.v.z();
-  double h1 = at.h1, h2 = at.h2, f = at.f;
-  // u = M1 n, v = M2 n, h = sqrt(n.Mn), f = n.d + h1 + h2 at a new n (M symmetric).
-  auto evaluate_at = [&](double x, double y, double z) {
-    ux = a(0, 0) * x + a(0, 1) * y + a(0, 2) * z;
-    uy = a(0, 1) * x + a(1, 1) * y + a(1, 2) * z;
-    uz = a(0, 2) * x + a(1, 2) * y + a(2, 2) * z;
-    vx = b(0, 0) * x + b(0, 1) * y + b(0, 2) * z;
-    vy = b(0, 1) * x + b(1, 1) * y + b(1, 2) * z;
-    vz = b(0, 2) * x + b(1, 2) * y + b(2, 2) * z;
-    h1 = std::sqrt(x * ux + y * uy + z * uz);
-    h2 = std::sqrt(x * vx + y * vy + z * vz);
-    f = x * dx + y * dy + z * dz + h1 + h2;
-  };
+// the general solver from the same start. `q` holds f at the unit start; the pieces are those of
+// warm_newton.h, which the force loop also runs two pairs at a time.
+bool warm_newton(const warm::PairLanes<double>& p, warm::PointLanes<double>& q, ContactSolverStats& stats,
+                 PairContact& out) {
+  const double tol_g = 16.0 * kEps * p.size, noise_f = 64.0 * kEps * p.size;
   int iterations = 0;
   for (;;) {
-    const double r1 = 1.0 / h1, r2 = 1.0 / h2;
-    const double gx = dx + ux * r1 + vx * r2, gy = dy + uy * r1 + vy * r2, gz = dz + uz * r1 + vz * r2;
-    // Tangent basis of n (tangent_basis(): Duff et al. 2017).
-    const double sign = std::copysign(1.0, nz);
-    const double ta = -1.0 / (sign + nz);
-    const double tb = nx * ny * ta;
-    const double t1x = 1.0 + sign * nx * nx * ta, t1y = sign * tb, t1z = -sign * nx;
-    const double t2x = tb, t2y = sign + ny * ny * ta, t2z = -ny;
-    const double g1 = t1x * gx + t1y * gy + t1z * gz, g2 = t2x * gx + t2y * gy + t2z * gz;
-    if (g1 * g1 + g2 * g2 <= tol_g * tol_g) break;  // at the minimum to round-off
+    warm::GradientLanes<double> g;
+    warm::gradient(p, q, g);
+    if (g.norm2 <= tol_g * tol_g) break;  // at the minimum to round-off
     if (iterations == kFastIterations) return false;
-    // Tangent Hessian: t_i^T S t_j - (t_i.u)(t_j.u)/h1^3 - (t_i.v)(t_j.v)/h2^3 - f delta_ij,
-    // S = M1/h1 + M2/h2.
-    const double sxx = a(0, 0) * r1 + b(0, 0) * r2, syy = a(1, 1) * r1 + b(1, 1) * r2;
-    const double szz = a(2, 2) * r1 + b(2, 2) * r2, sxy = a(0, 1) * r1 + b(0, 1) * r2;
-    const double sxz = a(0, 2) * r1 + b(0, 2) * r2, syz = a(1, 2) * r1 + b(1, 2) * r2;
-    const double s1x = sxx * t1x + sxy * t1y + sxz * t1z, s1y = sxy * t1x + syy * t1y + syz * t1z;
-    const double s1z = sxz * t1x + syz * t1y + szz * t1z;
-    const double s2x = sxx * t2x + sxy * t2y + sxz * t2z, s2y = sxy * t2x + syy * t2y + syz * t2z;
-    const double s2z = sxz * t2x + syz * t2y + szz * t2z;
-    const double r1_3 = r1 * r1 * r1, r2_3 = r2 * r2 * r2;
-    const double u1 = t1x * ux + t1y * uy + t1z * uz, u2 = t2x * ux + t2y * uy + t2z * uz;
-    const double v1 = t1x * vx + t1y * vy + t1z * vz, v2 = t2x * vx + t2y * vy + t2z * vz;
-    const double h11 = t1x * s1x + t1y * s1y + t1z * s1z - u1 * u1 * r1_3 - v1 * v1 * r2_3 - f;
-    const double h22 = t2x * s2x + t2y * s2y + t2z * s2z - u2 * u2 * r1_3 - v2 * v2 * r2_3 - f;
-    const double h12 = t1x * s2x + t1y * s2y + t1z * s2z - u1 * u2 * r1_3 - v1 * v2 * r2_3;
-    // newton_on_sphere()'s test for a model that needs no shift.
-    const double kappa = 1e-3 * (h11 + h22 + certify) / 1.001;
-    const double a11 = h11 - kappa, a22 = h22 - kappa;
-    if (!(kappa > 0.0 && a11 >= 0.0 && a11 * a22 - h12 * h12 >= 0.0)) return false;
-    const double inv_det = 1.0 / (h11 * h22 - h12 * h12);
-    const double x1 = -(h22 * g1 - h12 * g2) * inv_det;
-    const double x2 = -(h11 * g2 - h12 * g1) * inv_det;
+    bool definite;
+    double x1, x2;
+    warm::newton_step(p, q, g, definite, x1, x2);
+    if (!definite) return false;
     const double step2 = x1 * x1 + x2 * x2;
     if (!(step2 <= 1e-2)) return false;  // above 0.1 rad: the general solver's capped line search
-    const double slope = g1 * x1 + g2 * x2;
-    double mx = nx + x1 * t1x + x2 * t2x, my = ny + x1 * t1y + x2 * t2y, mz = nz + x1 * t1z + x2 * t2z;
-    const bool last = step2 <= kAngleConverged * kAngleConverged;
-    // |n + x|^2 = 1 + |x|^2: below 1e-12 one Newton step for 1/sqrt normalises to 1e-24.
-    const double norm2 = mx * mx + my * my + mz * mz;
-    const double to_unit = last ? 1.5 - 0.5 * norm2 : 1.0 / std::sqrt(norm2);
-    mx *= to_unit;
-    my *= to_unit;
-    mz *= to_unit;
-    const double f_before = f;
-    evaluate_at(mx, my, mz);
-    nx = mx;
-    ny = my;
-    nz = mz;
+    const double f_before = q.f;
     ++iterations;
-    if (last) break;  // taken unchecked, as newton_on_sphere()
-    if (!(f <= f_before + 1e-4 * slope || -slope <= noise_f)) return false;
+    if (step2 <= kAngleConverged * kAngleConverged) {  // taken unchecked, as newton_on_sphere()
+      warm::small_step(g, x1, x2, q);
+      warm::evaluate(p, q);
+      break;
+    }
+    const double slope = g.g1 * x1 + g.g2 * x2;
+    double m[3];
+    for (int k = 0; k < 3; ++k) m[k] = q.n[k] + x1 * g.t1[k] + x2 * g.t2[k];
+    const double to_unit = 1.0 / std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+    for (int k = 0; k < 3; ++k) q.n[k] = m[k] * to_unit;
+    warm::evaluate(p, q);
+    if (!(q.f <= f_before + 1e-4 * slope || -slope <= noise_f)) return false;
   }
-  if (!(f < certify * (1.0 - 1e-9))) return false;  // D4 does not cover it: the general solver
-  const double r1 = 1.0 / h1;
-  out.depth = f;
-  out.normal = Vec3(nx, ny, nz);
-  // The levers from both centres to the mid-point p1 - f n/2, with p1 - c1 = u/h1.
-  out.lever1 = Vec3(ux * r1 - 0.5 * f * nx, uy * r1 - 0.5 * f * ny, uz * r1 - 0.5 * f * nz);
-  out.lever2 = out.lever1 + d;
+  if (!(q.f < p.certify * (1.0 - 1e-9))) return false;  // D4 does not cover it: the general solver
+  double l1[3], l2[3];
+  warm::levers(p, q, l1, l2);
+  out.depth = q.f;
+  out.normal = Vec3(q.n[0], q.n[1], q.n[2]);
+  out.lever1 = Vec3(l1[0], l1[1], l1[2]);
+  out.lever2 = Vec3(l2[0], l2[1], l2[2]);
   out.gaussian_radius = 0.0;
   ++stats.warm_starts;
   stats.newton_iterations += iterations;
@@ -643,29 +613,123 @@ bool posed_contact(const PosedEllipsoid& e1, const PosedEllipsoid& e2, const Vec
   // Half the warm pairs of a bed end here, before anything else is computed.
   const Vec3& m = *last_normal;
   const Vec3 d = e1.centre - e2.centre;
-  const Eval at_m = evaluate_gap(d, e1.shape, e2.shape, m);
-  if (at_m.f < 0.0) {
+  warm::PairLanes<double> p;
+  warm::load_pair(e1, e2, d, p);
+  warm::PointLanes<double> q;
+  for (int k = 0; k < 3; ++k) q.n[k] = m[k];
+  warm::evaluate(p, q);
+  return warm_contact_after_proof(e1, e2, p, q, radius, stats, out);
+}
+
+bool warm_contact_after_proof(const PosedEllipsoid& e1, const PosedEllipsoid& e2,
+                              const warm::PairLanes<double>& p, warm::PointLanes<double>& q, bool radius,
+                              ContactSolverStats& stats, PairContact& out) {
+  const Vec3 m(q.n[0], q.n[1], q.n[2]);
+  if (q.f < 0.0) {
     ++stats.proven_apart;
     out.normal = m;
-    out.depth = at_m.f;
+    out.depth = q.f;
     return false;
   }
   ++stats.calls;
   // A stored normal is unit to round-off: the proof's evaluation is Newton's first. The
   // straight-line path needs no curvatures (first touch takes the general one) and grain sizes
   // in [2^-200, 2^200] m, where the pair frame is in metres.
+  const Eval at_m{q.f, Vec3(q.u[0], q.u[1], q.u[2]), Vec3(q.v[0], q.v[1], q.v[2]), q.h1, q.h2};
   const double mm = m.squaredNorm();
-  constexpr double kLow = 0x1p-200, kHigh = 0x1p200;
   const bool unit = std::abs(mm - 1.0) <= 64.0 * kEps;
-  if (unit && !radius && std::min(e1.minor, e2.minor) >= kLow && std::max(e1.major, e2.major) <= kHigh &&
-      warm_newton(e1, e2, d, m, at_m, stats, out))
-    return out.depth > 0.0;
-  const PairFrame p(e1, e2);
+  if (unit && !radius && warm_path_applies(e1, e2) && warm_newton(p, q, stats, out)) return out.depth > 0.0;
+  const PairFrame frame(e1, e2);
   const double inv_len = unit ? 1.0 : 1.0 / std::sqrt(mm);
-  const Eval at_n = scaled(at_m, p.scale, inv_len);
+  const Eval at_n = scaled(at_m, frame.scale, inv_len);
   ContactGeometry g;
-  solve_frame(p, e1.centre, e2.centre, stats, m * inv_len, radius, g, &at_n);
+  solve_frame(frame, e1.centre, e2.centre, stats, m * inv_len, radius, g, &at_n);
   return to_pair_contact(g, radius, out);
+}
+
+void posed_contacts_two(const PosedEllipsoid& a1, const PosedEllipsoid& a2, const Vec3& last_a,
+                        const PosedEllipsoid& b1, const PosedEllipsoid& b2, const Vec3& last_b,
+                        ContactSolverStats& stats, PairContact& out_a, PairContact& out_b, bool& touching_a,
+                        bool& touching_b) {
+  using warm::Pair;
+  using Mask = long long __attribute__((vector_size(16)));
+  const Vec3 da = a1.centre - a2.centre, db = b1.centre - b2.centre;
+  warm::PairLanes<double> pa, pb;
+  warm::load_pair(a1, a2, da, pa);
+  warm::load_pair(b1, b2, db, pb);
+  warm::PairLanes<Pair> p;
+  for (int k = 0; k < 6; ++k) {
+    p.a[k] = Pair{pa.a[k], pb.a[k]};
+    p.b[k] = Pair{pa.b[k], pb.b[k]};
+  }
+  for (int k = 0; k < 3; ++k) p.d[k] = Pair{pa.d[k], pb.d[k]};
+  p.size = Pair{pa.size, pb.size};
+  p.certify = Pair{pa.certify, pb.certify};
+  warm::PointLanes<Pair> q;
+  for (int k = 0; k < 3; ++k) q.n[k] = Pair{last_a[k], last_b[k]};
+  warm::evaluate(p, q);
+  // Each pair alone from its proof's evaluation (the same bits as the lanes'): when a pair is
+  // proven apart, or either leaves the one-step straight-line path.
+  auto alone = [&] {
+    warm::PointLanes<double> qa, qb;
+    for (int lane = 0; lane < 2; ++lane) {
+      warm::PointLanes<double>& one = lane == 0 ? qa : qb;
+      for (int k = 0; k < 3; ++k) {
+        one.n[k] = q.n[k][lane];
+        one.u[k] = q.u[k][lane];
+        one.v[k] = q.v[k][lane];
+      }
+      one.h1 = q.h1[lane];
+      one.h2 = q.h2[lane];
+      one.f = q.f[lane];
+    }
+    touching_a = warm_contact_after_proof(a1, a2, pa, qa, false, stats, out_a);
+    touching_b = warm_contact_after_proof(b1, b2, pb, qb, false, stats, out_b);
+  };
+  const bool unit = std::abs(last_a.squaredNorm() - 1.0) <= 64.0 * kEps &&
+                    std::abs(last_b.squaredNorm() - 1.0) <= 64.0 * kEps;
+  if (!(q.f[0] >= 0.0 && q.f[1] >= 0.0) || !unit || !warm_path_applies(a1, a2) ||
+      !warm_path_applies(b1, b2)) {
+    alone();
+    return;
+  }
+  warm::GradientLanes<Pair> g;
+  warm::gradient(p, q, g);
+  const Pair tol_g = 16.0 * kEps * p.size;
+  const Mask converged = g.norm2 <= tol_g * tol_g;
+  Mask definite;
+  Pair x1, x2;
+  warm::newton_step(p, q, g, definite, x1, x2);
+  const Pair step2 = x1 * x1 + x2 * x2;
+  const Mask one_step = ~converged & definite & (step2 <= kAngleConverged * kAngleConverged);
+  if (!(one_step[0] && one_step[1])) {
+    alone();
+    return;
+  }
+  const warm::PointLanes<Pair> at_m = q;
+  warm::small_step(g, x1, x2, q);
+  warm::evaluate(p, q);
+  const Mask certified = q.f < p.certify * (1.0 - 1e-9);
+  if (!(certified[0] && certified[1])) {
+    q = at_m;
+    alone();
+    return;
+  }
+  Pair l1[3], l2[3];
+  warm::levers(p, q, l1, l2);
+  for (int lane = 0; lane < 2; ++lane) {
+    PairContact& out = lane == 0 ? out_a : out_b;
+    out.depth = q.f[lane];
+    out.normal = Vec3(q.n[0][lane], q.n[1][lane], q.n[2][lane]);
+    out.lever1 = Vec3(l1[0][lane], l1[1][lane], l1[2][lane]);
+    out.lever2 = Vec3(l2[0][lane], l2[1][lane], l2[2][lane]);
+    out.gaussian_radius = 0.0;
+  }
+  touching_a = q.f[0] > 0.0;
+  touching_b = q.f[1] > 0.0;
+  stats.calls += 2;
+  stats.warm_starts += 2;
+  stats.newton_iterations += 2;
 }
 
 ContactGeometry ellipsoid_sphere_contact(const Ellipsoid& e, const Vec3& centre, double radius,

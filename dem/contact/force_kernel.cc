@@ -53,109 +53,142 @@ void compute_forces(ForceContext& ctx) {
   Vec3 rolling_viscous;  // the dashpot part of one contact's rolling torque
 
   ContactParameters cp{mat.e_star_pp, mat.g_star_pp, 0.0, 0.0, mat.friction_pp, mat.damping_ratio, ctx.dt};
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec3 xi = p.x[i];
-    const double ri = p.radius[i];
-    const double inv_mi = p.inv_mass[i];
-    Vec3 fi = Vec3::Zero();
-    Vec3 ti = Vec3::Zero();
-    for (int k = off[i]; k < off[i + 1]; ++k) {
-      const int j = nbr[k];
-      const Vec3 d = p.x[j] - xi;
-      const double rsum = ri + p.radius[j];
-      const double dist2 = d.squaredNorm();
-      if (dist2 >= rsum * rsum) {
-        if constexpr (kTangential) {
-          // Most pairs in the list are not touching: write only when a contact just ended.
-          if (springs[k].stiffness != 0.0) springs[k] = TangentialSpring{};
+  // A pair slot whose grains are apart forgets its history (written only when it has one: most
+  // slots of the list are not touching).
+  auto forget = [&](int k) {
+    if constexpr (kTangential) {
+      if (springs[k].stiffness != 0.0) springs[k] = TangentialSpring{};
+    }
+    if constexpr (kRolling) {
+      if ((*rolling)[k].stiffness != 0.0) (*rolling)[k] = RollingSpring{};
+    }
+  };
+  // Ellipsoid scenes go by chunks of rows: first every slot of the chunk is classified (bounding
+  // spheres apart, a pair with an ellipsoid, or two spheres) and the shaped pairs are solved, two
+  // at a time (shaped_pair_geometries: the same bits as one at a time); then the forces follow
+  // in the slots' order, as for spheres.
+  enum : unsigned char { kFar, kShaped, kSpheres };
+  constexpr std::size_t kChunkRows = 16;
+  for (std::size_t r0 = 0; r0 < n; r0 = Shapes ? std::min(n, r0 + kChunkRows) : n) {
+    const std::size_t r1 = Shapes ? std::min(n, r0 + kChunkRows) : n;
+    std::vector<ShapedPair>& shaped_pairs = ctx.shaped_pairs;
+    std::size_t shaped_next = 0;
+    if constexpr (Shapes) {
+      ctx.slot_class.resize(static_cast<std::size_t>(off[r1] - off[r0]));
+      shaped_pairs.clear();
+      for (std::size_t i = r0; i < r1; ++i) {
+        const bool ellipsoid_i = p.is_ellipsoid(i);
+        for (int k = off[i]; k < off[i + 1]; ++k) {
+          const int j = nbr[k];
+          const double rsum = p.radius[i] + p.radius[j];
+          unsigned char& c = ctx.slot_class[static_cast<std::size_t>(k - off[r0])];
+          if ((p.x[j] - p.x[i]).squaredNorm() >= rsum * rsum) {
+            c = kFar;
+            forget(k);
+            if (!(*memory)[k].empty()) (*memory)[k] = ShapedContactMemory{};
+          } else if (ellipsoid_i || p.is_ellipsoid(j)) {
+            c = kShaped;
+            ShapedPair sp;
+            sp.i = i;
+            sp.j = static_cast<std::size_t>(j);
+            sp.memory = &(*memory)[k];
+            shaped_pairs.push_back(sp);
+          } else {
+            c = kSpheres;
+          }
         }
+      }
+      if (!shaped_pairs.empty()) shaped_pair_geometries(ctx.posed, shaped_pairs, ctx.solver_stats);
+    }
+    for (std::size_t i = r0; i < r1; ++i) {
+      const Vec3 xi = p.x[i];
+      const double ri = p.radius[i];
+      const double inv_mi = p.inv_mass[i];
+      Vec3 fi = Vec3::Zero();
+      Vec3 ti = Vec3::Zero();
+      for (int k = off[i]; k < off[i + 1]; ++k) {
+        const int j = nbr[k];
+        ContactKinematics kin;
+        double arm_i = 0.0, arm_j = 0.0;  // sphere pairs: lever lengths along the normal
+        bool shaped = false;
         if constexpr (Shapes) {
-          // As the springs: write only when the pair had a memory.
-          if (!(*memory)[k].empty()) (*memory)[k] = ShapedContactMemory{};
+          const unsigned char c = ctx.slot_class[static_cast<std::size_t>(k - off[r0])];
+          if (c == kFar) continue;
+          shaped = c == kShaped;
+        }
+        if (shaped) {
+          const ShapedPair& sp = shaped_pairs[shaped_next++];
+          if (!sp.touching) {
+            forget(k);
+            continue;
+          }
+          sp.kinematics(kin, cp.r_star);
+        } else {
+          const Vec3 d = p.x[j] - xi;
+          const double rsum = ri + p.radius[j];
+          const double dist2 = d.squaredNorm();
+          if constexpr (!Shapes) {
+            if (dist2 >= rsum * rsum) {
+              forget(k);
+              continue;
+            }
+          }
+          sphere_pair_kinematics(d, dist2, ri, p.radius[j], kin, arm_i, arm_j, cp.r_star);
+        }
+        kin.v_i = p.v[i];
+        kin.v_j = p.v[j];
+        if constexpr (kRotation) {
+          kin.omega_i = p.omega[i];
+          kin.omega_j = p.omega[j];
+        }
+        cp.m_star = 1.0 / (inv_mi + p.inv_mass[j]);  // m_i m_j / (m_i + m_j)
+        TangentialSpring& spring = kTangential ? springs[k] : dummy_spring;
+        const ContactForce cf =
+            contact_response<kTangential, E::damping, kRotation, E::energy>(cp, kin, spring, energy);
+        fi += cf.on_i;
+        p.force[j] -= cf.on_i;
+        if constexpr (Record) ctx.contacts.push_back({static_cast<int>(i), j, xi + kin.lever_i, cf.on_i});
+        if constexpr (kDampingWork) {
+          ctx.damping_force[i] -= cf.damping * kin.normal;
+          ctx.damping_force[j] += cf.damping * kin.normal;
+          if constexpr (Shapes) {
+            ctx.damping_torque[i] -= kin.lever_i.cross(cf.damping * kin.normal);
+            ctx.damping_torque[j] += kin.lever_j.cross(cf.damping * kin.normal);
+          }
+        }
+        if constexpr (kRotation) {
+          if (shaped) {
+            ti += kin.lever_i.cross(cf.on_i);
+            p.torque[j] -= kin.lever_j.cross(cf.on_i);
+          } else {
+            const Vec3 arm_x_f = kin.normal.cross(cf.on_i);
+            ti += arm_i * arm_x_f;
+            p.torque[j] += arm_j * arm_x_f;
+          }
         }
         if constexpr (kRolling) {
-          if ((*rolling)[k].stiffness != 0.0) (*rolling)[k] = RollingSpring{};
-        }
-        continue;
-      }
-      ContactKinematics kin;
-      double arm_i = 0.0, arm_j = 0.0;  // sphere pairs: lever lengths along the normal
-      bool shaped = false;
-      if constexpr (Shapes) shaped = p.is_ellipsoid(i) || p.is_ellipsoid(j);
-      if (shaped) {
-        if (!shaped_pair_geometry(ctx.posed, i, j, (*memory)[k], ctx.solver_stats, kin, cp.r_star)) {
-          if constexpr (kTangential) {
-            if (springs[k].stiffness != 0.0) springs[k] = TangentialSpring{};
+          const double k_n = hertz::normal_stiffness(cp.e_star, cp.r_star, kin.overlap);
+          const double inertia_i = rolling_inertia(p, i, kin.lever_i);
+          const double inertia_j = rolling_inertia(p, j, kin.lever_j);
+          const Vec3 m_r = rolling_resistance<E::energy>(
+              rp, kin.normal, kin.omega_i - kin.omega_j, cp.r_star, k_n, cf.normal,
+              inertia_i * inertia_j / (inertia_i + inertia_j), cp.dt, (*rolling)[k], energy, rolling_viscous);
+          ti += m_r;
+          p.torque[j] -= m_r;
+          if constexpr (kRollingWork) {
+            ctx.rolling_damping_torque[i] += rolling_viscous;
+            ctx.rolling_damping_torque[j] -= rolling_viscous;
           }
-          if constexpr (kRolling) {
-            if ((*rolling)[k].stiffness != 0.0) (*rolling)[k] = RollingSpring{};
-          }
-          continue;
         }
-      } else {
-        const double dist = std::sqrt(dist2);
-        const double delta = rsum - dist;
-        kin.normal = d * (1.0 / dist);
-        kin.overlap = delta;
-        arm_i = ri - 0.5 * delta;
-        arm_j = p.radius[j] - 0.5 * delta;
-        kin.lever_i = arm_i * kin.normal;
-        kin.lever_j = -arm_j * kin.normal;
-        cp.r_star = ri * p.radius[j] / rsum;
+        ++contacts;
+        const double delta = kin.overlap;
+        const double r_min =
+            Shapes ? std::min(p.min_semi_axis(i), p.min_semi_axis(j)) : std::min(ri, p.radius[j]);
+        if (delta > max_ratio * r_min) max_ratio = delta / r_min;  // divides only on a new maximum
       }
-      kin.v_i = p.v[i];
-      kin.v_j = p.v[j];
-      if constexpr (kRotation) {
-        kin.omega_i = p.omega[i];
-        kin.omega_j = p.omega[j];
-      }
-      cp.m_star = 1.0 / (inv_mi + p.inv_mass[j]);  // m_i m_j / (m_i + m_j)
-      TangentialSpring& spring = kTangential ? springs[k] : dummy_spring;
-      const ContactForce cf =
-          contact_response<kTangential, E::damping, kRotation, E::energy>(cp, kin, spring, energy);
-      fi += cf.on_i;
-      p.force[j] -= cf.on_i;
-      if constexpr (Record) ctx.contacts.push_back({static_cast<int>(i), j, xi + kin.lever_i, cf.on_i});
-      if constexpr (kDampingWork) {
-        ctx.damping_force[i] -= cf.damping * kin.normal;
-        ctx.damping_force[j] += cf.damping * kin.normal;
-        if constexpr (Shapes) {
-          ctx.damping_torque[i] -= kin.lever_i.cross(cf.damping * kin.normal);
-          ctx.damping_torque[j] += kin.lever_j.cross(cf.damping * kin.normal);
-        }
-      }
-      if constexpr (kRotation) {
-        if (shaped) {
-          ti += kin.lever_i.cross(cf.on_i);
-          p.torque[j] -= kin.lever_j.cross(cf.on_i);
-        } else {
-          const Vec3 arm_x_f = kin.normal.cross(cf.on_i);
-          ti += arm_i * arm_x_f;
-          p.torque[j] += arm_j * arm_x_f;
-        }
-      }
-      if constexpr (kRolling) {
-        const double k_n = hertz::normal_stiffness(cp.e_star, cp.r_star, kin.overlap);
-        const double inertia_i = rolling_inertia(p, i, kin.lever_i);
-        const double inertia_j = rolling_inertia(p, j, kin.lever_j);
-        const Vec3 m_r = rolling_resistance<E::energy>(
-            rp, kin.normal, kin.omega_i - kin.omega_j, cp.r_star, k_n, cf.normal,
-            inertia_i * inertia_j / (inertia_i + inertia_j), cp.dt, (*rolling)[k], energy, rolling_viscous);
-        ti += m_r;
-        p.torque[j] -= m_r;
-        if constexpr (kRollingWork) {
-          ctx.rolling_damping_torque[i] += rolling_viscous;
-          ctx.rolling_damping_torque[j] -= rolling_viscous;
-        }
-      }
-      ++contacts;
-      const double delta = kin.overlap;
-      const double r_min =
-          Shapes ? std::min(p.min_semi_axis(i), p.min_semi_axis(j)) : std::min(ri, p.radius[j]);
-      if (delta > max_ratio * r_min) max_ratio = delta / r_min;  // divides only on a new maximum
+      p.force[i] += fi;
+      if constexpr (kRotation) p.torque[i] += ti;
     }
-    p.force[i] += fi;
-    if constexpr (kRotation) p.torque[i] += ti;
   }
 
   // Particle-wall contacts: the wall is a rigid plane of the particles' own material, so

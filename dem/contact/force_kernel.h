@@ -11,6 +11,7 @@
 #include "dem/contact/ellipsoid_geometry.h"
 #include "dem/contact/grain_poses.h"
 #include "dem/contact/rolling_resistance.h"
+#include "dem/contact/shaped_contact.h"
 #include "dem/core/material.h"
 #include "dem/core/particle_store.h"
 #include "dem/neighbor/verlet_list.h"
@@ -46,6 +47,10 @@ struct ForceContext {
   // Every grain posed once per evaluation (rotation and shape matrices, motion bounds;
   // ellipsoid scenes).
   GrainPoses posed;
+  // Ellipsoid scenes, per chunk of rows (buffers reused): the class of each pair slot and the
+  // shaped pairs past their bounding spheres.
+  std::vector<unsigned char> slot_class;
+  std::vector<ShapedPair> shaped_pairs;
   // Every contact of the evaluation, in the loop's order (recording kernels only).
   std::vector<ContactSample> contacts;
 };

@@ -18,24 +18,30 @@ namespace upgrain::dem {
 // posed_contact(): a separation proof at the pair's last normal and the support-function solver
 // warm-started there. Returns false when apart. `memory` keeps the last normal of a near pair
 // (the next step's warm start), the gap still proven for an apart one, and the Hertz radius of
-// a touching one; its normal points from i to j.
-inline bool shaped_pair_geometry(const GrainPoses& poses, std::size_t i, std::size_t j,
-                                 ShapedContactMemory& memory, ContactSolverStats& stats,
-                                 ContactKinematics& kin, double& r_star) {
-  // Separation budget (docs/ellipsoid-contact.md): the depth is at most f(m), and f(m) grows by
-  // at most the grains' motion bounds, so the gap proven at the last evaluation, less the motion
-  // since, is still a gap. A pair that stays apart is proven once, not every step.
+// a touching one; its normal points from i to j. In three parts, so that the force loops can
+// solve the pairs of a row two at a time (shaped_pair_geometries).
+
+// Separation budget (docs/ellipsoid-contact.md): the depth is at most f(m), and f(m) grows by
+// at most the grains' motion bounds, so the gap proven at the last evaluation, less the motion
+// since, is still a gap. A pair that stays apart is proven once, not every step. True when the
+// pair is still apart without an evaluation.
+inline bool still_apart(const GrainPoses& poses, std::size_t i, std::size_t j, ShapedContactMemory& memory,
+                        ContactSolverStats& stats) {
   if (memory.gap_budget > 0.0) {
     memory.gap_budget -= poses.motion(i) + poses.motion(j);
     if (memory.gap_budget > 0.0) {
       ++stats.still_apart;
-      return false;
+      return true;
     }
   }
-  const bool first_touch = memory.r_star == 0.0;  // the Hertz radius is needed only then
-  PairContact c;
-  const bool touching = posed_contact(
-      poses[i], poses[j], memory.normal != Vec3::Zero() ? &memory.normal : nullptr, first_touch, stats, c);
+  return false;
+}
+
+// The pair's memory after posed_contact() gave `c` (touching or not), and its kinematics.
+inline bool finish_pair(const GrainPoses& poses, std::size_t i, std::size_t j, bool touching,
+                        const PairContact& c, ShapedContactMemory& memory, ContactKinematics& kin,
+                        double& r_star) {
+  const bool first_touch = memory.r_star == 0.0;
   // The normal of the proof or the solver: the pair's next warm start.
   memory.normal = c.normal;
   if (!touching) {
@@ -58,6 +64,44 @@ inline bool shaped_pair_geometry(const GrainPoses& poses, std::size_t i, std::si
   r_star = memory.r_star;
   return true;
 }
+
+inline bool shaped_pair_geometry(const GrainPoses& poses, std::size_t i, std::size_t j,
+                                 ShapedContactMemory& memory, ContactSolverStats& stats,
+                                 ContactKinematics& kin, double& r_star) {
+  if (still_apart(poses, i, j, memory, stats)) return false;
+  PairContact c;
+  const bool touching =
+      posed_contact(poses[i], poses[j], memory.normal != Vec3::Zero() ? &memory.normal : nullptr,
+                    memory.r_star == 0.0, stats, c);
+  return finish_pair(poses, i, j, touching, c, memory, kin, r_star);
+}
+
+// One pair of a batch, and what shaped_pair_geometry() gives for it.
+struct ShapedPair {
+  std::size_t i = 0, j = 0;
+  ShapedContactMemory* memory = nullptr;
+  bool touching = false;
+  // When touching: the geometry part of its ContactKinematics, and the held Hertz radius.
+  Vec3 normal = Vec3::Zero();
+  double overlap = 0.0;
+  Vec3 lever_i = Vec3::Zero(), lever_j = Vec3::Zero();
+  double r_star = 0.0;
+
+  // Its geometry into a contact's kinematics, and its Hertz radius.
+  void kinematics(ContactKinematics& kin, double& radius) const {
+    kin.normal = normal;
+    kin.overlap = overlap;
+    kin.lever_i = lever_i;
+    kin.lever_j = lever_j;
+    radius = r_star;
+  }
+};
+
+// shaped_pair_geometry() on every pair of `pairs`, with the same results bit for bit and the
+// same counts, solving two pairs at once (posed_contacts_two) where both were touching at the
+// last step: the force loops call it for the shaped pairs of a row.
+void shaped_pair_geometries(const GrainPoses& poses, std::vector<ShapedPair>& pairs,
+                            ContactSolverStats& stats);
 
 // An ellipsoid against a plane wall, closed form: its lowest point along -normal
 // (docs/ellipsoid-contact.md). Returns false when apart (then r_held = 0). Sets the overlap

@@ -9,6 +9,11 @@
 // bounded (no drift), and the quaternion stays normalised because it is only multiplied by
 // unit quaternions. Torques enter as half kicks of the world-frame angular momentum around
 // the free rotation (velocity-Verlet style), as in Simulation::step for the spheres.
+//
+// The arithmetic is written once over "lanes" T: double for one body, or a vector of doubles
+// holding several bodies side by side (dem/motion/grain_rotation.cc turns two grains at once).
+// Every lane of a vector runs the operations of the scalar code in the same order, so a body
+// gets the same bits either way.
 #include <Eigen/Geometry>
 #include <cmath>
 
@@ -21,27 +26,59 @@ struct RigidRotationState {
   Vec3 angular_momentum_body = Vec3::Zero();  // L in the principal body frame (kg m^2/s)
 };
 
-// Exact free rotation about principal axis K for a time h: with L_b,K and I_K fixed, the
-// body turns by phi = h L_K / I_K about its axis K, so L_b turns by -phi about that axis.
-// `half_step_rate` is h / (2 I_K), so that phi/2 = L_K half_step_rate (no division here).
-// One sine and cosine of phi/2 serve both: the quaternion factor (cos phi/2, sin phi/2 e_K)
-// and cos phi = c^2 - s^2, sin phi = 2 s c for L_b (the rotation is a fifth of an ellipsoid's
-// step cost otherwise, measured with perf).
-template <int K>
-inline void rotate_about_principal_axis(RigidRotationState& st, double half_step_rate) {
+// A unit quaternion (w, v) and a body-frame angular momentum l, over lanes T.
+template <class T>
+struct RotorLanes {
+  T w;
+  T v[3];
+  T l[3];
+};
+
+// Below this half-angle per principal-axis turn, sine and cosine are their Taylor series to x^3
+// and x^4: the next terms, x^5/120 and x^6/720, are below 1e-18 of the result. A DEM step turns a
+// grain by far less.
+inline constexpr double kSmallHalfAngle = 1e-4;
+
+// q <- q (c, s e_K) and L_b turned by -phi about e_K, given s = sin(phi/2), c = cos(phi/2): one
+// sine and cosine of phi/2 serve both, cos phi = c^2 - s^2, sin phi = 2 s c. The Hamilton
+// product written out for a factor with one vector component:
+// (w, v)(c, s e_K) = (c w - s v_K, c v + s w e_K + s v x e_K).
+template <int K, class T>
+[[gnu::always_inline]] inline void turn_about_axis(RotorLanes<T>& r, T s, T c) {
   constexpr int i = (K + 1) % 3, j = (K + 2) % 3;  // (i, j, K) cyclic
-  Vec3& l = st.angular_momentum_body;
-  const double half = l[K] * half_step_rate;
+  const T w = r.w, vi = r.v[i], vj = r.v[j], vk = r.v[K];
+  r.w = c * w - s * vk;
+  r.v[i] = c * vi + s * vj;
+  r.v[j] = c * vj - s * vi;
+  r.v[K] = c * vk + s * w;
+  const T cos_phi = c * c - s * s, sin_phi = 2.0 * s * c;
+  const T li = r.l[i], lj = r.l[j];
+  r.l[i] = cos_phi * li + sin_phi * lj;
+  r.l[j] = -sin_phi * li + cos_phi * lj;
+}
+
+// Exact free rotation about principal axis K: with L_b,K and I_K fixed, the body turns by
+// phi = h L_K / I_K about its axis K. `half_step_rate` is h / (2 I_K), so phi/2 = L_K rate.
+// This one is for |phi/2| < kSmallHalfAngle (any lanes).
+template <int K, class T>
+[[gnu::always_inline]] inline void small_turn(RotorLanes<T>& r, T half_step_rate) {
+  const T half = r.l[K] * half_step_rate;
+  const T x2 = half * half;
+  turn_about_axis<K>(r, half * (1.0 - x2 * (1.0 / 6.0)), 1.0 - x2 * (0.5 - x2 * (1.0 / 24.0)));
+}
+
+// The same for any angle, one body.
+template <int K>
+inline void turn(RotorLanes<double>& r, double half_step_rate) {
+  const double half = r.l[K] * half_step_rate;
+  if (std::abs(half) < kSmallHalfAngle) {
+    small_turn<K>(r, half_step_rate);
+    return;
+  }
   double s, c;
-  if (std::abs(half) < 1e-4) {
-    // The usual DEM step: the next terms, x^5/120 and x^6/720, are below 1e-18 of the result.
-    const double x2 = half * half;
-    s = half * (1.0 - x2 * (1.0 / 6.0));
-    c = 1.0 - x2 * (0.5 - x2 * (1.0 / 24.0));
-  } else if (std::abs(half) < 0.03) {
-    // A DEM step turns a grain by far less than 0.03 rad: Taylor series to x^7 and x^6,
-    // whose remainders (x^9/9!, x^8/8!) are below 2e-17 of the result there, with constant
-    // coefficients (no division in the chain: the rotation is latency-bound).
+  if (std::abs(half) < 0.03) {
+    // Taylor series to x^7 and x^6, whose remainders (x^9/9!, x^8/8!) are below 2e-17 of the
+    // result there, with constant coefficients (no division in the chain).
     const double x2 = half * half;
     s = half * (1.0 + x2 * (-1.0 / 6.0 + x2 * (1.0 / 120.0 - x2 * (1.0 / 5040.0))));
     c = 1.0 + x2 * (-0.5 + x2 * (1.0 / 24.0 - x2 * (1.0 / 720.0)));
@@ -49,32 +86,67 @@ inline void rotate_about_principal_axis(RigidRotationState& st, double half_step
     s = std::sin(half);
     c = std::cos(half);
   }
-  // q <- q (c, s e_K), the Hamilton product written out for a factor with one vector
-  // component: (w, v)(c, s e_K) = (c w - s v_K, c v + s w e_K + s v x e_K).
-  Eigen::Quaterniond& q = st.orientation;
-  const double w = q.w(), vi = q.vec()[i], vj = q.vec()[j], vk = q.vec()[K];
-  q.w() = c * w - s * vk;
-  q.vec()[i] = c * vi + s * vj;
-  q.vec()[j] = c * vj - s * vi;
-  q.vec()[K] = c * vk + s * w;
-  const double cos_phi = c * c - s * s, sin_phi = 2.0 * s * c;
-  const double li = l[i], lj = l[j];
-  l[i] = cos_phi * li + sin_phi * lj;
-  l[j] = -sin_phi * li + cos_phi * lj;
+  turn_about_axis<K>(r, s, c);
+}
+
+// Removes round-off only: every factor is a unit quaternion, so |q|^2 = 1 + e with e of order
+// 1e-16, and one Newton step for 1/sqrt, (3 - |q|^2)/2, normalises to round-off without a
+// square root or a division.
+template <class T>
+[[gnu::always_inline]] inline void renormalise(RotorLanes<T>& r) {
+  const T k = 1.5 - 0.5 * (r.w * r.w + r.v[0] * r.v[0] + r.v[1] * r.v[1] + r.v[2] * r.v[2]);
+  r.w *= k;
+  r.v[0] *= k;
+  r.v[1] *= k;
+  r.v[2] *= k;
+}
+
+// One step h of torque-free rotation, `rate` = (h/2) / I per principal axis. The small-angle
+// form needs |L| max(rate) < kSmallHalfAngle (every turn is then small: |L_K| <= |L|, which the
+// turns keep).
+template <class T>
+[[gnu::always_inline]] inline void small_free_rotation(RotorLanes<T>& r, const T rate[3]) {
+  small_turn<0>(r, 0.5 * rate[0]);
+  small_turn<1>(r, 0.5 * rate[1]);
+  small_turn<2>(r, rate[2]);
+  small_turn<1>(r, 0.5 * rate[1]);
+  small_turn<0>(r, 0.5 * rate[0]);
+  renormalise(r);
+}
+
+inline void free_rotation(RotorLanes<double>& r, const double rate[3]) {
+  turn<0>(r, 0.5 * rate[0]);
+  turn<1>(r, 0.5 * rate[1]);
+  turn<2>(r, rate[2]);
+  turn<1>(r, 0.5 * rate[1]);
+  turn<0>(r, 0.5 * rate[0]);
+  renormalise(r);
+}
+
+// out = R(q) a for a unit quaternion q = (w, v), or R(q)^T a with Inverse (v -> -v):
+// a + 2w (v x a) + 2 v x (v x a).
+template <bool Inverse, class T>
+[[gnu::always_inline]] inline void rotate_vector(T w, const T v_in[3], const T a[3], T out[3]) {
+  const T v[3] = {Inverse ? -v_in[0] : v_in[0], Inverse ? -v_in[1] : v_in[1], Inverse ? -v_in[2] : v_in[2]};
+  const T c0 = 2.0 * (v[1] * a[2] - v[2] * a[1]);
+  const T c1 = 2.0 * (v[2] * a[0] - v[0] * a[2]);
+  const T c2 = 2.0 * (v[0] * a[1] - v[1] * a[0]);
+  out[0] = a[0] + w * c0 + (v[1] * c2 - v[2] * c1);
+  out[1] = a[1] + w * c1 + (v[2] * c0 - v[0] * c2);
+  out[2] = a[2] + w * c2 + (v[0] * c1 - v[1] * c0);
 }
 
 // One step h of torque-free rotation, given the inverse principal moments 1/I (body frame).
 inline void free_rotation_step_inverse(RigidRotationState& s, const Vec3& inverse_inertia, double h) {
-  const Vec3 rate = (0.5 * h) * inverse_inertia;  // h / (2 I): phi/2 = L rate
-  rotate_about_principal_axis<0>(s, 0.5 * rate[0]);
-  rotate_about_principal_axis<1>(s, 0.5 * rate[1]);
-  rotate_about_principal_axis<2>(s, rate[2]);
-  rotate_about_principal_axis<1>(s, 0.5 * rate[1]);
-  rotate_about_principal_axis<0>(s, 0.5 * rate[0]);
-  // Removes round-off only: every factor is a unit quaternion, so |q|^2 = 1 + e with e of
-  // order 1e-16, and one Newton step for 1/sqrt, (3 - |q|^2)/2, normalises to round-off
-  // without a square root or a division.
-  s.orientation.coeffs() *= 1.5 - 0.5 * s.orientation.squaredNorm();
+  RotorLanes<double> r{
+      s.orientation.w(),
+      {s.orientation.x(), s.orientation.y(), s.orientation.z()},
+      {s.angular_momentum_body.x(), s.angular_momentum_body.y(), s.angular_momentum_body.z()}};
+  const double rate[3] = {0.5 * h * inverse_inertia[0], 0.5 * h * inverse_inertia[1],
+                          0.5 * h * inverse_inertia[2]};
+  free_rotation(r, rate);
+  s.orientation = Eigen::Quaterniond(r.w, r.v[0], r.v[1], r.v[2]);
+  s.angular_momentum_body = Vec3(r.l[0], r.l[1], r.l[2]);
 }
 
 // One step h of torque-free rotation (principal moments `inertia` in the body frame).

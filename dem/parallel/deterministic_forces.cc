@@ -111,91 +111,125 @@ DeterministicForceResult compute(const DeterministicForceInput& in) {
   ContactParameters cp{mat.e_star_pp, mat.g_star_pp, 0.0, 0.0, mat.friction_pp, mat.damping_ratio, in.dt};
   const std::size_t m = l.lo.size();
   double max_ratio = out.max_overlap_ratio;
-  for (std::size_t k = 0; k < m; ++k) {
-    const int i = l.lo[k];
-    const int j = l.hi[k];
-    const Vec3 d = p.x[j] - p.x[i];
-    const double ri = p.radius[i];
-    const double rj = p.radius[j];
-    const double rsum = ri + rj;
-    const double dist2 = d.squaredNorm();
-    if (dist2 >= rsum * rsum) {
-      l.touching[k] = 0;
-      if constexpr (E::friction) {
-        if (l.spring[k].stiffness != 0.0) l.spring[k] = TangentialSpring{};
-      }
-      if constexpr (Shapes) {
-        if (!l.memory[k].empty()) l.memory[k] = ShapedContactMemory{};
-      }
-      continue;
+  // A slot whose pair is apart: not touching, no spring.
+  auto apart = [&](std::size_t k) {
+    l.touching[k] = 0;
+    if constexpr (E::friction) {
+      if (l.spring[k].stiffness != 0.0) l.spring[k] = TangentialSpring{};
     }
-    ContactKinematics kin;
-    double arm_i = 0.0, arm_j = 0.0;  // sphere pairs: lever lengths along the normal
-    bool shaped = false;
-    if constexpr (Shapes) shaped = p.is_ellipsoid(i) || p.is_ellipsoid(j);
-    if (shaped) {
-      // The serial loop's geometry with lo as body i: every rank holding the pair computes
-      // the same normal (lo to hi), memory and kinematics.
-      if (!shaped_pair_geometry(*in.posed, i, j, l.memory[k], *in.solver_stats, kin, cp.r_star)) {
-        l.touching[k] = 0;
-        if constexpr (E::friction) {
-          if (l.spring[k].stiffness != 0.0) l.spring[k] = TangentialSpring{};
+  };
+  // Ellipsoid scenes go by chunks of slots, as the serial loop by chunks of rows: the slots are
+  // classified and the shaped pairs solved two at a time first (the same bits as one at a time),
+  // then the forces follow in slot order.
+  enum : unsigned char { kFar, kShaped, kSpheres };
+  constexpr std::size_t kChunkSlots = 64;
+  std::vector<unsigned char> slot_class;
+  std::vector<ShapedPair> shaped_pairs;
+  for (std::size_t k0 = 0; k0 < m; k0 = Shapes ? std::min(m, k0 + kChunkSlots) : m) {
+    const std::size_t k1 = Shapes ? std::min(m, k0 + kChunkSlots) : m;
+    std::size_t shaped_next = 0;
+    if constexpr (Shapes) {
+      slot_class.resize(k1 - k0);
+      shaped_pairs.clear();
+      for (std::size_t k = k0; k < k1; ++k) {
+        const int i = l.lo[k];
+        const int j = l.hi[k];
+        const double rsum = p.radius[i] + p.radius[j];
+        unsigned char& c = slot_class[k - k0];
+        if ((p.x[j] - p.x[i]).squaredNorm() >= rsum * rsum) {
+          c = kFar;
+          apart(k);
+          if (!l.memory[k].empty()) l.memory[k] = ShapedContactMemory{};
+        } else if (p.is_ellipsoid(i) || p.is_ellipsoid(j)) {
+          // The serial loop's geometry with lo as body i: every rank holding the pair computes
+          // the same normal (lo to hi), memory and kinematics.
+          c = kShaped;
+          ShapedPair sp;
+          sp.i = static_cast<std::size_t>(i);
+          sp.j = static_cast<std::size_t>(j);
+          sp.memory = &l.memory[k];
+          shaped_pairs.push_back(sp);
+        } else {
+          c = kSpheres;
         }
-        continue;
       }
-    } else {
-      const double dist = std::sqrt(dist2);
-      const double delta = rsum - dist;
-      kin.normal = d * (1.0 / dist);
-      kin.overlap = delta;
-      arm_i = ri - 0.5 * delta;
-      arm_j = rj - 0.5 * delta;
-      kin.lever_i = arm_i * kin.normal;
-      kin.lever_j = -arm_j * kin.normal;
-      cp.r_star = ri * rj / rsum;
+      if (!shaped_pairs.empty()) shaped_pair_geometries(*in.posed, shaped_pairs, *in.solver_stats);
     }
-    const double delta = kin.overlap;
-    kin.v_i = p.v[i];
-    kin.v_j = p.v[j];
-    if constexpr (kRotation) {
-      kin.omega_i = p.omega[i];
-      kin.omega_j = p.omega[j];
-    }
-    cp.m_star = 1.0 / (p.inv_mass[i] + p.inv_mass[j]);
-    TangentialSpring& spring = E::friction ? l.spring[k] : dummy_spring;
-    ContactEnergy ce;
-    const ContactForce cf =
-        contact_response<E::friction, E::damping, kRotation, E::energy>(cp, kin, spring, ce);
-    l.touching[k] = 1;
-    l.force[k] = cf.on_i;
-    if constexpr (E::energy) {
-      l.elastic_normal[k] = ce.elastic_normal;
-      l.elastic_tangential[k] = ce.elastic_tangential;
-      if constexpr (kDampingWork) l.damping_on_lo[k] = -cf.damping * kin.normal;
-      if constexpr (kDampingWork && Shapes) {
-        l.damping_torque_lo[k] = -kin.lever_i.cross(cf.damping * kin.normal);
-        l.damping_torque_hi[k] = kin.lever_j.cross(cf.damping * kin.normal);
+    for (std::size_t k = k0; k < k1; ++k) {
+      const int i = l.lo[k];
+      const int j = l.hi[k];
+      const double ri = p.radius[i];
+      const double rj = p.radius[j];
+      ContactKinematics kin;
+      double arm_i = 0.0, arm_j = 0.0;  // sphere pairs: lever lengths along the normal
+      bool shaped = false;
+      if constexpr (Shapes) {
+        const unsigned char c = slot_class[k - k0];
+        if (c == kFar) continue;
+        shaped = c == kShaped;
       }
-      if (i < n_owned) {
-        out.dissipated.dissipated_damping += ce.dissipated_damping;
-        out.dissipated.dissipated_friction += ce.dissipated_friction;
-        out.dissipated.tangential_stiffness_change += ce.tangential_stiffness_change;
-      }
-    }
-    if constexpr (Record) in.record->push_back({i, j, p.x[i] + kin.lever_i, cf.on_i});
-    if constexpr (kRotation) {
       if (shaped) {
-        l.torque_lo[k] = kin.lever_i.cross(cf.on_i);
-        l.torque_hi[k] = -kin.lever_j.cross(cf.on_i);
+        const ShapedPair& sp = shaped_pairs[shaped_next++];
+        if (!sp.touching) {
+          apart(k);
+          continue;
+        }
+        sp.kinematics(kin, cp.r_star);
       } else {
-        const Vec3 arm_x_f = kin.normal.cross(cf.on_i);
-        l.torque_lo[k] = arm_i * arm_x_f;
-        l.torque_hi[k] = arm_j * arm_x_f;
+        const Vec3 d = p.x[j] - p.x[i];
+        const double rsum = ri + rj;
+        const double dist2 = d.squaredNorm();
+        if constexpr (!Shapes) {
+          if (dist2 >= rsum * rsum) {
+            apart(k);
+            continue;
+          }
+        }
+        sphere_pair_kinematics(d, dist2, ri, rj, kin, arm_i, arm_j, cp.r_star);
       }
+      const double delta = kin.overlap;
+      kin.v_i = p.v[i];
+      kin.v_j = p.v[j];
+      if constexpr (kRotation) {
+        kin.omega_i = p.omega[i];
+        kin.omega_j = p.omega[j];
+      }
+      cp.m_star = 1.0 / (p.inv_mass[i] + p.inv_mass[j]);
+      TangentialSpring& spring = E::friction ? l.spring[k] : dummy_spring;
+      ContactEnergy ce;
+      const ContactForce cf =
+          contact_response<E::friction, E::damping, kRotation, E::energy>(cp, kin, spring, ce);
+      l.touching[k] = 1;
+      l.force[k] = cf.on_i;
+      if constexpr (E::energy) {
+        l.elastic_normal[k] = ce.elastic_normal;
+        l.elastic_tangential[k] = ce.elastic_tangential;
+        if constexpr (kDampingWork) l.damping_on_lo[k] = -cf.damping * kin.normal;
+        if constexpr (kDampingWork && Shapes) {
+          l.damping_torque_lo[k] = -kin.lever_i.cross(cf.damping * kin.normal);
+          l.damping_torque_hi[k] = kin.lever_j.cross(cf.damping * kin.normal);
+        }
+        if (i < n_owned) {
+          out.dissipated.dissipated_damping += ce.dissipated_damping;
+          out.dissipated.dissipated_friction += ce.dissipated_friction;
+          out.dissipated.tangential_stiffness_change += ce.tangential_stiffness_change;
+        }
+      }
+      if constexpr (Record) in.record->push_back({i, j, p.x[i] + kin.lever_i, cf.on_i});
+      if constexpr (kRotation) {
+        if (shaped) {
+          l.torque_lo[k] = kin.lever_i.cross(cf.on_i);
+          l.torque_hi[k] = -kin.lever_j.cross(cf.on_i);
+        } else {
+          const Vec3 arm_x_f = kin.normal.cross(cf.on_i);
+          l.torque_lo[k] = arm_i * arm_x_f;
+          l.torque_hi[k] = arm_j * arm_x_f;
+        }
+      }
+      if (i < n_owned) ++out.pair_contacts;
+      const double r_min = Shapes ? std::min(p.min_semi_axis(i), p.min_semi_axis(j)) : std::min(ri, rj);
+      if (delta > max_ratio * r_min) max_ratio = delta / r_min;
     }
-    if (i < n_owned) ++out.pair_contacts;
-    const double r_min = Shapes ? std::min(p.min_semi_axis(i), p.min_semi_axis(j)) : std::min(ri, rj);
-    if (delta > max_ratio * r_min) max_ratio = delta / r_min;
   }
   out.max_overlap_ratio = max_ratio;
 

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "dem/core/error.h"
+#include "dem/motion/grain_rotation.h"
 #include "dem/neighbor/cell_grid.h"
 #include "dem/parallel/exchange.h"
 #include "dem/simulation.h"

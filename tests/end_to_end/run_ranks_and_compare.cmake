@@ -11,22 +11,16 @@ foreach(k ${RANKS})
     message(FATAL_ERROR "upgrain on ${k} ranks failed:\n${out}\n${err}")
   endif()
   list(APPEND folders ${WORK}/np${k})
-  if(COMPUTE_GRIDS)
-    execute_process(COMMAND ${PYTHON} ${COMPUTE_GRIDS} ${WORK}/np${k} ${k} ${PARTICLES} RESULT_VARIABLE code
+  # Each run's own checks (optional): a script given the folder, the rank count and the
+  # particle count.
+  foreach(script ${COMPUTE_GRIDS} ${COMPUTE_GRID_STRAIN})
+    execute_process(COMMAND ${PYTHON} ${script} ${WORK}/np${k} ${k} ${PARTICLES} RESULT_VARIABLE code
                     OUTPUT_VARIABLE check ERROR_VARIABLE err)
     if(NOT code EQUAL 0)
-      message(FATAL_ERROR "compute-grid stress on ${k} ranks:\n${check}\n${err}")
+      message(FATAL_ERROR "${script} on ${k} ranks:\n${check}\n${err}")
     endif()
     message(STATUS "${k} ranks: ${check}")
-  endif()
-  if(COMPUTE_GRID_STRAIN)
-    execute_process(COMMAND ${PYTHON} ${COMPUTE_GRID_STRAIN} ${WORK}/np${k} ${k} ${PARTICLES} RESULT_VARIABLE code
-                    OUTPUT_VARIABLE check ERROR_VARIABLE err)
-    if(NOT code EQUAL 0)
-      message(FATAL_ERROR "compute-grid strain on ${k} ranks:\n${check}\n${err}")
-    endif()
-    message(STATUS "${k} ranks: ${check}")
-  endif()
+  endforeach()
 endforeach()
 execute_process(COMMAND ${PYTHON} ${CHECK} ${folders} RESULT_VARIABLE code OUTPUT_VARIABLE check
                 ERROR_VARIABLE err)

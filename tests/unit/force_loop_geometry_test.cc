@@ -191,5 +191,56 @@ TEST(ForceLoopGeometry, SeparationBudgetNeverHidesAContact) {
   EXPECT_GT(skipped, steps / 10);
 }
 
+// Two pairs at once (posed_contacts_two, the force loop's batches): the same results bit for bit
+// and the same counts as each pair alone, whether both take the one-step straight-line path,
+// one is apart, one needs more steps (a larger move), or one overlaps beyond the certificate.
+TEST(ForceLoopGeometry, TwoPairsAtOnceAreBitwiseOnePairAtATime) {
+  std::mt19937_64 rng(24);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int both_in_lanes = 0;
+  for (int trial = 0; trial < 600 / kScale; ++trial) {
+    GrainPoses poses[2];
+    Vec3 previous[2];
+    for (int pair = 0; pair < 2; ++pair) {
+      const Shape& shape = kShapes[(trial + pair) % 3];
+      const int kind = static_cast<int>(unit(rng) * 8.0);  // 0-4 one step, 5 apart, 6 moved, 7 deep
+      Case k = make_case(rng, shape, Orientation::random, kind == 5 ? -1e-3 : kind == 7 ? 0.6 : 1e-3);
+      Ellipsoid b1 = k.e1, b2 = k.e2;
+      const double move = kind == 6 ? 1e-3 : 1e-8;
+      nudge(rng, b1, move * k.c_min, move);
+      nudge(rng, b2, move * k.c_min, move);
+      ContactSolverStats ignored;
+      previous[pair] = ellipsoid_contact(b1, b2, ignored).normal;
+      poses[pair].update(store_of(k.e1, k.e2));
+    }
+    ContactSolverStats alone_stats, two_stats;
+    PairContact alone[2], two[2];
+    bool alone_touching[2], two_touching[2];
+    for (int pair = 0; pair < 2; ++pair)
+      alone_touching[pair] =
+          posed_contact(poses[pair][0], poses[pair][1], &previous[pair], false, alone_stats, alone[pair]);
+    posed_contacts_two(poses[0][0], poses[0][1], previous[0], poses[1][0], poses[1][1], previous[1],
+                       two_stats, two[0], two[1], two_touching[0], two_touching[1]);
+    for (int pair = 0; pair < 2; ++pair) {
+      SCOPED_TRACE("trial " + std::to_string(trial) + " pair " + std::to_string(pair));
+      ASSERT_EQ(two_touching[pair], alone_touching[pair]);
+      EXPECT_EQ(two[pair].depth, alone[pair].depth);
+      EXPECT_EQ(two[pair].normal, alone[pair].normal);
+      if (alone_touching[pair]) {
+        EXPECT_EQ(two[pair].lever1, alone[pair].lever1);
+        EXPECT_EQ(two[pair].lever2, alone[pair].lever2);
+      }
+    }
+    EXPECT_EQ(two_stats.calls, alone_stats.calls);
+    EXPECT_EQ(two_stats.warm_starts, alone_stats.warm_starts);
+    EXPECT_EQ(two_stats.newton_iterations, alone_stats.newton_iterations);
+    EXPECT_EQ(two_stats.proven_apart, alone_stats.proven_apart);
+    EXPECT_EQ(two_stats.fallbacks, alone_stats.fallbacks);
+    both_in_lanes +=
+        alone_stats.newton_iterations == 2 && alone_stats.calls == 2 && alone_stats.fallbacks == 0;
+  }
+  EXPECT_GT(both_in_lanes, 100 / kScale);  // the two-lane path itself was exercised
+}
+
 }  // namespace
 }  // namespace upgrain::dem

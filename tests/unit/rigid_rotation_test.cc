@@ -9,6 +9,8 @@
 #include <numbers>
 #include <vector>
 
+#include "dem/core/particle_store.h"
+#include "dem/motion/grain_rotation.h"
 #include "dem/motion/rigid_rotation.h"
 
 using namespace upgrain::dem;
@@ -108,4 +110,37 @@ TEST(RigidRotation, ConstantTorqueAddsAngularMomentumExactly) {
   for (int k = 0; k < 5000; ++k) rotation_step(s, inertia, torque, h);
   const Vec3 l = s.orientation * s.angular_momentum_body;
   EXPECT_LE((l - (l0 + 5000 * h * torque)).norm(), 1e-12 * l.norm());
+}
+
+// The grains of a store turn two at a time (dem/motion/grain_rotation.cc): each grain gets the
+// same bits as when it turns alone, for slow grains (the two-lane path) and for a fast one (which
+// sends its pair to the one-at-a-time path), in both halves of the step.
+TEST(GrainRotation, TwoAtATimeIsBitwiseOneAtATime) {
+  ParticleStore all;
+  const double spins[] = {3.0, -7.0, 11.0, 2e5};  // rad/s; the last turns by more than 1e-4 rad a step
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::Quaterniond q(Eigen::AngleAxisd(0.3 + k, Vec3(1.0, 0.5 * k, -0.2).normalized()));
+    all.add_ellipsoid(k + 1, Vec3(1.0, 0.8 - 0.1 * k, 0.5) * 1e-3, 2650.0, Vec3(0.01 * k, 0, 0), q,
+                      Vec3::Zero(), Vec3(spins[k], 0.3 * spins[k], -0.5 * spins[k]));
+    all.torque.back() = Vec3(1e-6 * (k + 1), -2e-6, 3e-6 * k);
+  }
+  const double dt = 1e-5, half = 0.5 * dt;
+  for (int pairing : {0, 1}) {  // pairs (1, 2), (3, 4); then (2, 3) with 1 and 4 alone
+    ParticleStore together = all;
+    if (pairing == 1) together.permute({0, 3, 1, 2});  // 1, 4, 2, 3: 1 pairs with 4, 2 with 3
+    rotation_first_half(together, together.size(), half, dt);
+    rotation_second_half(together, together.size(), half);
+    for (std::size_t i = 0; i < together.size(); ++i) {
+      ParticleStore alone;
+      const std::size_t k = static_cast<std::size_t>(together.id[i] - 1);
+      alone.add_ellipsoid(all.id[k], all.semi_axes[k], 2650.0, all.x[k], all.orientation[k], Vec3::Zero(),
+                          all.omega[k]);
+      alone.torque[0] = all.torque[k];
+      rotation_first_half(alone, 1, half, dt);
+      rotation_second_half(alone, 1, half);
+      EXPECT_EQ(together.orientation[i].coeffs(), alone.orientation[0].coeffs())
+          << "grain " << together.id[i];
+      EXPECT_EQ(together.omega[i], alone.omega[0]) << "grain " << together.id[i];
+    }
+  }
 }
