@@ -11,7 +11,10 @@
 // spread of the per-round ratios, narrow-phase tests per second (pairs past the bounding
 // spheres: still apart by an earlier proof, proven apart, or solved), and Newton steps per
 // solve.
-//   bench_ellipsoid_bed [N [steps [cache_dir [rounds]]]]   (defaults 2000, 2000, no cache, 5)
+//   bench_ellipsoid_bed [N [steps [cache_dir [rounds [phase]]]]]   (defaults 2000, 2000, no cache, 5, bed)
+// `phase` = deposition times a flow instead of the settled bed: both fills falling and piling
+// up (soft grains, E = 1e8 Pa, one time step for both, 0.8 of the ellipsoids' safe step), timed
+// from t = 0.15 s (the pile forming on the floor), where grains move, turn and collide.
 // With `cache_dir`, the settled beds are written there on the first run and read back on
 // later ones (same N), so repeated timings and callgrind runs skip the settling. Under
 // callgrind (`valgrind --tool=callgrind`) there is one round, and each bed's timed steps are a
@@ -108,6 +111,33 @@ double time_steps(Bed& b, long steps) {
 // benchmark material.
 ParticleStore settle(long n, double r, const std::vector<GrainShape>& shapes, double side);
 
+// The soft scene of the settling, filled and not yet fallen.
+SceneConfig soft_scene(long n, double r, const std::vector<GrainShape>& shapes, double side) {
+  SceneConfig s = upgrain::bench::benchmark_scene(side);
+  s.particles.count = n;
+  s.particles.radius = r;
+  s.particles.shapes = shapes;
+  s.fill.bottom_gap = 0.002;
+  s.fill.position_jitter = 0.5;
+  s.particles.material.youngs_modulus = 1e8;
+  s.time_step = 0.8 * estimate_time_step(s).safe_step;
+  return s;
+}
+
+// A deposition in flow: the fill run to t = 0.15 s at time step `dt`, ready for timing.
+Bed flowing(long n, double r, const std::vector<GrainShape>& shapes, double dt) {
+  const double side = std::cbrt(n * 4.0 / 3.0 * std::numbers::pi * std::pow(1.5e-3, 3) / 0.6);
+  SceneConfig s = soft_scene(n, r, shapes, side);
+  s.time_step = dt;
+  Bed b;
+  b.what = shapes.empty() ? "spheres" : "ellipsoids";
+  b.n = n;
+  b.sim = std::make_unique<Simulation>(s, fill_container(s));
+  b.sim->run(std::lround(0.15 / dt));
+  b.before = b.sim->contact_solver_stats();
+  return b;
+}
+
 // The settled bed (from the cache or settled now), stiff and warmed up for timing.
 Bed prepare(long n, double r, const std::vector<GrainShape>& shapes, const std::string& cache_dir) {
   const double side = std::cbrt(n * 4.0 / 3.0 * std::numbers::pi * std::pow(1.5e-3, 3) / 0.6);
@@ -146,14 +176,7 @@ Bed prepare(long n, double r, const std::vector<GrainShape>& shapes, const std::
 }
 
 ParticleStore settle(long n, double r, const std::vector<GrainShape>& shapes, double side) {
-  SceneConfig s = upgrain::bench::benchmark_scene(side);
-  s.particles.count = n;
-  s.particles.radius = r;
-  s.particles.shapes = shapes;
-  s.fill.bottom_gap = 0.002;
-  s.fill.position_jitter = 0.5;
-  s.particles.material.youngs_modulus = 1e8;
-  s.time_step = 0.8 * estimate_time_step(s).safe_step;
+  const SceneConfig s = soft_scene(n, r, shapes, side);
   const char* what = shapes.empty() ? "spheres" : "ellipsoids";
   Simulation soft(s, fill_container(s));
   for (long k = 1; k * s.time_step <= 1.0; ++k) {
@@ -185,10 +208,20 @@ int main(int argc, char** argv) {
   const long steps = argc > 2 ? std::atol(argv[2]) : 2000;
   const std::string cache_dir = argc > 3 ? argv[3] : "";
   const long rounds = UPGRAIN_ON_VALGRIND() ? 1 : std::max(1L, argc > 4 ? std::atol(argv[4]) : 5L);
+  const bool deposition = argc > 5 && std::string(argv[5]) == "deposition";
   const double r = 1.5e-3;
-  Bed spheres = prepare(n, r, {}, cache_dir);
   const GrainShape shape{0.8, 0.6, 1.0};
-  Bed ellipsoids = prepare(n, r / std::cbrt(0.8 * 0.6), {shape}, cache_dir);
+  const double a = r / std::cbrt(0.8 * 0.6);
+  Bed spheres, ellipsoids;
+  if (deposition) {
+    const double side = std::cbrt(n * 4.0 / 3.0 * std::numbers::pi * std::pow(1.5e-3, 3) / 0.6);
+    const double dt = soft_scene(n, a, {shape}, side).time_step;
+    spheres = flowing(n, r, {}, dt);
+    ellipsoids = flowing(n, a, {shape}, dt);
+  } else {
+    spheres = prepare(n, r, {}, cache_dir);
+    ellipsoids = prepare(n, a, {shape}, cache_dir);
+  }
   const long per_round = std::max(1L, steps / rounds);
   std::vector<double> ratios;
   for (long k = 0; k < rounds; ++k) {
@@ -217,15 +250,17 @@ int main(int argc, char** argv) {
   };
   const double tests = static_cast<double>(st.calls + st.proven_apart + st.still_apart);
   std::printf(
-      "upgrain ellipsoid_bed particles %ld steps %ld rounds %ld sphere_particle_steps_per_second %.4e "
+      "upgrain ellipsoid_bed phase %s particles %ld steps %ld rounds %ld sphere_particle_steps_per_second "
+      "%.4e "
       "ellipsoid_particle_steps_per_second %.4e cost_ratio %.3f round_ratio_min %.3f round_ratio_median %.3f "
       "round_ratio_max %.3f sphere_contacts_per_particle %.3f ellipsoid_contacts_per_particle %.3f "
       "narrow_phase_tests_per_second %.4e solver_calls_per_second %.4e still_apart_share %.3f "
       "proven_apart_share %.3f newton_steps_per_call %.3f warm_share %.4f fallbacks %lld failures %lld\n",
-      n, per_round * rounds, rounds, best_spheres, best_ellipsoids, best_spheres / best_ellipsoids,
-      ratios.front(), ratios[ratios.size() / 2], ratios.back(), contacts(spheres), contacts(ellipsoids),
-      tests / ellipsoids.seconds, static_cast<double>(st.calls) / ellipsoids.seconds,
-      static_cast<double>(st.still_apart) / tests, static_cast<double>(st.proven_apart) / tests,
+      deposition ? "deposition" : "bed", n, per_round * rounds, rounds, best_spheres, best_ellipsoids,
+      best_spheres / best_ellipsoids, ratios.front(), ratios[ratios.size() / 2], ratios.back(),
+      contacts(spheres), contacts(ellipsoids), tests / ellipsoids.seconds,
+      static_cast<double>(st.calls) / ellipsoids.seconds, static_cast<double>(st.still_apart) / tests,
+      static_cast<double>(st.proven_apart) / tests,
       static_cast<double>(st.newton_iterations) / static_cast<double>(std::max<std::int64_t>(st.calls, 1)),
       static_cast<double>(st.warm_starts) / static_cast<double>(std::max<std::int64_t>(st.calls, 1)),
       static_cast<long long>(st.fallbacks), static_cast<long long>(st.failures));

@@ -693,26 +693,75 @@ void posed_contacts_two(const PosedEllipsoid& a1, const PosedEllipsoid& a2, cons
     alone();
     return;
   }
-  warm::GradientLanes<Pair> g;
-  warm::gradient(p, q, g);
-  const Pair tol_g = 16.0 * kEps * p.size;
-  const Mask converged = g.norm2 <= tol_g * tol_g;
-  Mask definite;
-  Pair x1, x2;
-  warm::newton_step(p, q, g, definite, x1, x2);
-  const Pair step2 = x1 * x1 + x2 * x2;
-  const Mask one_step = ~converged & definite & (step2 <= kAngleConverged * kAngleConverged);
-  if (!(one_step[0] && one_step[1])) {
-    alone();
-    return;
-  }
+  // warm_newton()'s loop in both lanes. A lane that has stopped keeps its point (the other's
+  // further steps are blended out); any lane that would leave the straight-line path sends both
+  // to the one-pair code.
+  auto blend = [](Mask m, Pair a, Pair b) {
+    return std::bit_cast<Pair>((std::bit_cast<Mask>(a) & m) | (std::bit_cast<Mask>(b) & ~m));
+  };
   const warm::PointLanes<Pair> at_m = q;
-  warm::small_step(g, x1, x2, q);
-  warm::evaluate(p, q);
-  const Mask certified = q.f < p.certify * (1.0 - 1e-9);
-  if (!(certified[0] && certified[1])) {
+  auto give_up = [&] {
     q = at_m;
     alone();
+  };
+  const Pair tol_g = 16.0 * kEps * p.size, noise_f = 64.0 * kEps * p.size;
+  Mask done = {0, 0};
+  int iterations[2] = {0, 0};
+  for (;;) {
+    warm::GradientLanes<Pair> g;
+    warm::gradient(p, q, g);
+    done |= g.norm2 <= tol_g * tol_g;  // at the minimum to round-off (or stopped before)
+    if (done[0] && done[1]) break;
+    const Mask active = ~done;
+    Mask definite;
+    Pair x1, x2;
+    warm::newton_step(p, q, g, definite, x1, x2);
+    const Pair step2 = x1 * x1 + x2 * x2;
+    const Mask stays = definite & (step2 <= 1e-2);
+    for (int lane = 0; lane < 2; ++lane)
+      if (active[lane] && (iterations[lane] == kFastIterations || !stays[lane])) {
+        give_up();
+        return;
+      }
+    const Mask last = step2 <= kAngleConverged * kAngleConverged;
+    // The next point: a step below 1e-6 rad retracted by one Newton step for 1/sqrt, a larger one
+    // normalised (warm_newton()'s two branches, chosen per lane).
+    warm::PointLanes<Pair> next = q;
+    Pair m[3];
+    for (int k = 0; k < 3; ++k) m[k] = q.n[k] + x1 * g.t1[k] + x2 * g.t2[k];
+    const Pair norm2 = m[0] * m[0] + m[1] * m[1] + m[2] * m[2];
+    const Pair small = 1.5 - 0.5 * norm2;
+    const Pair to_unit = last[0] && last[1] ? small : blend(last, small, 1.0 / warm::sqrt_of(norm2));
+    for (int k = 0; k < 3; ++k) next.n[k] = m[k] * to_unit;
+    warm::evaluate(p, next);
+    if (!(last[0] && last[1])) {  // the Armijo test of the larger steps
+      const Pair slope = g.g1 * x1 + g.g2 * x2;
+      const Mask decreases = (next.f <= q.f + 1e-4 * slope) | (-slope <= noise_f);
+      for (int lane = 0; lane < 2; ++lane)
+        if (active[lane] && !last[lane] && !decreases[lane]) {
+          give_up();
+          return;
+        }
+    }
+    if (active[0] && active[1]) {
+      q = next;
+    } else {
+      for (int k = 0; k < 3; ++k) {
+        q.n[k] = blend(active, next.n[k], q.n[k]);
+        q.u[k] = blend(active, next.u[k], q.u[k]);
+        q.v[k] = blend(active, next.v[k], q.v[k]);
+      }
+      q.h1 = blend(active, next.h1, q.h1);
+      q.h2 = blend(active, next.h2, q.h2);
+      q.f = blend(active, next.f, q.f);
+    }
+    for (int lane = 0; lane < 2; ++lane) iterations[lane] += active[lane] ? 1 : 0;
+    done |= active & last;  // taken unchecked, as newton_on_sphere()
+    if (done[0] && done[1]) break;
+  }
+  const Mask certified = q.f < p.certify * (1.0 - 1e-9);
+  if (!(certified[0] && certified[1])) {
+    give_up();
     return;
   }
   Pair l1[3], l2[3];
@@ -729,7 +778,7 @@ void posed_contacts_two(const PosedEllipsoid& a1, const PosedEllipsoid& a2, cons
   touching_b = q.f[1] > 0.0;
   stats.calls += 2;
   stats.warm_starts += 2;
-  stats.newton_iterations += 2;
+  stats.newton_iterations += iterations[0] + iterations[1];
 }
 
 ContactGeometry ellipsoid_sphere_contact(const Ellipsoid& e, const Vec3& centre, double radius,

@@ -70,7 +70,26 @@ void first_half_one(ParticleStore& p, std::size_t i, double half, double dt) {
   store(p, i, g);
 }
 
-// Two grains: both must turn by less than kSmallHalfAngle per principal-axis turn (|L_K| <= |L|,
+// A principal-axis turn of two grains that both turn by less than kModerateHalfAngle: each
+// lane's sine and cosine by the series rigid_rotation.h's turn<K>() picks for it.
+template <int K>
+[[gnu::always_inline]] inline void moderate_turn(RotorLanes<Pair>& r, Pair half_step_rate, bool all_small) {
+  const Pair half = r.l[K] * half_step_rate;
+  Pair s, c;
+  small_sine_cosine(half, s, c);
+  if (!all_small) {
+    Pair sm, cm;
+    moderate_sine_cosine(half, sm, cm);
+    for (int lane = 0; lane < 2; ++lane)
+      if (!(std::abs(half[lane]) < kSmallHalfAngle)) {
+        s[lane] = sm[lane];
+        c[lane] = cm[lane];
+      }
+  }
+  turn_about_axis<K>(r, s, c);
+}
+
+// Two grains: both must turn by less than kModerateHalfAngle per principal-axis turn (|L_K| <= |L|,
 // with a margin for the rounding of the turns), else each goes alone.
 void first_half_two(ParticleStore& p, std::size_t a, std::size_t b, double half, double dt) {
   GrainLanes<double> ga, gb;
@@ -91,14 +110,24 @@ void first_half_two(ParticleStore& p, std::size_t a, std::size_t b, double half,
   Pair fastest = rate[0];
   for (int k = 1; k < 3; ++k)
     for (int lane = 0; lane < 2; ++lane) fastest[lane] = std::max(fastest[lane], rate[k][lane]);
-  constexpr double kLimit = 0.99 * kSmallHalfAngle;
-  for (int lane = 0; lane < 2; ++lane)
-    if (!(l2[lane] * fastest[lane] * fastest[lane] < kLimit * kLimit)) {
+  constexpr double kLimit = 0.99 * kModerateHalfAngle, kSmall = 0.99 * kSmallHalfAngle;
+  bool all_small = true;
+  for (int lane = 0; lane < 2; ++lane) {
+    const double largest2 = l2[lane] * fastest[lane] * fastest[lane];
+    if (!(largest2 < kLimit * kLimit)) {
       first_half_one(p, a, half, dt);
       first_half_one(p, b, half, dt);
       return;
     }
-  small_free_rotation(g.r, rate);
+    all_small = all_small && largest2 < kSmall * kSmall;
+  }
+  // x(h/2) y(h/2) z(h) y(h/2) x(h/2), as free_rotation().
+  moderate_turn<0>(g.r, 0.5 * rate[0], all_small);
+  moderate_turn<1>(g.r, 0.5 * rate[1], all_small);
+  moderate_turn<2>(g.r, rate[2], all_small);
+  moderate_turn<1>(g.r, 0.5 * rate[1], all_small);
+  moderate_turn<0>(g.r, 0.5 * rate[0], all_small);
+  renormalise(g.r);
   body_into_omega(g, inv_j);
   for (int lane = 0; lane < 2; ++lane) {
     const std::size_t i = lane == 0 ? a : b;

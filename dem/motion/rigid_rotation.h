@@ -57,31 +57,34 @@ template <int K, class T>
   r.l[j] = -sin_phi * li + cos_phi * lj;
 }
 
-// Exact free rotation about principal axis K: with L_b,K and I_K fixed, the body turns by
-// phi = h L_K / I_K about its axis K. `half_step_rate` is h / (2 I_K), so phi/2 = L_K rate.
-// This one is for |phi/2| < kSmallHalfAngle (any lanes).
-template <int K, class T>
-[[gnu::always_inline]] inline void small_turn(RotorLanes<T>& r, T half_step_rate) {
-  const T half = r.l[K] * half_step_rate;
-  const T x2 = half * half;
-  turn_about_axis<K>(r, half * (1.0 - x2 * (1.0 / 6.0)), 1.0 - x2 * (0.5 - x2 * (1.0 / 24.0)));
+// sin x and cos x by their Taylor series below kSmallHalfAngle, to x^3 and x^4 (any lanes).
+template <class T>
+[[gnu::always_inline]] inline void small_sine_cosine(T x, T& s, T& c) {
+  const T x2 = x * x;
+  s = x * (1.0 - x2 * (1.0 / 6.0));
+  c = 1.0 - x2 * (0.5 - x2 * (1.0 / 24.0));
 }
 
-// The same for any angle, one body.
+// Below kModerateHalfAngle: to x^7 and x^6, whose remainders (x^9/9!, x^8/8!) are below 2e-17 of
+// the result there, with constant coefficients (no division in the chain).
+inline constexpr double kModerateHalfAngle = 0.03;
+template <class T>
+[[gnu::always_inline]] inline void moderate_sine_cosine(T x, T& s, T& c) {
+  const T x2 = x * x;
+  s = x * (1.0 + x2 * (-1.0 / 6.0 + x2 * (1.0 / 120.0 - x2 * (1.0 / 5040.0))));
+  c = 1.0 + x2 * (-0.5 + x2 * (1.0 / 24.0 - x2 * (1.0 / 720.0)));
+}
+
+// Exact free rotation about principal axis K: with L_b,K and I_K fixed, the body turns by
+// phi = h L_K / I_K about its axis K. `half_step_rate` is h / (2 I_K), so phi/2 = L_K rate.
 template <int K>
 inline void turn(RotorLanes<double>& r, double half_step_rate) {
   const double half = r.l[K] * half_step_rate;
-  if (std::abs(half) < kSmallHalfAngle) {
-    small_turn<K>(r, half_step_rate);
-    return;
-  }
   double s, c;
-  if (std::abs(half) < 0.03) {
-    // Taylor series to x^7 and x^6, whose remainders (x^9/9!, x^8/8!) are below 2e-17 of the
-    // result there, with constant coefficients (no division in the chain).
-    const double x2 = half * half;
-    s = half * (1.0 + x2 * (-1.0 / 6.0 + x2 * (1.0 / 120.0 - x2 * (1.0 / 5040.0))));
-    c = 1.0 + x2 * (-0.5 + x2 * (1.0 / 24.0 - x2 * (1.0 / 720.0)));
+  if (std::abs(half) < kSmallHalfAngle) {
+    small_sine_cosine(half, s, c);
+  } else if (std::abs(half) < kModerateHalfAngle) {
+    moderate_sine_cosine(half, s, c);
   } else {
     s = std::sin(half);
     c = std::cos(half);
@@ -101,19 +104,8 @@ template <class T>
   r.v[2] *= k;
 }
 
-// One step h of torque-free rotation, `rate` = (h/2) / I per principal axis. The small-angle
-// form needs |L| max(rate) < kSmallHalfAngle (every turn is then small: |L_K| <= |L|, which the
-// turns keep).
-template <class T>
-[[gnu::always_inline]] inline void small_free_rotation(RotorLanes<T>& r, const T rate[3]) {
-  small_turn<0>(r, 0.5 * rate[0]);
-  small_turn<1>(r, 0.5 * rate[1]);
-  small_turn<2>(r, rate[2]);
-  small_turn<1>(r, 0.5 * rate[1]);
-  small_turn<0>(r, 0.5 * rate[0]);
-  renormalise(r);
-}
-
+// One step h of torque-free rotation, `rate` = (h/2) / I per principal axis: x(h/2) y(h/2) z(h)
+// y(h/2) x(h/2).
 inline void free_rotation(RotorLanes<double>& r, const double rate[3]) {
   turn<0>(r, 0.5 * rate[0]);
   turn<1>(r, 0.5 * rate[1]);

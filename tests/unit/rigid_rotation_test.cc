@@ -113,21 +113,24 @@ TEST(RigidRotation, ConstantTorqueAddsAngularMomentumExactly) {
 }
 
 // The grains of a store turn two at a time (dem/motion/grain_rotation.cc): each grain gets the
-// same bits as when it turns alone, for slow grains (the two-lane path) and for a fast one (which
-// sends its pair to the one-at-a-time path), in both halves of the step.
+// same bits as when it turns alone, for slow grains (turns below 1e-4 rad: the short series), a
+// faster one (the longer series, chosen per lane) and a very fast one (which sends its pair to
+// the one-at-a-time path), in both halves of the step.
 TEST(GrainRotation, TwoAtATimeIsBitwiseOneAtATime) {
   ParticleStore all;
-  const double spins[] = {3.0, -7.0, 11.0, 2e5};  // rad/s; the last turns by more than 1e-4 rad a step
-  for (int k = 0; k < 4; ++k) {
+  // rad/s: at dt = 1e-5 s half-turns of about 2e-5, 1e-3 and 1 rad per principal-axis turn
+  const double spins[] = {3.0, 200.0, 11.0, 2e5, -150.0, 0.5};
+  for (int k = 0; k < 6; ++k) {
     const Eigen::Quaterniond q(Eigen::AngleAxisd(0.3 + k, Vec3(1.0, 0.5 * k, -0.2).normalized()));
-    all.add_ellipsoid(k + 1, Vec3(1.0, 0.8 - 0.1 * k, 0.5) * 1e-3, 2650.0, Vec3(0.01 * k, 0, 0), q,
+    all.add_ellipsoid(k + 1, Vec3(1.0, 0.8 - 0.05 * k, 0.5) * 1e-3, 2650.0, Vec3(0.01 * k, 0, 0), q,
                       Vec3::Zero(), Vec3(spins[k], 0.3 * spins[k], -0.5 * spins[k]));
     all.torque.back() = Vec3(1e-6 * (k + 1), -2e-6, 3e-6 * k);
   }
   const double dt = 1e-5, half = 0.5 * dt;
-  for (int pairing : {0, 1}) {  // pairs (1, 2), (3, 4); then (2, 3) with 1 and 4 alone
+  for (int pairing : {0, 1, 2}) {  // pairs (1, 2) (3, 4) (5, 6); (1, 4) (2, 3) (5, 6); (1, 5) (6, 2) (3, 4)
     ParticleStore together = all;
-    if (pairing == 1) together.permute({0, 3, 1, 2});  // 1, 4, 2, 3: 1 pairs with 4, 2 with 3
+    if (pairing == 1) together.permute({0, 3, 1, 2, 4, 5});
+    if (pairing == 2) together.permute({0, 4, 5, 1, 2, 3});
     rotation_first_half(together, together.size(), half, dt);
     rotation_second_half(together, together.size(), half);
     for (std::size_t i = 0; i < together.size(); ++i) {
