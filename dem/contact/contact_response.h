@@ -59,8 +59,10 @@ struct TangentialSpring {
 struct ShapedContactMemory {
   Vec3 normal = Vec3::Zero();
   double r_star = 0.0;
-  // A pair proven apart: the gap still proven after the grains' motion since (m; 0 when none,
-  // and not carried by migration records: a pair without one is evaluated).
+  // A pair proven apart: the gap still proven after the grains' motion since (m; 0 when none).
+  // Valid only while the store keeps its order (GrainPoses): the MPI engine rebuilds its pair
+  // lists from migration records without it, and the serial one reorders grains at a rebuild,
+  // so after a rebuild every pair is evaluated once.
   double gap_budget = 0.0;
 
   [[nodiscard]] bool empty() const { return r_star == 0.0 && normal == Vec3::Zero(); }

@@ -16,13 +16,16 @@ namespace {
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr int kMaxIterations = 30;        // per Newton run; a warm start takes 2-3
 constexpr double kAngleConverged = 1e-6;  // rad: a last step this small is taken unchecked
+// Smallest semi-axes (m) for which the solver runs in metres: beyond, 1/h^3 could leave the
+// range of doubles.
+constexpr double kUnscaledLow = 0x1p-200, kUnscaledHigh = 0x1p200;
 
 // The pair in its own frame (D1): only c1 - c2 enters, so positions far from the origin cost
 // no digits. Every quantity of the solver scales with the pair's size, and scaling by a power
 // of two commutes with rounding, so the solver's result is the same bits in any power-of-two
 // unit: it runs in metres (the shape matrices of the posed grains are used in place, not
-// copied) and only a grain size outside [2^-200, 2^200] m, where 1/h^3 could leave the range
-// of doubles, is carried to a unit that brings the smallest semi-axis into [1, 2).
+// copied) and only a pair whose smallest semi-axis is outside [2^-200, 2^200] m, where 1/h^3
+// could leave the range of doubles, is carried to a unit that brings it into [1, 2).
 class PairFrame {
  public:
   PairFrame(const PosedEllipsoid& e1, const PosedEllipsoid& e2);
@@ -54,8 +57,7 @@ double scale_for(double c) { return std::ldexp(1.0, -std::ilogb(c)); }
 
 PairFrame::PairFrame(const PosedEllipsoid& e1, const PosedEllipsoid& e2) {
   const double minor = std::min(e1.minor, e2.minor);
-  constexpr double kLow = 0x1p-200, kHigh = 0x1p200;
-  scale = (minor >= kLow && minor <= kHigh) ? 1.0 : scale_for(minor);
+  scale = (minor >= kUnscaledLow && minor <= kUnscaledHigh) ? 1.0 : scale_for(minor);
   d = e1.centre - e2.centre;
   rot1 = &e1.rot;
   rot2 = &e2.rot;
@@ -89,18 +91,15 @@ struct Eval {
   double h1, h2;
 };
 
-[[gnu::always_inline]] inline Eval evaluate_gap(const Vec3& d, const Mat3& m1, const Mat3& m2,
-                                                const Vec3& n) {
+Eval evaluate(const PairFrame& p, const Vec3& n) {
   Eval e;
-  e.u = m1 * n;
-  e.v = m2 * n;
+  e.u = *p.m1 * n;
+  e.v = *p.m2 * n;
   e.h1 = std::sqrt(n.dot(e.u));
   e.h2 = std::sqrt(n.dot(e.v));
-  e.f = n.dot(d) + e.h1 + e.h2;
+  e.f = n.dot(p.d) + e.h1 + e.h2;
   return e;
 }
-
-Eval evaluate(const PairFrame& p, const Vec3& n) { return evaluate_gap(p.d, *p.m1, *p.m2, n); }
 
 // An evaluation in world units carried into a frame: every piece scales by the frame's power
 // of two `scale`, exactly. `normal_scale` = 1/l carries an evaluation at l n to one at n:
@@ -204,10 +203,10 @@ NewtonResult newton_on_sphere(const PairFrame& p, const Vec3& start, const Eval*
     const double h12 = t1.dot(st2) - u1 * u2 * r1_3 - v1 * v2 * r2_3;
     // Not shifted when the smaller eigenvalue l1 >= 1e-3 (|l0| + certify). With l0 + l1 = tr H
     // that is l1 >= kappa = 1e-3 (tr H + certify) / 1.001 > 0, i.e. H - kappa 1 positive
-    // semi-definite: its diagonal entry and determinant non-negative. No square root.
+    // semi-definite: its diagonal entries and determinant non-negative. No square root.
     const double kappa = 1e-3 * (h11 + h22 + p.certify) / 1.001;
     const double a11 = h11 - kappa, a22 = h22 - kappa;
-    const bool shifted = !(kappa > 0.0 && a11 >= 0.0 && a11 * a22 - h12 * h12 >= 0.0);
+    const bool shifted = !(kappa > 0.0 && a11 >= 0.0 && a22 >= 0.0 && a11 * a22 - h12 * h12 >= 0.0);
     if (shifted) {  // Levenberg shift to a positive-definite model
       double l0, l1;
       symmetric_eigenvalues_2x2(h11, h12, h22, l0, l1);
@@ -511,10 +510,9 @@ constexpr int kFastIterations = 4;  // Newton steps of the force loop's straight
 
 }  // namespace
 
-// The straight-line path works in metres: grain sizes in [2^-200, 2^200] m (PairFrame).
+// The straight-line path works in metres: semi-axes in [2^-200, 2^200] m (PairFrame).
 bool warm_path_applies(const PosedEllipsoid& e1, const PosedEllipsoid& e2) {
-  constexpr double kLow = 0x1p-200, kHigh = 0x1p200;
-  return std::min(e1.minor, e2.minor) >= kLow && std::max(e1.major, e2.major) <= kHigh;
+  return std::min(e1.minor, e2.minor) >= kUnscaledLow && std::max(e1.major, e2.major) <= kUnscaledHigh;
 }
 
 // posed_contact() after the proof's evaluation q at the pair's last normal.
@@ -527,7 +525,8 @@ namespace {
 // The force loop's usual case (docs/ellipsoid-contact.md, "In the force loop"): a pair near its
 // last normal, Newton from there in metres, as newton_on_sphere() but written out for the
 // symmetric shape matrices, with no frame, no copies and no line search. Gives up (false, with
-// nothing written or counted) whenever the general solver would do something else: an
+// nothing counted, `out` untouched; `q` is overwritten, so the caller keeps its own copy of
+// the start) whenever the general solver would do something else: an
 // indefinite model, a step above 0.1 rad or one that fails the Armijo test, more than
 // kFastIterations steps, or a result the certificate (D4) does not cover; the caller then runs
 // the general solver from the same start. `q` holds f at the unit start; the pieces are those of
@@ -651,8 +650,16 @@ void posed_contacts_two(const PosedEllipsoid& a1, const PosedEllipsoid& a2, cons
                         const PosedEllipsoid& b1, const PosedEllipsoid& b2, const Vec3& last_b,
                         ContactSolverStats& stats, PairContact& out_a, PairContact& out_b, bool& touching_a,
                         bool& touching_b) {
+  using warm::Mask;
   using warm::Pair;
-  using Mask = long long __attribute__((vector_size(16)));
+  // The lanes take warm pairs with an ellipsoid; any other pair goes as posed_contact() takes it.
+  if ((a1.is_sphere() && a2.is_sphere()) || (b1.is_sphere() && b2.is_sphere()) ||
+      !(last_a.squaredNorm() > 0.5) || !(last_b.squaredNorm() > 0.5)) {
+    const auto warm_from = [](const Vec3& n) { return n != Vec3::Zero() ? &n : nullptr; };
+    touching_a = posed_contact(a1, a2, warm_from(last_a), false, stats, out_a);
+    touching_b = posed_contact(b1, b2, warm_from(last_b), false, stats, out_b);
+    return;
+  }
   const Vec3 da = a1.centre - a2.centre, db = b1.centre - b2.centre;
   warm::PairLanes<double> pa, pb;
   warm::load_pair(a1, a2, da, pa);
@@ -669,7 +676,7 @@ void posed_contacts_two(const PosedEllipsoid& a1, const PosedEllipsoid& a2, cons
   for (int k = 0; k < 3; ++k) q.n[k] = Pair{last_a[k], last_b[k]};
   warm::evaluate(p, q);
   // Each pair alone from its proof's evaluation (the same bits as the lanes'): when a pair is
-  // proven apart, or either leaves the one-step straight-line path.
+  // proven apart, or either leaves the straight-line path.
   auto alone = [&] {
     warm::PointLanes<double> qa, qb;
     for (int lane = 0; lane < 2; ++lane) {

@@ -138,10 +138,10 @@ struct PairContact {
 bool posed_contact(const PosedEllipsoid& e1, const PosedEllipsoid& e2, const Vec3* last_normal, bool radius,
                    ContactSolverStats& stats, PairContact& out);
 
-// Two warm pairs at once (the force loop, two at a time): as posed_contact() on each with
-// radius false, the same results bit for bit and the same counts, with both Newton solves in
-// the two lanes of a vector when both take the straight-line path in one step. Returns whether
-// each touches.
+// Two warm pairs at once (the force loops' batches): as posed_contact() on each with radius
+// false, the same results bit for bit and the same counts, with both Newton solves in the two
+// lanes of a vector while both stay on the straight-line path (docs/ellipsoid-contact.md, "Two
+// pairs at a time"). `touching_a`, `touching_b`: whether each touches.
 void posed_contacts_two(const PosedEllipsoid& a1, const PosedEllipsoid& a2, const Vec3& last_a,
                         const PosedEllipsoid& b1, const PosedEllipsoid& b2, const Vec3& last_b,
                         ContactSolverStats& stats, PairContact& out_a, PairContact& out_b, bool& touching_a,

@@ -2,24 +2,22 @@
 // The geometry of ellipsoid contacts as the force loops use it, shared by the serial loop
 // (force_kernel.cc) and the deterministic parallel loop (parallel/deterministic_forces.cc),
 // so that both evaluate a contact with the same operations (docs/ellipsoids.md).
-#include <optional>
 #include <vector>
 
 #include "dem/boundary/plane_wall.h"
 #include "dem/contact/contact_response.h"
 #include "dem/contact/ellipsoid_geometry.h"
 #include "dem/contact/grain_poses.h"
-#include "dem/core/particle_store.h"
 
 namespace upgrain::dem {
 
-// Geometry of a pair with at least one ellipsoid (docs/ellipsoids.md): bounding spheres
-// (already tested by the caller), then, unless the pair's last proof of separation still holds,
-// posed_contact(): a separation proof at the pair's last normal and the support-function solver
-// warm-started there. Returns false when apart. `memory` keeps the last normal of a near pair
-// (the next step's warm start), the gap still proven for an apart one, and the Hertz radius of
-// a touching one; its normal points from i to j. In three parts, so that the force loops can
-// solve the pairs of a row two at a time (shaped_pair_geometries).
+// The geometry of a pair with at least one ellipsoid (docs/ellipsoids.md), after the bounding
+// spheres: unless the pair's last proof of separation still holds, posed_contact(), a separation
+// proof at the pair's last normal and the support-function solver warm-started there. The pair's
+// memory keeps the last normal of a near pair (the next step's warm start), the gap still proven
+// for an apart one, and the Hertz radius of a touching one; its normal points from i to j. The
+// force loops take their pairs in batches (a chunk of rows or pair slots) to solve them two at a
+// time (shaped_pair_geometries).
 
 // Separation budget (docs/ellipsoid-contact.md): the depth is at most f(m), and f(m) grows by
 // at most the grains' motion bounds, so the gap proven at the last evaluation, less the motion
@@ -65,18 +63,7 @@ inline bool finish_pair(const GrainPoses& poses, std::size_t i, std::size_t j, b
   return true;
 }
 
-inline bool shaped_pair_geometry(const GrainPoses& poses, std::size_t i, std::size_t j,
-                                 ShapedContactMemory& memory, ContactSolverStats& stats,
-                                 ContactKinematics& kin, double& r_star) {
-  if (still_apart(poses, i, j, memory, stats)) return false;
-  PairContact c;
-  const bool touching =
-      posed_contact(poses[i], poses[j], memory.normal != Vec3::Zero() ? &memory.normal : nullptr,
-                    memory.r_star == 0.0, stats, c);
-  return finish_pair(poses, i, j, touching, c, memory, kin, r_star);
-}
-
-// One pair of a batch, and what shaped_pair_geometry() gives for it.
+// One pair of a batch, and its geometry.
 struct ShapedPair {
   std::size_t i = 0, j = 0;
   ShapedContactMemory* memory = nullptr;
@@ -97,9 +84,9 @@ struct ShapedPair {
   }
 };
 
-// shaped_pair_geometry() on every pair of `pairs`, with the same results bit for bit and the
-// same counts, solving two pairs at once (posed_contacts_two) where both were touching at the
-// last step: the force loops call it for the shaped pairs of a row.
+// The geometry of every pair of `pairs` (after the bounding spheres): the separation budget,
+// then posed_contact(), two pairs at once (posed_contacts_two: the same results bit for bit and
+// the same counts) where both were touching at the last step, then each pair's memory.
 void shaped_pair_geometries(const GrainPoses& poses, std::vector<ShapedPair>& pairs,
                             ContactSolverStats& stats);
 

@@ -8,26 +8,14 @@
 #include <cmath>
 
 #include "dem/contact/ellipsoid_geometry.h"
-
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
+#include "dem/core/lanes.h"
 
 namespace upgrain::dem::warm {
 
-// Two lanes of doubles (GCC and Clang vector extension: SSE2 on x86-64, NEON on AArch64).
-using Pair = double __attribute__((vector_size(16)));
-
-inline double sqrt_of(double x) { return std::sqrt(x); }
-inline Pair sqrt_of(Pair x) {
-#if defined(__SSE2__)
-  return _mm_sqrt_pd(x);  // correctly rounded in each lane, as std::sqrt
-#else
-  return Pair{std::sqrt(x[0]), std::sqrt(x[1])};
-#endif
-}
-inline double sign_of(double z) { return std::copysign(1.0, z); }
-inline Pair sign_of(Pair z) { return Pair{std::copysign(1.0, z[0]), std::copysign(1.0, z[1])}; }
+using lanes::Mask;
+using lanes::Pair;
+using lanes::sign_of;
+using lanes::sqrt_of;
 
 // A pair: the six distinct entries of each symmetric shape matrix (xx, yy, zz, xy, xz, yz),
 // d = c1 - c2, the round-off scale and the certificate bound (D4).
@@ -109,7 +97,8 @@ template <class T>
 
 // The tangent Hessian t_i^T S t_j - (t_i.u)(t_j.u)/h1^3 - (t_i.v)(t_j.v)/h2^3 - f delta_ij with
 // S = M1/h1 + M2/h2, and whether it needs no shift: newton_on_sphere()'s test l_min >= kappa =
-// 1e-3 (tr H + certify) / 1.001, i.e. H - kappa 1 positive semi-definite. Its Newton step x.
+// 1e-3 (tr H + certify) / 1.001, i.e. H - kappa 1 positive semi-definite (diagonal entries and
+// determinant non-negative). Its Newton step x.
 template <class T, class Mask>
 [[gnu::always_inline]] inline void newton_step(const PairLanes<T>& p, const PointLanes<T>& q,
                                                const GradientLanes<T>& g, Mask& definite, T& x1, T& x2) {
@@ -133,14 +122,14 @@ template <class T, class Mask>
   const T h12 = t1[0] * s2x + t1[1] * s2y + t1[2] * s2z - u1 * u2 * r1_3 - v1 * v2 * r2_3;
   const T kappa = 1e-3 * (h11 + h22 + p.certify) / 1.001;
   const T a11 = h11 - kappa, a22 = h22 - kappa;
-  definite = (kappa > 0.0) & (a11 >= 0.0) & (a11 * a22 - h12 * h12 >= 0.0);
+  definite = (kappa > 0.0) & (a11 >= 0.0) & (a22 >= 0.0) & (a11 * a22 - h12 * h12 >= 0.0);
   const T inv_det = 1.0 / (h11 * h22 - h12 * h12);
   x1 = -(h22 * g.g1 - h12 * g.g2) * inv_det;
   x2 = -(h11 * g.g2 - h12 * g.g1) * inv_det;
 }
 
 // n + x1 t1 + x2 t2 back on the sphere: for a step below 1e-6 rad one Newton step for 1/sqrt
-// (|n + x|^2 = 1 + |x|^2 <= 1 + 1e-12, so the result is unit to 1e-24).
+// (|n + x|^2 = 1 + |x|^2 <= 1 + 1e-12: its truncation is 1e-24, below the rounding).
 template <class T>
 [[gnu::always_inline]] inline void small_step(const GradientLanes<T>& g, T x1, T x2, PointLanes<T>& q) {
   T m[3];

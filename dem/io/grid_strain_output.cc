@@ -311,6 +311,10 @@ ComputeGridStrainRecorder::ComputeGridStrainRecorder(std::filesystem::path folde
 
 void ComputeGridStrainRecorder::record(const GridStrain& strain, const std::vector<Box>& blocks,
                                        std::span<const GlobalId> id, std::span<const int> member) {
+  if (strain.particles.size() != blocks.size() || id.size() != member.size())
+    throw Error("compute-grid strain: " + std::to_string(strain.particles.size()) + " sets for " +
+                std::to_string(blocks.size()) + " blocks, " + std::to_string(id.size()) + " ids for " +
+                std::to_string(member.size()) + " members");
   char name[64];
   std::snprintf(name, sizeof name, "compute_grid_strain_%09ld.h5", strain.step);
   write_compute_grid_strain(folder_ / "compute_grid_strain" / name, strain, blocks, id, member);

@@ -2,17 +2,18 @@
 
 #include <algorithm>
 
+#include "dem/core/lanes.h"
 #include "dem/motion/rigid_rotation.h"
 
 namespace upgrain::dem {
 
 namespace {
 
-// Two grains side by side in the two lanes of a vector (GCC and Clang vector extension: SSE2
-// on x86-64, NEON on AArch64). A grain's turns are a chain of dependent operations, so one
-// grain at a time waits on latencies; two at a time fill the pipeline and halve the
-// instructions. Each lane computes exactly what the scalar code computes (rigid_rotation.h).
-using Pair = double __attribute__((vector_size(16)));
+// Two grains side by side in the two lanes of a vector (dem/core/lanes.h). A grain's turns are a
+// chain of dependent operations, so one grain at a time waits on latencies; two at a time fill
+// the pipeline and halve the instructions. Each lane computes exactly what the scalar code
+// computes (rigid_rotation.h).
+using lanes::Pair;
 
 // First half for grains a and b (lanes 0 and 1), or a alone (T = double).
 template <class T>

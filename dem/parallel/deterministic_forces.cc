@@ -1,6 +1,7 @@
 #include "dem/parallel/deterministic_forces.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "dem/contact/contact_response.h"
@@ -123,13 +124,14 @@ DeterministicForceResult compute(const DeterministicForceInput& in) {
   // then the forces follow in slot order.
   enum : unsigned char { kFar, kShaped, kSpheres };
   constexpr std::size_t kChunkSlots = 64;
-  std::vector<unsigned char> slot_class;
+  // One allocation per evaluation, none per chunk or contact.
+  std::array<unsigned char, kChunkSlots> slot_class{};
   std::vector<ShapedPair> shaped_pairs;
+  if constexpr (Shapes) shaped_pairs.reserve(kChunkSlots);
   for (std::size_t k0 = 0; k0 < m; k0 = Shapes ? std::min(m, k0 + kChunkSlots) : m) {
     const std::size_t k1 = Shapes ? std::min(m, k0 + kChunkSlots) : m;
     std::size_t shaped_next = 0;
     if constexpr (Shapes) {
-      slot_class.resize(k1 - k0);
       shaped_pairs.clear();
       for (std::size_t k = k0; k < k1; ++k) {
         const int i = l.lo[k];

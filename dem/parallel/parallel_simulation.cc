@@ -384,31 +384,16 @@ GridStress ParallelSimulation::grid_stress(const RegularGrid& grid) const {
 }
 
 std::vector<int> ParallelSimulation::gather_owners_sorted_by_id() const {
-  const int rank = decomp_->rank();
-  const int size = decomp_->size();
-  std::vector<std::int64_t> mine(static_cast<std::size_t>(n_owned_));
-  for (int i = 0; i < n_owned_; ++i) mine[static_cast<std::size_t>(i)] = static_cast<std::int64_t>(p_.id[i]);
-  const int count = n_owned_;
-  std::vector<int> counts(rank == 0 ? size : 0), displs(rank == 0 ? size : 0);
-  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_);
-  std::vector<std::int64_t> all;
-  if (rank == 0) {
-    int total = 0;
-    for (int r = 0; r < size; ++r) {
-      displs[r] = total;
-      total += counts[r];
-    }
-    all.resize(static_cast<std::size_t>(total));
-  }
-  MPI_Gatherv(mine.data(), count, MPI_INT64_T, all.data(), counts.data(), displs.data(), MPI_INT64_T, 0,
-              comm_);
-  if (rank != 0) return {};
-  std::vector<std::pair<std::int64_t, int>> owned(all.size());
-  for (int r = 0; r < size; ++r)
-    for (int k = displs[r]; k < displs[r] + counts[r]; ++k) owned[static_cast<std::size_t>(k)] = {all[k], r};
-  std::sort(owned.begin(), owned.end());
-  std::vector<int> owner(owned.size());
-  for (std::size_t k = 0; k < owned.size(); ++k) owner[k] = owned[k].second;
+  struct Owned {
+    GlobalId gid;
+    int rank;
+  };
+  std::vector<Owned> mine(static_cast<std::size_t>(n_owned_));
+  for (int i = 0; i < n_owned_; ++i) mine[static_cast<std::size_t>(i)] = {p_.id[i], decomp_->rank()};
+  std::vector<Owned> all = gather_to_root(mine, comm_);
+  std::sort(all.begin(), all.end(), [](const Owned& a, const Owned& b) { return a.gid < b.gid; });
+  std::vector<int> owner(all.size());
+  for (std::size_t k = 0; k < all.size(); ++k) owner[k] = all[k].rank;
   return owner;
 }
 

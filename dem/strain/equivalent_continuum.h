@@ -51,11 +51,13 @@ TessellationGradient gradient_over_tetrahedra(const DelaunayTetrahedra& tessella
 
 // The same over the tetrahedra of `tessellation` carried to new positions: the Delaunay cells
 // of a set's reference positions, now spanned by its current `positions`, averaging the
-// gradient of `values` (velocities: L). Valid while every tetrahedron keeps a positive volume,
-// so that they still tessellate the region the set occupies now; invalid with the reason "a
-// tetrahedron has inverted" otherwise (take a new tessellation then), or for the reasons of
-// gradient_over_tetrahedra(). On each tetrahedron L_t = dF_t/dt F_t^-1 exactly, so F and L
-// are averages over the same cells.
+// gradient of `values` (velocities: L). Valid while every tetrahedron keeps a positive volume;
+// invalid with the reason "a tetrahedron has inverted" otherwise (take a new tessellation
+// then), or for the reasons of gradient_over_tetrahedra(). Positive volumes do not rule out
+// cells folded over one another, and the cells are no longer Delaunay, so L here depends on the
+// history since the reference, not only on the current positions as a new tessellation's would.
+// On each tetrahedron L_t = dF_t/dt F_t^-1 exactly, so F and L are averages over the same
+// cells.
 TessellationGradient gradient_over_carried_tetrahedra(const DelaunayTetrahedra& tessellation,
                                                       std::span<const Vec3> positions,
                                                       std::span<const Vec3> values);

@@ -270,6 +270,9 @@ GridStrain partition_strain(const StrainReference& reference, std::span<const in
       ++i;
     } else {
       const int c = lagrangian ? reference.cell[k] : current_cell[current[i].second];
+      if (c >= cells)
+        throw Error("strain: particle " + std::to_string(reference.id[k]) + " is in cell " +
+                    std::to_string(c) + " of a partition into " + std::to_string(cells) + " sets");
       if (c >= 0) matches.push_back({k, current[i].second, c});
       ++k;
       ++i;

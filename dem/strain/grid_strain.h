@@ -149,8 +149,9 @@ GridStrain grid_strain(const StrainReference& reference, const RegularGrid& curr
                        const GridStrainOptions& options, const GridStrain* previous = nullptr);
 
 // The same over any partition into reference.cells sets: Lagrangian sets from reference.cell,
-// Eulerian ones from `current_cell` (the cell of each particle of `now`, -1 for none). The
-// result's grid is left empty. grid_strain() is this with the cells of a RegularGrid.
+// Eulerian ones from `current_cell` (the cell of each particle of `now`, -1 for none, below
+// reference.cells: the current partition has the reference's number of sets). The result's
+// grid is left empty. grid_strain() is this with the cells of a RegularGrid.
 GridStrain partition_strain(const StrainReference& reference, std::span<const int> current_cell,
                             const ParticleKinematics& now, double time, long step,
                             const GridStrainOptions& options, const GridStrain* previous = nullptr);

@@ -139,7 +139,7 @@ TEST(ForceLoopGeometry, MotionBoundsTheChangeOfTheSupportFunction) {
 }
 
 // The separation budget never hides a contact: pairs drift towards each other and apart again,
-// turning, over many steps, with the force loop's memory (shaped_pair_geometry()); at every step
+// turning, over many steps, with the force loop's memory (shaped_pair_geometries()); at every step
 // the general solver says whether the pair touches. The budget must skip evaluations (else the
 // test proves nothing) and never skip a touching pair; a reordered store (as after a neighbour-list
 // rebuild) voids the budgets.
@@ -170,15 +170,18 @@ TEST(ForceLoopGeometry, SeparationBudgetNeverHidesAContact) {
         if (swapped) p.permute({1, 0});
         poses.update(p);
         const std::size_t i = swapped ? 1 : 0, j = swapped ? 0 : 1;
-        ContactKinematics kin;
-        double r_star = 0.0;
         const long still_before = stats.still_apart;
-        const bool touching = shaped_pair_geometry(poses, i, j, memory, stats, kin, r_star);
+        std::vector<ShapedPair> batch(1);
+        batch[0].i = i;
+        batch[0].j = j;
+        batch[0].memory = &memory;
+        shaped_pair_geometries(poses, batch, stats);
+        const bool touching = batch[0].touching;
         ContactSolverStats reference_stats;
         const ContactGeometry truth = ellipsoid_contact(k.e1, k.e2, reference_stats);
         ASSERT_EQ(touching, truth.touching) << shape.name << " pair " << pair << " step " << s;
         if (touching) {
-          EXPECT_NEAR(kin.overlap, truth.depth, 1e-13 * k.c_min);
+          EXPECT_NEAR(batch[0].overlap, truth.depth, 1e-13 * k.c_min);
           ++touching_steps;
         }
         skipped += stats.still_apart - still_before;
@@ -191,9 +194,9 @@ TEST(ForceLoopGeometry, SeparationBudgetNeverHidesAContact) {
   EXPECT_GT(skipped, steps / 10);
 }
 
-// Two pairs at once (posed_contacts_two, the force loop's batches): the same results bit for bit
-// and the same counts as each pair alone, whether both take the one-step straight-line path,
-// one is apart, one needs more steps (a larger move), or one overlaps beyond the certificate.
+// Two pairs at once (posed_contacts_two, the force loops' batches): the same results bit for bit
+// and the same counts as each pair alone, whether both take the straight-line path in one step,
+// one needs more steps (a larger move), one is apart, or one overlaps beyond the certificate.
 TEST(ForceLoopGeometry, TwoPairsAtOnceAreBitwiseOnePairAtATime) {
   std::mt19937_64 rng(24);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -236,6 +239,9 @@ TEST(ForceLoopGeometry, TwoPairsAtOnceAreBitwiseOnePairAtATime) {
     EXPECT_EQ(two_stats.newton_iterations, alone_stats.newton_iterations);
     EXPECT_EQ(two_stats.proven_apart, alone_stats.proven_apart);
     EXPECT_EQ(two_stats.fallbacks, alone_stats.fallbacks);
+    EXPECT_EQ(two_stats.warm_rejected, alone_stats.warm_rejected);
+    EXPECT_EQ(two_stats.uncertified, alone_stats.uncertified);
+    EXPECT_EQ(two_stats.failures, alone_stats.failures);
     both_in_lanes +=
         alone_stats.newton_iterations == 2 && alone_stats.calls == 2 && alone_stats.fallbacks == 0;
   }

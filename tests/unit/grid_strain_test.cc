@@ -392,4 +392,7 @@ TEST(GridStrain, PartitionByBlocksIsTheSameComputation) {
   }
   const std::vector<int> bad(p.x.size(), 2);
   EXPECT_THROW(make_strain_reference(p.id, p.x, bad, 2, 0.0, 0), upgrain::Error);
+  GridStrainOptions eulerian;
+  eulerian.set = StrainSet::eulerian;
+  EXPECT_THROW(partition_strain(blocks, bad, s.view(), 1.0, 10, eulerian), upgrain::Error);
 }
