@@ -39,4 +39,10 @@ void write_text_atomically(const std::filesystem::path& path, const std::string&
   f.commit();
 }
 
+void create_folder(const std::filesystem::path& folder) {
+  std::error_code ec;
+  std::filesystem::create_directories(folder, ec);
+  if (ec) throw Error("cannot create folder " + folder.string() + ": " + ec.message());
+}
+
 }  // namespace upgrain::dem::io

@@ -28,4 +28,7 @@ class AtomicFile {
 // Writes `text` to `path` atomically.
 void write_text_atomically(const std::filesystem::path& path, const std::string& text);
 
+// Creates `folder` and its parents if missing; an Error naming the folder if it cannot.
+void create_folder(const std::filesystem::path& folder);
+
 }  // namespace upgrain::dem::io

@@ -189,9 +189,7 @@ std::string strain_csv_header() {
 
 GridStrainRecorder::GridStrainRecorder(std::filesystem::path folder)
     : folder_(std::move(folder)), csv_(folder_ / "grid_strain.csv", strain_csv_header()) {
-  std::error_code ec;
-  std::filesystem::create_directories(folder_ / "grid_strain", ec);
-  if (ec) throw Error("cannot create " + (folder_ / "grid_strain").string() + ": " + ec.message());
+  create_folder(folder_ / "grid_strain");
 }
 
 void GridStrainRecorder::record(const GridStrain& strain, const GridStressRates* rates) {
@@ -304,9 +302,7 @@ std::string compute_grid_csv_header() {
 
 ComputeGridStrainRecorder::ComputeGridStrainRecorder(std::filesystem::path folder)
     : folder_(std::move(folder)), csv_(folder_ / "compute_grid_strain.csv", compute_grid_csv_header()) {
-  std::error_code ec;
-  std::filesystem::create_directories(folder_ / "compute_grid_strain", ec);
-  if (ec) throw Error("cannot create " + (folder_ / "compute_grid_strain").string() + ": " + ec.message());
+  create_folder(folder_ / "compute_grid_strain");
 }
 
 void ComputeGridStrainRecorder::record(const GridStrain& strain, const std::vector<Box>& blocks,

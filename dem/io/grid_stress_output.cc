@@ -86,9 +86,7 @@ GridStressRecorder::GridStressRecorder(std::filesystem::path folder, std::vector
                ". rai = relative asymmetry index (fraction, 2-norm).\n"
                "time,step,cell,i,j,k,x,y,z,formula,s_xx,s_xy,s_xz,s_yx,s_yy,s_yz,s_zx,s_zy,s_zz,rai,"
                "particles,internal_contacts,external_contacts,wall_contacts,solid_fraction\n") {
-  std::error_code ec;
-  std::filesystem::create_directories(folder_ / "grid_stress", ec);
-  if (ec) throw Error("cannot create " + (folder_ / "grid_stress").string() + ": " + ec.message());
+  create_folder(folder_ / "grid_stress");
 }
 
 void GridStressRecorder::record(const RegularGrid& grid, const GridStress& stress, double time, long step) {

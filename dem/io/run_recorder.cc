@@ -45,9 +45,7 @@ RegularGrid stress_grid(const GridStressOptions& options, const ParticleStore& p
 
 RunRecorder::RunRecorder(OutputOptions options)
     : options_(std::move(options)), series_(options_.folder / "time_series.csv", kSeriesHeader) {
-  std::error_code ec;
-  std::filesystem::create_directories(options_.folder / "snapshots", ec);
-  if (ec) throw Error("cannot create output folder " + options_.folder.string() + ": " + ec.message());
+  create_folder(options_.folder / "snapshots");
 }
 
 void RunRecorder::record_series(const Simulation& sim) {

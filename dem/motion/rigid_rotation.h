@@ -7,10 +7,9 @@
 // each of which rotates the body-frame angular momentum and the orientation exactly. The
 // result is time-reversible and symplectic: |L| is kept to round-off, the energy error stays
 // bounded (no drift), and the quaternion stays normalised because it is only multiplied by
-// unit quaternions. Torques enter as half kicks of the angular momentum around the free
-// rotation (velocity-Verlet style), as in Simulation::step for the spheres: of the world-frame
-// momentum in rotate_rigid_body(), of the body-frame momentum (the world torque rotated into
-// the body) in the force loops' grain_rotation.cc, which is the same map.
+// unit quaternions. Torques enter as half kicks of the body-frame angular momentum (the world
+// torque rotated into the body) around the free rotation (velocity-Verlet style), as in
+// Simulation::step for the spheres: rotation_step() here, grain_rotation.cc in the engines.
 //
 // The arithmetic is written once over "lanes" T: double for one body, or a vector of doubles
 // holding several bodies side by side (dem/motion/grain_rotation.cc turns two grains at once).
