@@ -56,6 +56,8 @@ def main():
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--steps", type=int, default=2000)
     ap.add_argument("--results", default=os.path.join(HERE, "results"))
+    ap.add_argument("--summation", default="deterministic", choices=["deterministic", "fast"],
+                    help="the engine's summation (docs/architecture.md)")
     a = ap.parse_args()
     bench = os.path.join(a.build, "bench", "bench_dense_bed")
     liggghts = shutil.which("liggghts")
@@ -73,9 +75,9 @@ def main():
         side = next(float(l.split()[1]) for l in open(data) if "xlo xhi" in l)
         best_u = best_l = None
         for rep in range(a.repeat):
-            out, rss_u = run_measured([bench, "run", data, str(a.steps)])
+            out, rss_u = run_measured([bench, "run", data, str(a.steps), a.summation])
             m = dict(zip(*[iter(out.split()[1:])] * 2))
-            u = {k: float(v) for k, v in m.items()}
+            u = {k: float(v) for k, v in m.items() if k != "summation"}
             u["rss"] = rss_u
             if best_u is None or u["particle_steps_per_second"] > best_u["particle_steps_per_second"]:
                 best_u = u

@@ -2,9 +2,11 @@
 // the settled state. Two modes, so that Upgrain and LIGGGHTS start from the same file:
 //   bench_dense_bed settle N bed.data   deposit N spheres, relax them with the benchmark
 //                                        material, write a LAMMPS/LIGGGHTS data file
-//   bench_dense_bed run bed.data [steps] time `steps` steps (default 2000) from the file and
-//                                        print particle-steps/s, contacts per particle and
-//                                        peak memory per particle
+//   bench_dense_bed run bed.data [steps [summation]]
+//                                        time `steps` steps (default 2000) from the file with
+//                                        the given summation (deterministic, the default, or
+//                                        fast) and print particle-steps/s, contacts per
+//                                        particle and peak memory per particle
 //   bench_dense_bed stress bed.data OUT [steps [evaluations]]
 //                                        cost of grid stress per contact and its share of a
 //                                        run that evaluates it every 1,000 steps
@@ -27,9 +29,10 @@
 
 #include "bench/dense_bed_scene.h"
 #include "dem/deposition.h"
+#include "dem/engine/simulation.h"
 #include "dem/io/grid_stress_output.h"
+#include "dem/parallel/mpi_start.h"
 #include "dem/scene/fill.h"
-#include "dem/simulation.h"
 
 using namespace upgrain::dem;
 
@@ -121,22 +124,25 @@ int settle(long n, const std::string& path) {
 }
 
 // Reads a bed written by `settle` into a simulation with the benchmark material.
-std::unique_ptr<Simulation> load_bed(const std::string& path) {
+std::unique_ptr<Simulation> load_bed(const std::string& path,
+                                     Summation summation = Summation::deterministic) {
   std::optional<upgrain::bench::Bed> bed = upgrain::bench::read_bed(path);
   if (!bed) {
     std::fprintf(stderr, "cannot open %s\n", path.c_str());
     return nullptr;
   }
-  return std::make_unique<Simulation>(bed->scene, std::move(bed->particles));
+  EngineOptions options;
+  options.summation = summation;
+  return std::make_unique<Simulation>(bed->scene, std::move(bed->particles), MPI_COMM_SELF, options);
 }
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-int run(const std::string& path, long steps) {
+int run(const std::string& path, long steps, Summation summation) {
   const double baseline = current_rss_bytes();  // the process before any particle data
-  std::unique_ptr<Simulation> sim = load_bed(path);
+  std::unique_ptr<Simulation> sim = load_bed(path, summation);
   if (!sim) return 1;
   const auto n = static_cast<long>(sim->particles().size());
   const auto t0 = std::chrono::steady_clock::now();
@@ -144,11 +150,12 @@ int run(const std::string& path, long steps) {
   const double secs = seconds_since(t0);
   const auto d2 = sim->diagnostics();
   std::printf(
-      "upgrain particles %ld steps %ld seconds %.4f particle_steps_per_second %.4e "
+      "upgrain summation %s particles %ld steps %ld seconds %.4f particle_steps_per_second %.4e "
       "contacts_per_particle %.3f wall_contacts %ld peak_bytes_per_particle %.0f "
       "peak_bytes_per_particle_above_baseline %.0f neighbor_builds %ld\n",
-      n, steps, secs, static_cast<double>(n) * steps / secs, 2.0 * d2.particle_contacts / n, d2.wall_contacts,
-      peak_rss_bytes() / n, (peak_rss_bytes() - baseline) / n, d2.neighbor_builds);
+      to_string(summation).c_str(), n, steps, secs, static_cast<double>(n) * steps / secs,
+      2.0 * d2.particle_contacts / n, d2.wall_contacts, peak_rss_bytes() / n,
+      (peak_rss_bytes() - baseline) / n, d2.neighbor_builds);
   return 0;
 }
 
@@ -206,9 +213,12 @@ int stress(const std::string& path, long steps, long evaluations, const std::str
 }  // namespace
 
 int main(int argc, char** argv) {
+  upgrain::dem::MpiSession mpi(argc, argv);  // the engine runs on MPI_COMM_SELF
   const std::string mode = argc > 1 ? argv[1] : "";
   if (mode == "settle" && argc == 4) return settle(std::atol(argv[2]), argv[3]);
-  if (mode == "run" && argc >= 3) return run(argv[2], argc > 3 ? std::atol(argv[3]) : 2000);
+  if (mode == "run" && argc >= 3)
+    return run(argv[2], argc > 3 ? std::atol(argv[3]) : 2000,
+               argc > 4 && std::string(argv[4]) == "fast" ? Summation::fast : Summation::deterministic);
   if (mode == "stress" && argc >= 4)
     return stress(argv[2], argc > 4 ? std::atol(argv[4]) : 2000, argc > 5 ? std::atol(argv[5]) : 20, argv[3]);
   std::fprintf(stderr,

@@ -11,7 +11,8 @@
 // spread of the per-round ratios, narrow-phase tests per second (pairs past the bounding
 // spheres: still apart by an earlier proof, proven apart, or solved), and Newton steps per
 // solve.
-//   bench_ellipsoid_bed [N [steps [cache_dir [rounds [phase]]]]]   (defaults 2000, 2000, no cache, 5, bed)
+//   bench_ellipsoid_bed [N [steps [cache_dir [rounds [phase [summation]]]]]]
+//                                     (defaults 2000, 2000, no cache, 5, bed, deterministic)
 // `phase` = deposition times a flow instead of the settled bed: both fills falling and piling
 // up (soft grains, E = 1e8 Pa, one time step for both, 0.8 of the ellipsoids' safe step), timed
 // from t = 0.15 s (the pile forming on the floor), where grains move, turn and collide.
@@ -28,9 +29,10 @@
 #include <string>
 
 #include "bench/dense_bed_scene.h"
-#include "dem/relaxation.h"
+#include "dem/engine/relaxation.h"
+#include "dem/engine/simulation.h"
+#include "dem/parallel/mpi_start.h"
 #include "dem/scene/fill.h"
-#include "dem/simulation.h"
 #include "dem/time_step.h"
 
 #include <algorithm>
@@ -86,6 +88,9 @@ void for_each_array(ParticleStore& p, F&& f) {
   f(p.inertia_body);
 }
 
+// The summation of the timed beds (docs/architecture.md).
+EngineOptions timed_options;
+
 // A settled bed ready to be timed, and what its timed steps gave.
 struct Bed {
   const char* what = "";
@@ -132,7 +137,7 @@ Bed flowing(long n, double r, const std::vector<GrainShape>& shapes, double dt) 
   Bed b;
   b.what = shapes.empty() ? "spheres" : "ellipsoids";
   b.n = n;
-  b.sim = std::make_unique<Simulation>(s, fill_container(s));
+  b.sim = std::make_unique<Simulation>(s, fill_container(s), MPI_COMM_SELF, timed_options);
   b.sim->run(std::lround(0.15 / dt));
   b.before = b.sim->contact_solver_stats();
   return b;
@@ -169,7 +174,7 @@ Bed prepare(long n, double r, const std::vector<GrainShape>& shapes, const std::
   Bed b;
   b.what = what;
   b.n = n;
-  b.sim = std::make_unique<Simulation>(stiff, p);
+  b.sim = std::make_unique<Simulation>(stiff, p, MPI_COMM_SELF, timed_options);
   b.sim->run(200);  // lists built, caches warm
   b.before = b.sim->contact_solver_stats();
   return b;
@@ -204,11 +209,13 @@ ParticleStore settle(long n, double r, const std::vector<GrainShape>& shapes, do
 }  // namespace
 
 int main(int argc, char** argv) {
+  upgrain::dem::MpiSession mpi(argc, argv);  // the engine runs on MPI_COMM_SELF
   const long n = argc > 1 ? std::atol(argv[1]) : 2000;
   const long steps = argc > 2 ? std::atol(argv[2]) : 2000;
   const std::string cache_dir = argc > 3 ? argv[3] : "";
   const long rounds = UPGRAIN_ON_VALGRIND() ? 1 : std::max(1L, argc > 4 ? std::atol(argv[4]) : 5L);
   const bool deposition = argc > 5 && std::string(argv[5]) == "deposition";
+  if (argc > 6 && std::string(argv[6]) == "fast") timed_options.summation = Summation::fast;
   const double r = 1.5e-3;
   const GrainShape shape{0.8, 0.6, 1.0};
   const double a = r / std::cbrt(0.8 * 0.6);

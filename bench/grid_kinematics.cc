@@ -24,9 +24,10 @@
 #include <optional>
 #include <vector>
 
+#include "dem/engine/simulation.h"
 #include "dem/io/run_recorder.h"
+#include "dem/parallel/mpi_start.h"
 #include "dem/scene/fill.h"
-#include "dem/simulation.h"
 #include "dem/strain/grid_strain.h"
 #include "dem/strain/grid_stress_rates.h"
 
@@ -124,4 +125,10 @@ BENCHMARK(BM_GridKinematics)
     ->ArgsProduct({{3, 6}, {0, 1, 2}})
     ->Unit(benchmark::kMillisecond);
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  upgrain::dem::MpiSession mpi(argc, argv);  // the engine runs on MPI_COMM_SELF
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

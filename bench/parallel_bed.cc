@@ -1,21 +1,20 @@
-// MPI benchmark (issue 5, item 9): the settled dense bed of bench_dense_bed, stepped by
-// ParallelSimulation on the ranks it is started with.
-//   mpiexec -n K bench_parallel_bed bed.data [steps] [--no-serial] [--blocks PXxPYxPZ]
-//           [--wedge] [--balance STEPS] [--balance-cost particles|pair_slots]
+// MPI benchmark: the settled dense bed of bench_dense_bed, stepped by the engine on the ranks
+// it is started with.
+//   mpiexec -n K bench_parallel_bed bed.data [steps] [--summation deterministic|fast]
+//           [--blocks PXxPYxPZ] [--wedge] [--balance STEPS] [--balance-cost particles|pair_slots]
 // (blocks: default chosen by the decomposition rule, docs/parallel.md). --wedge keeps only
 // the grains below the plane from the top of the bed at x = 0 to the floor at x = lx (a heap
 // against one wall: a strongly non-uniform bed, 1/4 of the grains in the right half);
-// --balance moves the planes (ParallelOptions::balance_interval, at construction and at
+// --balance moves the planes (EngineOptions::balance_interval, at construction and at
 // rebuilds; docs/parallel.md, "Load balance"), and the line then also reports the owned
 // imbalance before the timed run, the rebalances and the last before/after figures.
 // Rank 0 prints one line of `key value` pairs: particles, steps, wall seconds, particle-
 // steps/s, the share of time in communication (per-step reduction, ghost refresh, messages
-// of rebuilds; mean over ranks of ParallelTimings), the imbalance (max/mean of owned
+// of rebuilds; mean over ranks of StepTimings), the imbalance (max/mean of owned
 // particles, pair slots and compute seconds), neighbour rebuilds, and a hash of the final
-// state sorted by id (bitwise rank-independent, so equal for every K). With K = 1 it also
-// times the serial Simulation on the same bed in the same process, before the parallel
-// run: the ratio is the cost of the deterministic force sum on one rank. One `rank` line
-// per rank follows on stderr. bench/parallel_scaling.py runs K = 1 and 2 and compares.
+// state sorted by id (with deterministic summation bitwise rank-independent, so equal for every
+// K), with the summation (docs/architecture.md). One `rank` line per rank follows on stderr.
+// bench/parallel_scaling.py runs both summations on K = 1 and 2 and compares.
 #include <mpi.h>
 
 #include <algorithm>
@@ -31,9 +30,9 @@
 #include <vector>
 
 #include "bench/dense_bed_scene.h"
-#include "dem/parallel/parallel_simulation.h"
+#include "dem/engine/simulation.h"
+#include "dem/parallel/mpi_start.h"
 #include "dem/parallel/records.h"
-#include "dem/simulation.h"
 
 using namespace upgrain::dem;
 
@@ -79,11 +78,11 @@ ParticleStore wedge_of(const ParticleStore& p, double lx) {
   return out;
 }
 
-int run(const std::string& path, long steps, bool serial, bool wedge, const ParallelOptions& options) {
+int run(const std::string& path, long steps, bool wedge, const EngineOptions& options) {
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
-  // Every rank reads the scene; rank 0's particles are the bed (ParallelSimulation
+  // Every rank reads the scene; rank 0's particles are the bed (Simulation
   // broadcasts them).
   std::optional<upgrain::bench::Bed> bed = upgrain::bench::read_bed(path);
   int ok = bed ? 1 : 0, all_ok = 0;
@@ -98,18 +97,10 @@ int run(const std::string& path, long steps, bool serial, bool wedge, const Para
   MPI_Bcast(&n_global, 1, MPI_LONG, 0, MPI_COMM_WORLD);
   const long n = n_global;
 
-  double serial_seconds = 0.0;
-  if (serial && size == 1) {
-    Simulation sim(bed->scene, bed->particles);
-    const auto t0 = std::chrono::steady_clock::now();
-    sim.run(steps);
-    serial_seconds = seconds_since(t0);
-  }
-
   const auto t_setup = std::chrono::steady_clock::now();
-  ParallelSimulation sim(bed->scene, bed->particles, MPI_COMM_WORLD, options);
+  Simulation sim(bed->scene, bed->particles, MPI_COMM_WORLD, options);
   const double setup_seconds = seconds_since(t_setup);
-  const long rebuilds_before = sim.diagnostics().rebuilds;
+  const long rebuilds_before = sim.rank_diagnostics().rebuilds;
   const LoadImbalance at_start = sim.load_imbalance();
   MPI_Barrier(MPI_COMM_WORLD);
   const auto t0 = std::chrono::steady_clock::now();
@@ -117,9 +108,9 @@ int run(const std::string& path, long steps, bool serial, bool wedge, const Para
   MPI_Barrier(MPI_COMM_WORLD);
   const double wall = seconds_since(t0);
 
-  const ParallelDiagnostics diag = sim.diagnostics();
+  const RankDiagnostics diag = sim.rank_diagnostics();
   const LoadImbalance imbalance = sim.load_imbalance();
-  const ParallelTimings& t = sim.timings();
+  const StepTimings& t = sim.timings();
   // Per rank: owned, ghosts, pair slots, then the timing parts.
   constexpr int kFields = 10;
   const double mine[kFields] = {static_cast<double>(diag.owned),
@@ -155,22 +146,21 @@ int run(const std::string& path, long steps, bool serial, bool wedge, const Para
   }
   const std::array<int, 3>& b = sim.decomposition().blocks();
   std::printf(
-      "parallel ranks %d blocks %dx%dx%d particles %ld steps %ld seconds %.4f particle_steps_per_second %.4e "
+      "parallel summation %s ranks %d blocks %dx%dx%d particles %ld steps %ld seconds %.4f "
+      "particle_steps_per_second %.4e "
       "comm_share %.4f reduction_share %.4f ghost_refresh_share %.4f rebuild_messages_share %.4f "
       "owned_imbalance %.4f pairs_imbalance %.4f compute_imbalance %.4f rebuilds %ld ghosts_max %.0f "
       "state_hash %016llx",
-      size, b[0], b[1], b[2], n, steps, wall, static_cast<double>(n) * steps / wall, share, share_reduction,
-      share_refresh, share_rebuild, imbalance.owned_ratio, imbalance.pairs_ratio, imbalance.compute_ratio,
-      diag.rebuilds - rebuilds_before, ghosts_max, static_cast<unsigned long long>(state_hash(final_state)));
+      to_string(options.summation).c_str(), size, b[0], b[1], b[2], n, steps, wall,
+      static_cast<double>(n) * steps / wall, share, share_reduction, share_refresh, share_rebuild,
+      imbalance.owned_ratio, imbalance.pairs_ratio, imbalance.compute_ratio, diag.rebuilds - rebuilds_before,
+      ghosts_max, static_cast<unsigned long long>(state_hash(final_state)));
   if (options.balance_interval > 0 || wedge)
     std::printf(
         " wedge %d balance_interval %ld owned_imbalance_start %.4f setup_seconds %.4f rebalances %ld "
         "last_rebalance_before %.4f last_rebalance_after %.4f",
         wedge ? 1 : 0, options.balance_interval, at_start.owned_ratio, setup_seconds, diag.rebalances,
         diag.imbalance_before, diag.imbalance_after);
-  if (serial_seconds > 0.0)
-    std::printf(" serial_seconds %.4f serial_particle_steps_per_second %.4e parallel_over_serial %.4f",
-                serial_seconds, static_cast<double>(n) * steps / serial_seconds, wall / serial_seconds);
   std::printf("\n");
   return 0;
 }
@@ -178,16 +168,18 @@ int run(const std::string& path, long steps, bool serial, bool wedge, const Para
 }  // namespace
 
 int main(int argc, char** argv) {
+  upgrain::dem::prefer_isolated_singleton();
   MPI_Init(&argc, &argv);
   std::vector<std::string> args(argv + 1, argv + argc);
-  bool serial = true;
   bool usage = false;
   bool wedge = false;
-  ParallelOptions options;
+  EngineOptions options;
   std::vector<std::string> positional;
   for (std::size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--no-serial") {
-      serial = false;
+    if (args[i] == "--summation" && i + 1 < args.size()) {
+      const std::string m = args[++i];
+      usage = usage || (m != "deterministic" && m != "fast");
+      options.summation = m == "fast" ? Summation::fast : Summation::deterministic;
     } else if (args[i] == "--wedge") {
       wedge = true;
     } else if (args[i] == "--balance" && i + 1 < args.size()) {
@@ -207,17 +199,17 @@ int main(int argc, char** argv) {
   int code = 2;
   if (!usage && (positional.size() == 1 || positional.size() == 2)) {
     try {
-      code = run(positional[0], positional.size() > 1 ? std::atol(positional[1].c_str()) : 1000, serial,
-                 wedge, options);
+      code =
+          run(positional[0], positional.size() > 1 ? std::atol(positional[1].c_str()) : 1000, wedge, options);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "bench_parallel_bed: %s\n", e.what());
       MPI_Abort(MPI_COMM_WORLD, 1);
     }
   } else {
-    std::fprintf(
-        stderr,
-        "usage: mpiexec -n K bench_parallel_bed bed.data [steps] [--no-serial] [--blocks PXxPYxPZ] [--wedge] "
-        "[--balance STEPS] [--balance-cost particles|pair_slots]\n");
+    std::fprintf(stderr,
+                 "usage: mpiexec -n K bench_parallel_bed bed.data [steps] [--summation deterministic|fast] "
+                 "[--blocks PXxPYxPZ] [--wedge] "
+                 "[--balance STEPS] [--balance-cost particles|pair_slots]\n");
   }
   MPI_Finalize();
   return code;

@@ -1,13 +1,16 @@
 #!/usr/bin/python3
-"""MPI scaling of the dense-bed benchmark (issue 5, item 9).
+"""MPI scaling of the dense-bed benchmark, for both summations of the engine.
 
-Runs `mpiexec -n K bench_parallel_bed bed.data STEPS` for each K in --ranks, alternating
-the rank counts within each of --repeat rounds, and reports the best run of each K:
-speedup and parallel efficiency against one rank of ParallelSimulation (and against the
-serial Simulation, timed in the one-rank runs), the share of time in communication and
-the load imbalance. The load average is read before and after every run; the spread of
-the repeats shows how noisy the machine was. Creates the settled bed with
-`bench_dense_bed settle N` if it is missing.
+Runs `mpiexec -n K bench_parallel_bed bed.data STEPS --summation S` for each rank count K in
+--ranks and each summation S in --summations, alternating all of them within each of
+--repeat rounds, and reports the best run of each: speedup and parallel efficiency against
+one rank of the same summation, the cost of the deterministic summation over the fast one on
+the same rank count, the share of time in communication and the load imbalance. With
+--baseline BUILD, the bench_parallel_bed of another build (an earlier version of Upgrain,
+which may print other keys) runs in the same rounds, so that its figures are measured beside
+these. The load average is read before and after every run; the spread of the repeats shows
+how noisy the machine was. Creates the settled bed with `bench_dense_bed settle N` if it is
+missing.
 
     python3 bench/parallel_scaling.py --build build --size 50000 --steps 1000 --repeat 3
 """
@@ -46,10 +49,8 @@ def mpiexec(args, k):
     return cmd
 
 
-def run_once(args, bench, bed, k):
-    cmd = mpiexec(args, k) + [str(bench), str(bed), str(args.steps)]
-    if k != 1 or args.no_serial:
-        cmd.append("--no-serial")
+def run_once(args, bench, bed, k, extra):
+    cmd = mpiexec(args, k) + [str(bench), str(bed), str(args.steps)] + extra
     if k in args.blocks:
         cmd += ["--blocks", args.blocks[k]]
     before = loadavg()
@@ -84,15 +85,17 @@ def wait_idle(limit):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--build", default=str(ROOT / "build"), help="build folder with bench/")
+    ap.add_argument("--baseline", help="another build folder whose bench_parallel_bed runs beside (no --summation)")
     ap.add_argument("--size", type=int, default=50000, help="spheres in the bed")
     ap.add_argument("--bed", help="bed file (default bench/results/bed_SIZE.data)")
     ap.add_argument("--steps", type=int, default=1000)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
+    ap.add_argument("--summations", nargs="+", default=["deterministic", "fast"],
+                    choices=["deterministic", "fast"])
     ap.add_argument("--bind", default="none", help="mpiexec --bind-to (none, core)")
     ap.add_argument("--blocks", nargs="*", default=[], metavar="K:PXxPYxPZ",
                     help="explicit blocks for a rank count, e.g. 2:2x1x1 (default: the decomposition rule)")
-    ap.add_argument("--no-serial", action="store_true", help="skip the serial Simulation in 1-rank runs")
     ap.add_argument("--wait-idle", type=float, default=0.0, metavar="SECONDS",
                     help="before each run, wait up to SECONDS until no other task is runnable for 10 s")
     ap.add_argument("--verbose", action="store_true", help="print every run and its per-rank lines")
@@ -111,59 +114,71 @@ def main():
     os.environ.setdefault("OMPI_ALLOW_RUN_AS_ROOT", "1")
     os.environ.setdefault("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
 
-    runs = {k: [] for k in args.ranks}
+    # Each configuration: (label, bench binary, extra arguments).
+    configs = [(s, bench, ["--summation", s]) for s in args.summations]
+    if args.baseline:
+        configs.append(("baseline", pathlib.Path(args.baseline) / "bench" / "bench_parallel_bed", []))
+    runs = {(c[0], k): [] for c in configs for k in args.ranks}
     commands = {}
     for rep in range(args.repeat):
-        for k in args.ranks:
-            if args.wait_idle > 0:
-                wait_idle(args.wait_idle)
-            res, commands[k] = run_once(args, bench, bed, k)
-            runs[k].append(res)
-            print(f"round {rep + 1} ranks {k}: {res['seconds']:.3f} s, comm {100 * res['comm_share']:.1f} %, "
-                  f"load {res['load_before']:.2f} -> {res['load_after']:.2f}", flush=True)
-            if args.verbose:
-                for l in res["rank_lines"]:
-                    print("   ", l)
+        for label, binary, extra in configs:
+            for k in args.ranks:
+                if args.wait_idle > 0:
+                    wait_idle(args.wait_idle)
+                res, commands[(label, k)] = run_once(args, binary, bed, k, extra)
+                runs[(label, k)].append(res)
+                print(f"round {rep + 1} {label} ranks {k}: {res['seconds']:.3f} s, comm {100 * res['comm_share']:.1f} %, "
+                      f"load {res['load_before']:.2f} -> {res['load_after']:.2f}", flush=True)
+                if args.verbose:
+                    for l in res["rank_lines"]:
+                        print("   ", l)
 
-    hashes = {r["state_hash"] for k in args.ranks for r in runs[k]}
-    best = {k: min(runs[k], key=lambda r: r["seconds"]) for k in args.ranks}
-    k0 = args.ranks[0]
-    t0 = best[k0]["seconds"]
-    serial = [r["serial_seconds"] for r in runs.get(1, []) if "serial_seconds" in r]
+    best = {key: min(v, key=lambda r: r["seconds"]) for key, v in runs.items()}
     print()
-    for k in args.ranks:
-        print(f"command (K = {k}): {commands[k]}")
-    print(f"bed {bed}: {int(best[k0]['particles'])} spheres, {args.steps} steps per run, best of {args.repeat}, "
+    for key, cmd in commands.items():
+        print(f"command ({key[0]}, K = {key[1]}): {cmd}")
+    any_run = next(iter(best.values()))
+    print(f"bed {bed}: {int(any_run['particles'])} spheres, {args.steps} steps per run, best of {args.repeat}, "
           f"mpiexec --bind-to {args.bind}")
-    print("final states bitwise identical on all rank counts: " + ("yes" if len(hashes) == 1 else f"NO {hashes}"))
-    loads = [r[x] for k in args.ranks for r in runs[k] for x in ("load_before", "load_after")]
+    for label, _, _ in configs:
+        hashes = {r["state_hash"] for k in args.ranks for r in runs[(label, k)]}
+        print(f"{label}: final states bitwise identical on all rank counts: "
+              + ("yes" if len(hashes) == 1 else f"no ({len(hashes)} states)"))
+    loads = [r[x] for v in runs.values() for r in v for x in ("load_before", "load_after")]
     print(f"load average (1 min) during the runs: {min(loads):.2f} - {max(loads):.2f} on {os.cpu_count()} cores")
     print()
-    print("| ranks | blocks | best s | spread | particle-steps/s | speedup | efficiency | comm share "
+    print("| summation | ranks | blocks | best s | spread | particle-steps/s | speedup | efficiency | comm share "
           "(reduction / ghost refresh) | imbalance owned / pairs / compute | rebuilds |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
-    for k in args.ranks:
-        b = best[k]
-        times = [r["seconds"] for r in runs[k]]
-        spread = max(times) / min(times) - 1.0
-        speedup = t0 / b["seconds"]
-        print(f"| {k} | {b['blocks']} | {b['seconds']:.3f} | {100 * spread:.0f} % | "
-              f"{b['particle_steps_per_second']:.3e} | {speedup:.2f} | {100 * speedup / (k / k0):.0f} % | "
-              f"{100 * b['comm_share']:.1f} % ({100 * b['reduction_share']:.1f} / "
-              f"{100 * b['ghost_refresh_share']:.1f}) | {b['owned_imbalance']:.3f} / {b['pairs_imbalance']:.3f} / "
-              f"{b['compute_imbalance']:.3f} | {int(b['rebuilds'])} |")
-    if serial:
-        s = min(serial)
-        print()
-        print(f"serial Simulation, best of {len(serial)}: {s:.3f} s; one rank of ParallelSimulation / serial = "
-              f"{best[1]['seconds'] / s:.2f}" if 1 in best else "")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    k0 = args.ranks[0]
+    for label, _, _ in configs:
+        t0 = best[(label, k0)]["seconds"]
         for k in args.ranks:
-            if k > 1:
-                sp = s / best[k]["seconds"]
-                print(f"{k} ranks against the serial Simulation: speedup {sp:.2f}, efficiency {100 * sp / k:.0f} %")
-    for k in args.ranks:
-        print(f"per rank, best run of K = {k}:")
-        for l in best[k]["rank_lines"]:
+            b = best[(label, k)]
+            times = [r["seconds"] for r in runs[(label, k)]]
+            spread = max(times) / min(times) - 1.0
+            speedup = t0 / b["seconds"]
+            print(f"| {label} | {k} | {b['blocks']} | {b['seconds']:.3f} | {100 * spread:.0f} % | "
+                  f"{b['particle_steps_per_second']:.3e} | {speedup:.2f} | {100 * speedup / (k / k0):.0f} % | "
+                  f"{100 * b['comm_share']:.1f} % ({100 * b['reduction_share']:.1f} / "
+                  f"{100 * b['ghost_refresh_share']:.1f}) | {b['owned_imbalance']:.3f} / {b['pairs_imbalance']:.3f} / "
+                  f"{b['compute_imbalance']:.3f} | {int(b['rebuilds'])} |")
+    print()
+    if "deterministic" in args.summations and "fast" in args.summations:
+        for k in args.ranks:
+            ratio = best[("deterministic", k)]["seconds"] / best[("fast", k)]["seconds"]
+            print(f"{k} rank(s): deterministic / fast = {ratio:.3f}")
+    if args.baseline:
+        base = [r for r in runs[("baseline", 1)] if "serial_seconds" in r] if 1 in args.ranks else []
+        if base:
+            s = min(r["serial_seconds"] for r in base)
+            print(f"baseline serial engine (same rounds), best: {s:.3f} s")
+            for label in args.summations:
+                for k in args.ranks:
+                    print(f"{label} on {k} rank(s) / baseline serial engine = {best[(label, k)]['seconds'] / s:.3f}")
+    for key in best:
+        print(f"per rank, best run of {key[0]}, K = {key[1]}:")
+        for l in best[key]["rank_lines"]:
             print("   ", l)
 
 

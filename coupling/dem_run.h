@@ -1,6 +1,6 @@
 #pragma once
-// The DEM part of a driver run: which engine runs it under mpirun (Parallel/DEM engine),
-// and the run itself, collective over the communicator.
+// The DEM part of a driver run, collective over the communicator: the engine's options from
+// the scene's Parallel section, and the run itself.
 #include <mpi.h>
 
 #include <functional>
@@ -10,12 +10,8 @@
 
 namespace upgrain::coupling {
 
-struct EngineChoice {
-  bool mpi = false;    // the MPI engine on every rank; else the serial engine on rank 0
-  std::string reason;  // for the log
-};
-
-EngineChoice choose_engine(const SceneInput& in, int ranks);
+// The summation, blocks and load balance of the Parallel section.
+dem::EngineOptions engine_options(const SceneInput& in);
 
 // Collective over `comm`. The result is complete on rank 0 (dem/deposition.h). An error on
 // any rank is thrown on every rank.

@@ -14,6 +14,7 @@
 #include "coupling/study.h"
 #include "dem/core/error.h"
 #include "dem/deposition.h"
+#include "dem/parallel/mpi_start.h"
 #include "dem/stress/asymmetry.h"
 #include "dem/time_step.h"
 
@@ -27,7 +28,7 @@ constexpr const char* kUsage =
     "the elastic column of the same container (deal.II), comparison tables, plots and a\n"
     "report, all in the output folder. Without a file, runs the built-in default study\n"
     "(about 2,000 spheres on a 3 x 3 x 4 grid, a few minutes). Under mpirun the\n"
-    "DEM runs on the MPI engine (Parallel/DEM engine) and the continuum on every rank.\n"
+    "DEM and the continuum run on every rank (Parallel section).\n"
     "\n"
     "Options:\n"
     "  -h, --help                    this text\n"
@@ -154,12 +155,13 @@ int run(int argc, char** argv) {
       std::printf(
           "  study: DEM deposition -> grid stress -> continuum column (Q%u) -> comparison and report\n",
           in.study.continuum.degree);
-    const coupling::EngineChoice engine = coupling::choose_engine(in, ranks);
-    if (engine.mpi)
-      std::printf("  %d MPI rank(s): the MPI DEM engine on every rank (%s)\n", ranks, engine.reason.c_str());
-    else if (ranks > 1)
-      std::printf("  %d MPI ranks: the DEM runs on rank 0 (%s), the continuum on every rank\n", ranks,
-                  engine.reason.c_str());
+    std::printf("  %d MPI rank%s, %s summation (Parallel/summation)\n", ranks, ranks > 1 ? "s" : "",
+                dem::to_string(in.parallel.summation).c_str());
+    if (in.parallel.legacy_engine != "auto")
+      std::printf(
+          "  warning: Parallel/DEM engine = %s is ignored: one engine runs the DEM on every rank count "
+          "(docs/parallel.md); remove the entry\n",
+          in.parallel.legacy_engine.c_str());
   }
   if (check_only) {
     if (rank == 0) std::printf("  scene is valid; nothing written (--check)\n");
@@ -192,6 +194,7 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  upgrain::dem::prefer_isolated_singleton();
   MPI_Init(&argc, &argv);
   int code = 0;
   try {

@@ -128,13 +128,17 @@ const std::vector<ParameterSpec>& parameter_schema() {
       {"Output", "time series interval", "0.002", K::real, 0.0, 1e6, "", "s",
        "Simulated time between rows of time_series.csv."},
 
+      {"Parallel", "summation", "deterministic", K::selection, 0, 0, "deterministic|fast", "-",
+       "How the DEM sums forces and global quantities (docs/architecture.md). deterministic: each grain adds "
+       "its contacts in the order of its partners' ids, and every result and output byte is the same on any "
+       "rank count. fast: a scatter over a half list in local order, forces on ghosts returned to their "
+       "owners; results then depend on the rank count to round-off."},
       {"Parallel", "DEM engine", "auto", K::selection, 0, 0, "auto|serial|mpi", "-",
-       "Which engine runs the DEM under mpirun (docs/parallel.md). mpi: the MPI engine on every rank, "
-       "particles divided among blocks, results and output bytes the same on any rank count. serial: the "
-       "one-process engine on rank 0 (the continuum still uses every rank). auto: mpi on more than one "
-       "rank, serial on one."},
+       "No longer used: one engine runs the DEM on every rank count (docs/parallel.md). Kept so that older "
+       "scene files still run; a value other than auto is ignored with a warning."},
       {"Parallel", "blocks", "0, 0, 0", K::integer3, 0, 4096, "", "-",
-       "Blocks of the MPI engine along x, y, z; their product must be the rank count. 0, 0, 0 = chosen to "
+       "Blocks of the DEM's domain decomposition along x, y, z; their product must be the rank count. 0, 0, "
+       "0 = chosen to "
        "minimise the cut area for the rank count and the box."},
       {"Parallel", "balance interval", "0.01", K::real, 0.0, 1e6, "", "s",
        "Simulated time between moves of the block planes to the quantiles of the cost (load balance, "

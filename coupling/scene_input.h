@@ -11,10 +11,12 @@
 
 namespace upgrain::coupling {
 
-// Parallel/DEM engine and blocks (coupling/dem_run.h chooses at run time).
-enum class DemEngineChoice { automatic, serial, mpi };
+// The Parallel section: the summation, the blocks and the load balance of the DEM engine.
 struct ParallelInput {
-  DemEngineChoice engine = DemEngineChoice::automatic;
+  dem::Summation summation = dem::Summation::deterministic;
+  // Parallel/DEM engine of older scene files (auto, serial or mpi): no longer used, since one
+  // engine runs every rank count; the driver says so when it is not auto.
+  std::string legacy_engine = "auto";
   std::array<int, 3> blocks{0, 0, 0};  // all 0: chosen from the rank count and the box
   double balance_interval = 0.01;      // s of simulated time; 0 = fixed blocks
   bool balance_by_pairs = false;       // cost: pair slots instead of particles

@@ -199,10 +199,9 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
 
   prm.enter_subsection("Parallel");
   {
-    const std::string engine = prm.get("DEM engine");
-    in.parallel.engine = engine == "mpi"      ? DemEngineChoice::mpi
-                         : engine == "serial" ? DemEngineChoice::serial
-                                              : DemEngineChoice::automatic;
+    in.parallel.summation =
+        prm.get("summation") == "fast" ? dem::Summation::fast : dem::Summation::deterministic;
+    in.parallel.legacy_engine = prm.get("DEM engine");
     const auto b = Patterns::Tools::Convert<std::vector<int>>::to_value(
         prm.get("blocks"), Patterns::List(Patterns::Integer(0, 4096), 3, 3, ","));
     for (int d = 0; d < 3; ++d) in.parallel.blocks[d] = b[d];

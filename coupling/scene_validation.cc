@@ -192,11 +192,6 @@ void validate_scene(SceneInput& in) {
       throw Error(m.str());
     }
   }
-  if (in.parallel.engine == DemEngineChoice::mpi && s.effects.rolling_resistance)
-    throw Error(
-        where +
-        "Parallel/DEM engine = mpi, but Effects/rolling resistance is on, which the MPI engine does not "
-        "have yet; set 'DEM engine = auto' (the DEM then runs on rank 0) or 'serial'");
   if (s.effects.rolling_resistance && !s.effects.rotation)
     throw Error(where + "Effects/rolling resistance needs Effects/rotation = true (it acts on the spins)");
   namespace fs = std::filesystem;

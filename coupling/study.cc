@@ -241,9 +241,8 @@ int run_study(const SceneInput& in, MPI_Comm comm,
         d.side_wall_vertical += r.wall_forces[w].z();
     }
   });
-  timings.emplace_back(choose_engine(in, ranks).mpi
-                           ? "DEM deposition, relaxation and grid stress (MPI engine)"
-                           : "DEM deposition, relaxation and grid stress (rank 0)",
+  timings.emplace_back("DEM deposition, relaxation and grid stress (" + std::to_string(ranks) + " rank" +
+                           (ranks > 1 ? "s, " : ", ") + dem::to_string(in.parallel.summation) + " summation)",
                        since(t0));
   broadcast(d, comm);
 

@@ -5,8 +5,8 @@
 #include <sstream>
 
 #include "dem/boundary/wall_release.h"
-#include "dem/dem_engine.h"
 #include "dem/io/compute_grid_stress_output.h"
+#include "dem/parallel/exchange.h"
 #include "dem/scene/fill.h"
 
 namespace upgrain::dem {
@@ -18,17 +18,44 @@ std::string num(double v) {
   s << v;
   return s.str();
 }
+
+// The grid of an evaluation (io::stress_grid of the whole state), the same on every rank: the
+// box of a moving grid needs the top (and extent) of the whole assembly, which rank 0 finds on
+// the gathered state.
+RegularGrid stress_grid(Simulation& sim, const io::GridStressOptions& options, const BoxContainer& box) {
+  RegularGrid g;
+  const ParticleStore& all = sim.whole_state();
+  if (sim.is_root()) g = io::stress_grid(options, all, box);
+  MPI_Bcast(g.n, 3, MPI_INT, 0, sim.comm());
+  MPI_Bcast(g.lo.data(), 3, MPI_DOUBLE, 0, sim.comm());
+  MPI_Bcast(g.hi.data(), 3, MPI_DOUBLE, 0, sim.comm());
+  return g;
+}
+
 }  // namespace
 
 DepositionResult run_deposition(const SceneConfig& scene, const RunControl& control,
                                 const std::optional<io::OutputOptions>& output,
-                                const std::function<void(const Progress&)>& on_progress) {
-  Simulation sim(scene, fill_container(scene));
-  SerialEngine engine(sim);
-  return run_deposition(engine, scene, control, output, on_progress);
+                                const std::function<void(const Progress&)>& on_progress, MPI_Comm comm,
+                                const EngineOptions& options) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  ParticleStore fill;
+  std::string error;
+  if (rank == 0) {
+    try {
+      fill = fill_container(scene);
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  }
+  throw_if_any(comm, error);
+  Simulation sim(scene, fill, comm, options);
+  fill = ParticleStore{};
+  return run_deposition(sim, scene, control, output, on_progress);
 }
 
-DepositionResult run_deposition(DemEngine& sim, const SceneConfig& scene, const RunControl& control,
+DepositionResult run_deposition(Simulation& sim, const SceneConfig& scene, const RunControl& control,
                                 const std::optional<io::OutputOptions>& output,
                                 const std::function<void(const Progress&)>& on_progress) {
   using Clock = std::chrono::steady_clock;
@@ -39,7 +66,7 @@ DepositionResult run_deposition(DemEngine& sim, const SceneConfig& scene, const 
   const long series_every = every(output ? output->series_interval : 0.002);
   const long snapshot_every = every(output ? output->snapshot_interval : 0.0);
 
-  // Output is written by the root; the quantities it needs are collective (dem_engine.h).
+  // Output is written by the root; the quantities it needs are collective (engine/simulation.h).
   std::optional<io::RunRecorder> recorder;
   auto record_series = [&] {
     const EnergyBalance e = sim.energy();
@@ -93,24 +120,24 @@ DepositionResult run_deposition(DemEngine& sim, const SceneConfig& scene, const 
     const double t0 = output->grid_strain.reference_time;
     if (!strain_reference && t0 > 0.0 && sim.time() < t0 - 0.5 * scene.time_step) return;
     const ParticleStore& p = sim.whole_state();
-    const std::optional<DemEngine::ComputeGrids> blocks = sim.compute_grids();  // collective
+    const std::vector<Box> blocks = sim.compute_grid_blocks();
+    const std::vector<int> owner = sim.gather_owners_sorted_by_id();  // collective
     sim.on_root([&] {
-      if (blocks) {
-        const int count = static_cast<int>(blocks->block.size());
+      {
+        const int count = static_cast<int>(blocks.size());
         if (!block_reference) {
-          block_reference =
-              make_strain_reference(p.id, p.x, blocks->owner, count, sim.time(), sim.step_count());
-          reference_blocks = blocks->block;
+          block_reference = make_strain_reference(p.id, p.x, owner, count, sim.time(), sim.step_count());
+          reference_blocks = blocks;
         }
         GridStrain b =
-            partition_strain(*block_reference, blocks->owner, {p.id, p.x, p.v}, sim.time(), sim.step_count(),
+            partition_strain(*block_reference, owner, {p.id, p.x, p.v}, sim.time(), sim.step_count(),
                              output->grid_strain.kernel, last_block_strain ? &*last_block_strain : nullptr);
         if (!block_strain_out) block_strain_out.emplace(output->folder);
         const bool lagrangian = output->grid_strain.kernel.set == StrainSet::lagrangian;
         if (lagrangian)
           block_strain_out->record(b, reference_blocks, block_reference->id, block_reference->cell);
         else
-          block_strain_out->record(b, blocks->block, p.id, blocks->owner);
+          block_strain_out->record(b, blocks, p.id, owner);
         last_block_strain = std::move(b);
       }
       if (!strain_reference)
@@ -127,16 +154,16 @@ DepositionResult run_deposition(DemEngine& sim, const SceneConfig& scene, const 
     });
   };
   if (strain_on && output->grid_strain.reference_time <= 0.0)
-    evaluate_strain(sim.stress_grid(output->grid_stress, scene.container), nullptr);
+    evaluate_strain(stress_grid(sim, output->grid_stress, scene.container), nullptr);
   auto evaluate_stress = [&] {
-    r.final_grid = sim.stress_grid(output->grid_stress, scene.container);
+    r.final_grid = stress_grid(sim, output->grid_stress, scene.container);
     r.final_stress = sim.grid_stress(r.final_grid);
     sim.on_root([&] { stress_out->record(r.final_grid, *r.final_stress, sim.time(), sim.step_count()); });
-    if (const std::optional<ComputeGridStress> blocks = sim.compute_grid_stress())
-      sim.on_root([&] {
-        if (!compute_grid_out) compute_grid_out.emplace(output->folder, output->grid_stress.formulas);
-        compute_grid_out->record(*blocks, sim.time(), sim.step_count());
-      });
+    const ComputeGridStress blocks = sim.compute_grid_stress();
+    sim.on_root([&] {
+      if (!compute_grid_out) compute_grid_out.emplace(output->folder, output->grid_stress.formulas);
+      compute_grid_out->record(blocks, sim.time(), sim.step_count());
+    });
     if (strain_on) evaluate_strain(r.final_grid, &*r.final_stress);
   };
 
@@ -197,7 +224,7 @@ DepositionResult run_deposition(DemEngine& sim, const SceneConfig& scene, const 
     }
   }
   if (control.relax_at_end) {
-    r.relaxation = sim.relax(control.relaxation);
+    r.relaxation = relax_to_equilibrium(sim, control.relaxation);
     // One recorded step of the relaxed state for its stress, snapshot and series row.
     if (stress_on) sim.request_contacts();
     sim.step();
@@ -232,6 +259,7 @@ DepositionResult run_deposition(DemEngine& sim, const SceneConfig& scene, const 
     recorder->write_summary({
         {"particles", num(n)},
         {"mpi_ranks", num(sim.ranks())},
+        {"summation", "\"" + to_string(sim.summation()) + "\""},
         {"load_rebalances", num(static_cast<double>(r.load.rebalances))},
         {"load_owned_imbalance", num(r.load.owned_imbalance)},
         {"load_compute_imbalance", num(r.load.compute_imbalance)},

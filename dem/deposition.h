@@ -4,14 +4,15 @@
 #include <functional>
 #include <optional>
 
-#include "dem/io/grid_strain_output.h"
-#include "dem/io/grid_stress_output.h"
+#include <mpi.h>
 
 #include "dem/analysis/bed_state.h"
-#include "dem/dem_engine.h"
+#include "dem/engine/diagnostics.h"
+#include "dem/engine/relaxation.h"
+#include "dem/engine/simulation.h"
+#include "dem/io/grid_strain_output.h"
+#include "dem/io/grid_stress_output.h"
 #include "dem/io/run_recorder.h"
-#include "dem/relaxation.h"
-#include "dem/simulation.h"
 
 namespace upgrain::dem {
 
@@ -55,15 +56,18 @@ struct DepositionResult {
   EngineLoad load;  // how the ranks shared the work (one rank: the defaults)
 };
 
-// On the serial engine, from the scene's fill.
+// From the scene's fill (made on rank 0), collective over `comm`: every rank keeps the grains
+// of its block. The output is written by rank 0 and holds the same bytes on any rank count
+// with deterministic summation (docs/parallel.md, "Runs from the driver"); the result is
+// complete on rank 0 only (bed, mass, strain and progress reports are rank 0's; the other
+// fields are the same on every rank).
 DepositionResult run_deposition(const SceneConfig& scene, const RunControl& control,
                                 const std::optional<io::OutputOptions>& output,
-                                const std::function<void(const Progress&)>& on_progress = {});
+                                const std::function<void(const Progress&)>& on_progress = {},
+                                MPI_Comm comm = MPI_COMM_SELF, const EngineOptions& options = {});
 
-// On any engine (dem_engine.h), collective over its ranks: the output is written by the
-// root, and the result is complete on the root only (bed, mass, strain and progress
-// reports are the root's; the other fields are the same on every rank).
-DepositionResult run_deposition(DemEngine& engine, const SceneConfig& scene, const RunControl& control,
+// The same on an engine already made (collective over its ranks).
+DepositionResult run_deposition(Simulation& engine, const SceneConfig& scene, const RunControl& control,
                                 const std::optional<io::OutputOptions>& output,
                                 const std::function<void(const Progress&)>& on_progress = {});
 

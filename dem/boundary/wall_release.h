@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "dem/boundary/plane_wall.h"
+#include "dem/boundary/container.h"
 
 namespace upgrain::dem {
 

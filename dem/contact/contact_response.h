@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "dem/contact/hertz_mindlin.h"
+#include "dem/core/contact_history.h"
 #include "dem/core/types.h"
 
 namespace upgrain::dem {
@@ -45,29 +46,6 @@ struct ContactKinematics {
   kin.lever_j = -arm_j * kin.normal;
   r_star = ri * rj / rsum;
 }
-
-// History of one contact's incremental Mindlin spring.
-struct TangentialSpring {
-  Vec3 force = Vec3::Zero();  // tangential force on body i
-  double stiffness = 0.0;     // k_t when the force was last updated (0: new contact)
-};
-
-// What an ellipsoid contact keeps between steps besides its spring: the last normal (the
-// contact solver's warm start; zero when none) and the Hertz radius frozen at first touch
-// (0 while apart). A radius that followed the contact point would make the normal force
-// non-conservative: static equilibria then stop being attracting (docs/ellipsoids.md).
-struct ShapedContactMemory {
-  Vec3 normal = Vec3::Zero();
-  double r_star = 0.0;
-  // A pair proven apart: the gap still proven after the grains' motion since (m; 0 when none).
-  // Valid only while the store keeps its order (GrainPoses): the MPI engine rebuilds its pair
-  // lists from migration records without it, and the serial one reorders grains at a rebuild,
-  // so after a rebuild every pair is evaluated once.
-  double gap_budget = 0.0;
-
-  [[nodiscard]] bool empty() const { return r_star == 0.0 && normal == Vec3::Zero(); }
-  [[nodiscard]] ShapedContactMemory reversed() const { return {-normal, r_star, gap_budget}; }
-};
 
 struct ContactEnergy {
   double elastic_normal = 0.0;

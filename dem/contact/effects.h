@@ -1,8 +1,8 @@
 #pragma once
 // The physical effects a scene opts into. The force loop is a template on the subset that
 // matters for contact forces, instantiated once per combination and chosen once per run
-// (contact/force_kernel.h), so a frictionless scene carries no tangential history and no
-// rotation work (STYLE.md section 1).
+// (dem/engine/force_loop.h), so a frictionless scene carries no tangential history and no
+// rotation work (docs/architecture.md).
 
 namespace upgrain::dem {
 
@@ -19,6 +19,11 @@ struct EffectSet {
 
   // Tangential history is only carried when some tangential force exists.
   [[nodiscard]] bool needs_history() const { return friction || wall_friction; }
+  // Whether the grains' rotation is integrated: spheres turn only under tangential forces
+  // and rolling resistance, ellipsoids under normal forces as well (`shapes`).
+  [[nodiscard]] bool integrates_rotation(bool shapes) const {
+    return rotation && (friction || wall_friction || rolling_resistance || shapes);
+  }
 };
 
 template <bool Friction, bool Damping, bool WallFriction, bool Rotation, bool Energy, bool Rolling = false>
@@ -29,7 +34,7 @@ struct Effects {
   // Spheres only feel torque from tangential forces and rolling resistance: without them,
   // no rotation work.
   static constexpr bool rotation = Rotation && (Friction || WallFriction || Rolling);
-  // Non-spherical grains turn under normal forces too (dem/contact/force_kernel.cc).
+  // Non-spherical grains turn under normal forces too (dem/engine/force_loop_body.h).
   static constexpr bool rotation_requested = Rotation;
   static constexpr bool energy = Energy;
   static constexpr bool rolling = Rolling && Rotation;
@@ -58,9 +63,9 @@ auto with_effects(const EffectSet& e, Make make) {
   return e.friction ? damping.template operator()<true>() : damping.template operator()<false>();
 }
 
-// The same ladder for scenes with rolling resistance (serial engine only): rotation is on
-// (Simulation refuses rolling resistance without it), so only friction, damping, wall friction
-// and energy tracking vary. Scenes without it keep the instantiations of with_effects.
+// The same ladder for scenes with rolling resistance: rotation is on (the engine refuses
+// rolling resistance without it), so only friction, damping, wall friction and energy
+// tracking vary. Scenes without it keep the instantiations of with_effects.
 template <class Make>
 auto with_rolling_effects(const EffectSet& e, Make make) {
   auto energy = [&]<bool F, bool D, bool W>() {

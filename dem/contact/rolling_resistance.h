@@ -12,12 +12,6 @@
 
 namespace upgrain::dem {
 
-// History of one contact's rolling spring.
-struct RollingSpring {
-  Vec3 torque = Vec3::Zero();  // spring torque on body i (body j receives -torque)
-  double stiffness = 0.0;      // k_r when the torque was last updated (0: new contact)
-};
-
 struct RollingParameters {
   double friction = 0.0;       // mu_r: plastic limit |M_r| <= mu_r R* F_n
   double damping_ratio = 0.0;  // eta_r: dashpot C_r = eta_r 2 sqrt(I_r k_r)

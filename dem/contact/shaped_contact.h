@@ -1,13 +1,12 @@
 #pragma once
-// The geometry of ellipsoid contacts as the force loops use it, shared by the serial loop
-// (force_kernel.cc) and the deterministic parallel loop (parallel/deterministic_forces.cc),
-// so that both evaluate a contact with the same operations (docs/ellipsoids.md).
+// The geometry of ellipsoid contacts as the force loop uses it (dem/engine/force_loop.h):
+// pairs with at least one ellipsoid and ellipsoids against walls (docs/ellipsoids.md).
 #include <vector>
 
-#include "dem/boundary/plane_wall.h"
 #include "dem/contact/contact_response.h"
 #include "dem/contact/ellipsoid_geometry.h"
 #include "dem/contact/grain_poses.h"
+#include "dem/core/plane_wall.h"
 
 namespace upgrain::dem {
 
@@ -94,8 +93,8 @@ void shaped_pair_geometries(const GrainPoses& poses, std::vector<ShapedPair>& pa
 // (docs/ellipsoid-contact.md). Returns false when apart (then r_held = 0). Sets the overlap
 // and lever of `kin` (the caller sets kin.normal = -wall.normal) and the Hertz radius, held
 // from first touch in r_held, as for pairs.
-inline bool shaped_wall_geometry(const PosedEllipsoid& posed, const PlaneWall& wall, double& r_held,
-                                 ContactKinematics& kin) {
+[[gnu::always_inline]] inline bool shaped_wall_geometry(const PosedEllipsoid& posed, const PlaneWall& wall,
+                                                        double& r_held, ContactKinematics& kin) {
   const ContactGeometry g = posed_plane_contact(posed, Plane{wall.point, wall.normal}, r_held == 0.0);
   if (!g.touching) {
     r_held = 0.0;

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "dem/io/csv_series.h"
-#include "dem/parallel/parallel_stress.h"
+#include "dem/stress/grid_stress.h"
 
 namespace upgrain::dem::io {
 

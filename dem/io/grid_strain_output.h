@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "dem/core/box.h"
 #include "dem/io/csv_series.h"
-#include "dem/parallel/decomposition.h"
 #include "dem/strain/grid_strain.h"
 #include "dem/strain/grid_stress_rates.h"
 

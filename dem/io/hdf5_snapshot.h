@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "dem/boundary/plane_wall.h"
 #include "dem/core/particle_store.h"
+#include "dem/core/plane_wall.h"
 
 namespace upgrain::dem::io {
 

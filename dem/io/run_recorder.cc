@@ -48,10 +48,6 @@ RunRecorder::RunRecorder(OutputOptions options)
   create_folder(options_.folder / "snapshots");
 }
 
-void RunRecorder::record_series(const Simulation& sim) {
-  record_series(sim.time(), sim.step_count(), sim.energy(), sim.energy_balance_error(), sim.diagnostics());
-}
-
 void RunRecorder::record_series(double time, long step, const EnergyBalance& e, double balance_error,
                                 const StepDiagnostics& d) {
   char line[512];
@@ -62,10 +58,6 @@ void RunRecorder::record_series(double time, long step, const EnergyBalance& e, 
                 e.tangential_stiffness_change, e.total(), balance_error, d.particle_contacts, d.wall_contacts,
                 d.max_overlap_ratio, d.neighbor_builds);
   rows_.emplace_back(line);
-}
-
-void RunRecorder::write_snapshot(const Simulation& sim) {
-  write_snapshot(sim.particles(), sim.walls(), sim.wall_forces(), sim.time(), sim.step_count());
 }
 
 void RunRecorder::write_snapshot(const ParticleStore& p, const std::vector<PlaneWall>& walls,

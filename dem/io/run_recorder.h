@@ -7,9 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "dem/boundary/container.h"
+#include "dem/engine/diagnostics.h"
+#include "dem/engine/energy.h"
 #include "dem/io/csv_series.h"
 #include "dem/io/hdf5_snapshot.h"
-#include "dem/simulation.h"
 #include "dem/strain/grid_strain.h"
 #include "dem/stress/grid_stress.h"
 
@@ -58,9 +60,7 @@ class RunRecorder {
   // Creates the folder (and its snapshots/ subfolder).
   explicit RunRecorder(OutputOptions options);
 
-  void record_series(const Simulation& sim);
-  void write_snapshot(const Simulation& sim);
-  // The same from plain data (any engine; the MPI run passes its gathered state).
+  // One row of the time series, and a snapshot of a whole state sorted by id.
   void record_series(double time, long step, const EnergyBalance& e, double balance_error,
                      const StepDiagnostics& d);
   void write_snapshot(const ParticleStore& p, const std::vector<PlaneWall>& walls,

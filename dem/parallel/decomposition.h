@@ -10,14 +10,10 @@
 #include <array>
 #include <vector>
 
+#include "dem/core/box.h"
 #include "dem/core/types.h"
 
 namespace upgrain::dem {
-
-struct Box {
-  Vec3 lo = Vec3::Zero();
-  Vec3 hi = Vec3::Zero();
-};
 
 // The px x py x pz of least internal cut area, (px-1) Ly Lz + (py-1) Lx Lz + (pz-1) Lx Ly,
 // over the factorisations of `ranks` whose blocks are at least `min_block` thick along every

@@ -12,7 +12,7 @@
 // quantity (each limb sum stays below 2^63).
 //
 // Used where a global sum steers the particle states (FIRE's power and norms,
-// dem/parallel/parallel_relaxation.h) and must therefore be identical on any rank count.
+// dem/engine/relaxation.h) and must therefore be identical on any rank count.
 #include <array>
 #include <cstdint>
 #include <vector>

@@ -57,6 +57,31 @@ void sum_in_id_order(const std::vector<ParticleStressShare>& shares, std::vector
 
 Box clip(const Box& block, const Box& box) { return {block.lo.cwiseMax(box.lo), block.hi.cwiseMin(box.hi)}; }
 
+// The stress of every block from its sums, over the block's clipped volume.
+void finish_blocks(ComputeGridStress& out, const std::vector<StressSums>& sums) {
+  const int size = static_cast<int>(out.block.size());
+  out.stress = empty_grid_stress(size, 0.0);
+  out.stress.volume.resize(size);
+  for (int r = 0; r < size; ++r) {
+    const double v = (out.block[r].hi - out.block[r].lo).prod();
+    out.stress.volume[r] = v;
+    finish_cell(out.stress, r, sums[r], v);
+  }
+}
+
+// Cell sums of every rank added elementwise over the ranks.
+std::vector<StressSums> summed_over_ranks(const std::vector<StressSums>& mine, MPI_Comm comm) {
+  std::vector<double> flat(mine.size() * kFlat);
+  for (std::size_t c = 0; c < mine.size(); ++c) {
+    const FlatSums f = flatten(mine[c]);
+    std::copy(f.begin(), f.end(), flat.begin() + static_cast<std::ptrdiff_t>(c) * kFlat);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, flat.data(), static_cast<int>(flat.size()), MPI_DOUBLE, MPI_SUM, comm);
+  std::vector<StressSums> out(mine.size());
+  for (std::size_t c = 0; c < mine.size(); ++c) out[c] = unflatten(flat.data() + c * kFlat);
+  return out;
+}
+
 }  // namespace
 
 std::vector<ParticleStressShare> particle_stress_shares(const ParticleStore& p, int n_owned,
@@ -134,12 +159,9 @@ GridStress parallel_grid_stress(const ParticleStore& local, int n_owned,
                                 const std::vector<ContactSample>& contacts, const RegularGrid& grid,
                                 const GrainDynamics& dynamics, MPI_Comm comm) {
   const int cells = grid.num_cells();
-  std::vector<int> cell(local.size());
-  for (std::size_t i = 0; i < local.size(); ++i) cell[i] = grid.cell_of(local.x[i]);
-  std::vector<Vec3> centre(cells);
-  for (int c = 0; c < cells; ++c) centre[c] = grid.cell_centre(c);
+  const CellAssignment a = assign_cells(grid, local.x);
   const std::vector<ParticleStressShare> shares =
-      particle_stress_shares(local, n_owned, contacts, cell, centre, dynamics);
+      particle_stress_shares(local, n_owned, contacts, a.cell, a.centre, dynamics);
 
   std::vector<ShareRecord> mine;
   for (const ParticleStressShare& s : shares)
@@ -200,13 +222,40 @@ ComputeGridStress parallel_compute_grid_stress(const ParticleStore& local, int n
   const FlatSums f = flatten(sums[0]);
   std::vector<double> flat(static_cast<std::size_t>(size) * kFlat);
   MPI_Allgather(f.data(), kFlat, MPI_DOUBLE, flat.data(), kFlat, MPI_DOUBLE, d.comm());
-  out.stress = empty_grid_stress(size, 0.0);
-  out.stress.volume.resize(size);
-  for (int r = 0; r < size; ++r) {
-    const double v = (out.block[r].hi - out.block[r].lo).prod();
-    out.stress.volume[r] = v;
-    finish_cell(out.stress, r, unflatten(flat.data() + r * kFlat), v);
-  }
+  std::vector<StressSums> sums_of(static_cast<std::size_t>(size));
+  for (int r = 0; r < size; ++r) sums_of[static_cast<std::size_t>(r)] = unflatten(flat.data() + r * kFlat);
+  finish_blocks(out, sums_of);
+  return out;
+}
+
+GridStress summed_grid_stress(const ParticleStore& local, int n_owned,
+                              const std::vector<ContactSample>& contacts, const RegularGrid& grid,
+                              const GrainDynamics& dynamics, MPI_Comm comm) {
+  const int cells = grid.num_cells();
+  const CellAssignment a = assign_cells(grid, local.x);
+  std::vector<StressSums> sums =
+      cell_stress_sums(local, static_cast<std::size_t>(n_owned), contacts, a.cell, a.centre, dynamics);
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  if (size > 1) sums = summed_over_ranks(sums, comm);
+  GridStress g = empty_grid_stress(cells, grid.cell_volume());
+  for (int c = 0; c < cells; ++c) finish_cell(g, c, sums[c], g.cell_volume);
+  return g;
+}
+
+ComputeGridStress summed_compute_grid_stress(const ParticleStore& local, int n_owned,
+                                             const std::vector<ContactSample>& contacts,
+                                             const Decomposition& d, const std::vector<int>& owner,
+                                             const GrainDynamics& dynamics) {
+  const int size = d.size();
+  ComputeGridStress out;
+  out.block = compute_grid_blocks(d);
+  std::vector<Vec3> centre(size);
+  for (int r = 0; r < size; ++r) centre[r] = 0.5 * (out.block[r].lo + out.block[r].hi);
+  std::vector<StressSums> sums =
+      cell_stress_sums(local, static_cast<std::size_t>(n_owned), contacts, owner, centre, dynamics);
+  if (size > 1) sums = summed_over_ranks(sums, d.comm());
+  finish_blocks(out, sums);
   return out;
 }
 

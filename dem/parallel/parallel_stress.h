@@ -1,9 +1,11 @@
 #pragma once
-// Grid stress in a parallel run (paper brief, section 6; docs/stress.md, "Stress in
-// parallel"), by all seven formulas, from the contacts a rank recorded in one evaluation
-// (DeterministicForceKernels::recording) and its local store (owned particles first, then
-// ghosts).
+// Grid stress in a parallel run (docs/stress.md, "Stress in parallel"), by all seven
+// formulas, from the contacts a rank recorded in one evaluation (dem/engine/force_loop.h) and
+// its local store (owned particles first, then ghosts). One pair of functions per summation
+// (dem/engine/summation.h).
 //
+// Deterministic summation (parallel_grid_stress, parallel_compute_grid_stress): every rank
+// has recorded every contact of its owned particles, a pair across two ranks on both.
 // Every owned ("black") particle p contributes its own share of its cell, summed over its
 // contacts in a canonical order (walls by index, then partners by global id):
 //  - Bagi: sum_c f^pc (x) (x^c - x^p) over all its contacts; over the particles of a cell
@@ -58,13 +60,23 @@ std::vector<Box> compute_grid_blocks(const Decomposition& decomposition);
 // particle, walls external). Cell r is rank r's block, clipped to the decomposition box
 // (the outer blocks are open); GridStress::volume holds the clipped volumes, `block` the
 // clipped blocks. Collective; every rank receives all blocks.
-struct ComputeGridStress {
-  GridStress stress;
-  std::vector<Box> block;
-};
 ComputeGridStress parallel_compute_grid_stress(const ParticleStore& local, int n_owned,
                                                const std::vector<ContactSample>& contacts,
                                                const Decomposition& decomposition,
                                                const GrainDynamics& dynamics);
+
+// Fast summation: every contact was recorded once over the ranks (by the rank that evaluated
+// it). Each rank sums its contacts and owned particles per cell (cell_stress_sums, as
+// grid_stress() does on one rank, so one rank gives grid_stress() bit for bit) and the cell
+// sums are added over the ranks (MPI_SUM): the result depends on the decomposition to
+// round-off. For the compute grids a ghost belongs to its owner's block (`owner[i]` for every
+// local particle i).
+GridStress summed_grid_stress(const ParticleStore& local, int n_owned,
+                              const std::vector<ContactSample>& contacts, const RegularGrid& grid,
+                              const GrainDynamics& dynamics, MPI_Comm comm);
+ComputeGridStress summed_compute_grid_stress(const ParticleStore& local, int n_owned,
+                                             const std::vector<ContactSample>& contacts,
+                                             const Decomposition& decomposition,
+                                             const std::vector<int>& owner, const GrainDynamics& dynamics);
 
 }  // namespace upgrain::dem

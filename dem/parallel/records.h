@@ -8,33 +8,17 @@
 
 namespace upgrain::dem {
 
-// A ghost at a rebuild: what a neighbour needs to evaluate the pair law.
-struct GhostRecord {
-  GlobalId gid;
-  double radius, inv_mass, inv_inertia;
-  double x[3], v[3], omega[3];
-};
-
 // A ghost's refresh between rebuilds: the state that changes every step.
 struct MotionRecord {
   double x[3], v[3], omega[3];
 };
 
-// A whole particle: migration and gathering.
+// A whole particle: migration, ghosts at a rebuild (their forces are the force loop's to
+// set), and gathering.
 struct StateRecord {
   GlobalId gid;
   double radius, inv_mass, inv_inertia;
   double x[3], v[3], omega[3], force[3], torque[3];
-};
-
-// One tangential spring keyed by global ids: a pair (a < b), force on a; or a wall
-// contact of particle a with wall w, stored as b = -1 - w.
-struct SpringRecord {
-  GlobalId a, b;
-  double force[3];
-  double stiffness;
-  bool operator<(const SpringRecord& o) const { return a < o.a || (a == o.a && b < o.b); }
-  bool same_key(const SpringRecord& o) const { return a == o.a && b == o.b; }
 };
 
 // The shape of an ellipsoid scene's particle (every grain; spheres as a = b = c): sent next
@@ -49,17 +33,6 @@ struct OrientationRecord {
   double q[4];  // x, y, z, w
 };
 
-// One pair's ellipsoid contact memory keyed by global ids, a < b, the normal from a to b
-// (canonical: a is body i); or a wall contact of particle a with wall w as b = -1 - w,
-// r_star only.
-struct MemoryRecord {
-  GlobalId a, b;
-  double normal[3];
-  double r_star;
-  bool operator<(const MemoryRecord& o) const { return a < o.a || (a == o.a && b < o.b); }
-  bool same_key(const MemoryRecord& o) const { return a == o.a && b == o.b; }
-};
-
 // One contact keyed by global ids (a < b, force on a; or wall w as b = -1 - w), for
 // gathered output.
 struct ContactRecord {
@@ -69,10 +42,8 @@ struct ContactRecord {
 };
 
 static_assert(std::is_trivially_copyable_v<ContactRecord>);
-static_assert(std::is_trivially_copyable_v<ShapeRecord> && std::is_trivially_copyable_v<OrientationRecord> &&
-              std::is_trivially_copyable_v<MemoryRecord>);
-static_assert(std::is_trivially_copyable_v<GhostRecord> && std::is_trivially_copyable_v<MotionRecord> &&
-              std::is_trivially_copyable_v<StateRecord> && std::is_trivially_copyable_v<SpringRecord>);
+static_assert(std::is_trivially_copyable_v<ShapeRecord> && std::is_trivially_copyable_v<OrientationRecord>);
+static_assert(std::is_trivially_copyable_v<MotionRecord> && std::is_trivially_copyable_v<StateRecord>);
 
 inline void put(double* out, const Vec3& v) { out[0] = v[0], out[1] = v[1], out[2] = v[2]; }
 inline Vec3 get(const double* in) { return Vec3(in[0], in[1], in[2]); }

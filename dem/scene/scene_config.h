@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "dem/boundary/plane_wall.h"
+#include "dem/boundary/container.h"
 #include "dem/contact/effects.h"
 #include "dem/core/material.h"
 #include "dem/core/types.h"

@@ -84,19 +84,13 @@ void finish_cell(GridStress& g, int c, const StressSums& s, double v) {
   g.solid_fraction[c] = s.solid_volume * inv_v;
 }
 
-GridStress grid_stress(const ParticleStore& p, const std::vector<ContactSample>& contacts,
-                       const RegularGrid& grid, const GrainDynamics& dynamics) {
-  const int cells = grid.num_cells();
-  GridStress g = empty_grid_stress(cells, grid.cell_volume());
-  std::vector<StressSums> sums(cells);
-
-  std::vector<int> cell(p.size());
-  std::vector<Vec3> centre(cells);
-  for (int c = 0; c < cells; ++c) centre[c] = grid.cell_centre(c);
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    cell[i] = grid.cell_of(p.x[i]);
+std::vector<StressSums> cell_stress_sums(const ParticleStore& p, std::size_t n_counted,
+                                         const std::vector<ContactSample>& contacts,
+                                         const std::vector<int>& cell, const std::vector<Vec3>& centre,
+                                         const GrainDynamics& dynamics) {
+  std::vector<StressSums> sums(centre.size());
+  for (std::size_t i = 0; i < n_counted; ++i)
     if (cell[i] >= 0) add_grain_count(sums[cell[i]], p.volume(i));
-  }
   for (const ContactSample& s : contacts) {
     const int ca = cell[s.a];
     if (s.with_wall()) {
@@ -121,9 +115,27 @@ GridStress grid_stress(const ParticleStore& p, const std::vector<ContactSample>&
       ++sums[cb].external_contacts;
     }
   }
-  for (std::size_t i = 0; i < p.size(); ++i) {
+  for (std::size_t i = 0; i < n_counted; ++i) {
     if (cell[i] >= 0) add_grain_terms(sums[cell[i]], p, i, centre[cell[i]], dynamics);
   }
+  return sums;
+}
+
+CellAssignment assign_cells(const RegularGrid& grid, const std::vector<Vec3>& x) {
+  CellAssignment a;
+  a.cell.resize(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) a.cell[i] = grid.cell_of(x[i]);
+  a.centre.resize(static_cast<std::size_t>(grid.num_cells()));
+  for (int c = 0; c < grid.num_cells(); ++c) a.centre[c] = grid.cell_centre(c);
+  return a;
+}
+
+GridStress grid_stress(const ParticleStore& p, const std::vector<ContactSample>& contacts,
+                       const RegularGrid& grid, const GrainDynamics& dynamics) {
+  const int cells = grid.num_cells();
+  GridStress g = empty_grid_stress(cells, grid.cell_volume());
+  const CellAssignment a = assign_cells(grid, p.x);
+  const std::vector<StressSums> sums = cell_stress_sums(p, p.size(), contacts, a.cell, a.centre, dynamics);
   for (int c = 0; c < cells; ++c) finish_cell(g, c, sums[c], g.cell_volume);
   return g;
 }

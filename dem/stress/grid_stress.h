@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "dem/contact/contact_sample.h"
+#include "dem/core/box.h"
 #include "dem/core/particle_store.h"
 #include "dem/stress/stress_formula.h"
 
@@ -59,6 +60,14 @@ struct GridStress {
 
 GridStress grid_stress(const ParticleStore& p, const std::vector<ContactSample>& contacts,
                        const RegularGrid& grid, const GrainDynamics& dynamics);
+
+// The stress of the compute grids (the blocks of an MPI decomposition, one cell per block):
+// `stress` has a cell per block and per-cell volumes, `block` the blocks clipped to the
+// decomposition box (dem/parallel/parallel_stress.h).
+struct ComputeGridStress {
+  GridStress stress;
+  std::vector<Box> block;
+};
 
 // The building blocks of grid_stress(), shared with the parallel evaluation
 // (dem/parallel/parallel_stress.h), which sums the same terms per grain.
@@ -108,6 +117,23 @@ inline void add_external_contact(StressSums& s, const Vec3& point, const Vec3& x
 void add_grain_terms(StressSums& s, const ParticleStore& p, std::size_t i, const Vec3& centre,
                      const GrainDynamics& dynamics);
 void add_grain_count(StressSums& s, double volume);
+
+// The cell of every particle of `x` (-1 outside the grid) and the centre of every cell.
+struct CellAssignment {
+  std::vector<int> cell;
+  std::vector<Vec3> centre;
+};
+CellAssignment assign_cells(const RegularGrid& grid, const std::vector<Vec3>& x);
+
+// The sums of every cell from contacts (each once) over any partition of the particles:
+// cell[i] is the cell of local particle i (-1: none), centre[c] the reference point of cell c
+// for De Saxce's terms. Particles [0, n_counted) add their counts and own terms; the others
+// (ghosts) only classify the contacts they take part in. grid_stress() is this over a whole
+// store; the fast summation of the MPI engine sums it over the ranks.
+std::vector<StressSums> cell_stress_sums(const ParticleStore& p, std::size_t n_counted,
+                                         const std::vector<ContactSample>& contacts,
+                                         const std::vector<int>& cell, const std::vector<Vec3>& centre,
+                                         const GrainDynamics& dynamics);
 
 // Writes cell c of g (arrays already sized) from its sums over a cell of volume v.
 void finish_cell(GridStress& g, int c, const StressSums& s, double v);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "dem/io/grid_stress_output.h"
+#include "dem/parallel/mpi_start.h"
 #include "dem/stress/asymmetry.h"
 #include "tests/common/relaxed_bed.h"
 
@@ -137,6 +138,7 @@ int grids(const std::filesystem::path& out, long n, const std::vector<std::array
 }  // namespace
 
 int main(int argc, char** argv) {
+  upgrain::dem::MpiSession mpi(argc, argv);  // the engine runs on MPI_COMM_SELF
   if (argc < 4) {
     std::fprintf(stderr,
                  "usage: stress_examples symmetry OUT N...\n"

@@ -1,11 +1,14 @@
-// GoogleTest main for the MPI test binaries (parallel DEM, fem): the same binary runs as a
-// plain process (an MPI singleton) and under mpiexec. Only rank 0 prints the test log;
-// every rank runs every test, so a failure on any rank still fails the run through its
-// exit code.
+// GoogleTest main for every test binary: the same binary runs as a plain process (an MPI
+// singleton) and under mpiexec. Only rank 0 prints the test log; every rank runs every test,
+// so a failure on any rank still fails the run through its exit code.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include "dem/parallel/mpi_start.h"
+
 int main(int argc, char** argv) {
+  // GoogleTest's discovery runs each test case as a process of its own: a singleton.
+  upgrain::dem::prefer_isolated_singleton();
   MPI_Init(&argc, &argv);
   ::testing::InitGoogleTest(&argc, argv);
   int rank = 0;

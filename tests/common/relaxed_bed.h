@@ -8,7 +8,7 @@
 #include <memory>
 #include <numbers>
 
-#include "dem/relaxation.h"
+#include "dem/engine/relaxation.h"
 #include "dem/scene/fill.h"
 #include "dem/stress/grid_stress.h"
 #include "dem/time_step.h"

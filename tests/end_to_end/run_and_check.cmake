@@ -1,6 +1,14 @@
+# Runs the driver on one scene (under LAUNCHER, e.g. "mpiexec -n 2", when given), then the
+# CHECK script on its output folder; the scripts of EXTRA (optional) are called with the
+# folder, RANKS and COUNT. A second run into the same folder must be refused.
+separate_arguments(launcher UNIX_COMMAND "${LAUNCHER}")
+if(NOT RANKS)
+  set(RANKS 1)
+endif()
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
-execute_process(COMMAND ${UPGRAIN} ${PRM} --output ${WORK}/out RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+execute_process(COMMAND ${launcher} ${UPGRAIN} ${PRM} --output ${WORK}/out RESULT_VARIABLE code OUTPUT_VARIABLE out
+                ERROR_VARIABLE err)
 if(NOT code EQUAL 0)
   message(FATAL_ERROR "upgrain failed:\n${out}\n${err}")
 endif()
@@ -8,8 +16,16 @@ execute_process(COMMAND ${PYTHON} ${CHECK} ${WORK}/out ${COUNT} RESULT_VARIABLE 
 if(NOT code EQUAL 0)
   message(FATAL_ERROR "output check failed:\n${out}\n${err}")
 endif()
+foreach(script ${EXTRA})
+  execute_process(COMMAND ${PYTHON} ${script} ${WORK}/out ${RANKS} ${COUNT} RESULT_VARIABLE code OUTPUT_VARIABLE check
+                  ERROR_VARIABLE err)
+  if(NOT code EQUAL 0)
+    message(FATAL_ERROR "${script}:\n${check}\n${err}")
+  endif()
+  message(STATUS "${check}")
+endforeach()
 # A second run into the same folder is refused: nothing the first run wrote is lost.
-execute_process(COMMAND ${UPGRAIN} ${PRM} --output ${WORK}/out RESULT_VARIABLE code ERROR_VARIABLE err)
+execute_process(COMMAND ${launcher} ${UPGRAIN} ${PRM} --output ${WORK}/out RESULT_VARIABLE code ERROR_VARIABLE err)
 if(code EQUAL 0 OR NOT err MATCHES "already holds results")
   message(FATAL_ERROR "a second run into a folder with results was not refused: ${err}")
 endif()

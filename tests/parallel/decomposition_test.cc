@@ -9,7 +9,7 @@
 
 #include "../common/scenes.h"
 #include "dem/core/error.h"
-#include "dem/parallel/parallel_simulation.h"
+#include "dem/engine/simulation.h"
 #include "helpers.h"
 
 using namespace upgrain;
@@ -84,11 +84,11 @@ TEST(Ghosts, CoverEveryPairWithinRangeExactlyOnce) {
   for (int k = 0; k < 3000; ++k)
     all.add_sphere(k, k == 0 ? r_max : ur(rng), 2650, Vec3(u(rng), u(rng), u(rng)), Vec3::Zero(),
                    Vec3::Zero());
-  ParallelOptions o;
+  EngineOptions o;
   o.box = Box{Vec3::Zero(), Vec3(0.06, 0.06, 0.06)};
-  ParallelSimulation sim(s, all, {}, MPI_COMM_WORLD, o);
+  Simulation sim(s, all, {}, MPI_COMM_WORLD, o);
   const double skin = s.neighbor_skin * 2.0 * r_max;
-  const ParticleStore& p = sim.local_particles();
+  const ParticleStore& p = sim.particles();
   // No particle twice on a rank.
   std::vector<GlobalId> ids = p.id;
   std::sort(ids.begin(), ids.end());

@@ -1,7 +1,7 @@
 // Ellipsoids in the MPI engine (docs/parallel.md, "Ellipsoids"): a deposition of the
 // paper's shapes gives the same positions, velocities, angular velocities and orientations
 // bit for bit on K ranks as on one, through migrations (shape state and contact memory
-// travel with the grains); one rank agrees with the serial Simulation to round-off.
+// travel with the grains); one rank agrees with the fast summation on one rank to round-off.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -9,7 +9,7 @@
 #include <cstdio>
 
 #include "../common/relaxed_bed.h"
-#include "dem/simulation.h"
+#include "dem/engine/simulation.h"
 #include "helpers.h"
 
 using namespace upgrain;
@@ -27,7 +27,7 @@ SceneConfig ellipsoid_scene(long count) {
   return s;
 }
 
-long migrations(const ParallelDiagnostics& d) {
+long migrations(const RankDiagnostics& d) {
   long migrated = 0;
   MPI_Allreduce(&d.migrated_out, &migrated, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
   return migrated;
@@ -53,8 +53,7 @@ TEST(ParallelEllipsoids, DepositionOf200PaperEllipsoidsIsBitwiseIdentical) {
   const ParticleStore p = fill_container(s);
   ASSERT_TRUE(p.has_shapes());
   if (test::world_rank() == 0) std::printf("time step %.3g s\n", s.time_step);
-  const ParallelDiagnostics d =
-      test::expect_rank_independent(s, p, make_open_box(s.container), {}, {}, 15000);
+  const RankDiagnostics d = test::expect_rank_independent(s, p, make_open_box(s.container), {}, {}, 15000);
   const long migrated = migrations(d);
   if (test::world_rank() == 0)
     std::printf("ellipsoid deposition on %d ranks: %ld rebuilds, %ld migrations\n", test::world_size(),
@@ -75,14 +74,14 @@ TEST(ParallelEllipsoids, MixedSpheresAndEllipsoidsAreBitwiseIdentical) {
   ASSERT_GT(ellipsoids, 20);
   ASSERT_LT(ellipsoids, 100);
   const std::vector<PlaneWall> walls = make_open_box(s.container);
-  ParallelSimulation world(s, p, walls, MPI_COMM_WORLD);
+  Simulation world(s, p, walls, MPI_COMM_WORLD);
   world.run(12000);
   const ParticleStore parallel = world.gather_sorted_by_id();
   const EnergyBalance e = world.energy();
-  const StepDiagnostics sd = world.step_diagnostics();
-  const long migrated = migrations(world.diagnostics());
+  const StepDiagnostics sd = world.diagnostics();
+  const long migrated = migrations(world.rank_diagnostics());
   if (test::world_rank() == 0) {
-    ParallelSimulation self(s, p, walls, MPI_COMM_SELF);
+    Simulation self(s, p, walls, MPI_COMM_SELF);
     self.run(12000);
     test::expect_bitwise_equal(parallel, self.gather_sorted_by_id(),
                                std::to_string(test::world_size()) + " ranks vs 1");
@@ -103,26 +102,26 @@ TEST(ParallelEllipsoids, MixedSpheresAndEllipsoidsAreBitwiseIdentical) {
   }
 }
 
-// One rank against the serial engine: the same contact geometry and law (shared code), the
+// One rank against the fast summation: the same contact geometry and law (shared code), the
 // same rotation splitting; pairs are solved with the lower id as body i and forces summed
 // in another order, so equal to round-off rather than bitwise. After 2500 steps (first
 // impacts on the floor and between grains) the differences are about 1e-12 of the scale;
 // the impacts amplify them about tenfold per 1000 steps (1e-9 after 5000).
-TEST(ParallelEllipsoids, OneRankMatchesSerialSimulation) {
+TEST(ParallelEllipsoids, OneRankMatchesTheFastSummation) {
   if (test::world_rank() != 0) return;
   const SceneConfig s = ellipsoid_scene(200);
   const ParticleStore p = fill_container(s);
-  Simulation serial(s, p);
-  ParallelSimulation one(s, p, MPI_COMM_SELF);
-  serial.run(2500);
+  Simulation fast(s, p, MPI_COMM_SELF, test::fast_summation());
+  Simulation one(s, p, MPI_COMM_SELF);
+  fast.run(2500);
   one.run(2500);
-  const StepDiagnostics sd = serial.diagnostics();
-  std::printf("serial after 2500 steps: %ld pair and %ld wall contacts\n", sd.particle_contacts,
+  const StepDiagnostics sd = fast.diagnostics();
+  std::printf("fast after 2500 steps: %ld pair and %ld wall contacts\n", sd.particle_contacts,
               sd.wall_contacts);
   ASSERT_GT(sd.particle_contacts, 0);
   ASSERT_GT(sd.wall_contacts, 0);
   std::vector<int> perm(p.size());
-  const ParticleStore& q = serial.particles();
+  const ParticleStore& q = fast.particles();
   for (std::size_t i = 0; i < q.size(); ++i) perm[q.id[i]] = static_cast<int>(i);
   ParticleStore a = q;
   a.permute(perm);
@@ -136,7 +135,7 @@ TEST(ParallelEllipsoids, OneRankMatchesSerialSimulation) {
       },
       diff, scale);
   EXPECT_LE(diff, 1e-10 * scale) << "x";
-  std::printf("one rank vs serial: x differs by %.3g of its scale\n", diff / scale);
+  std::printf("deterministic vs fast: x differs by %.3g of its scale\n", diff / scale);
   max_diff(
       a.size(),
       [&](std::size_t i) {
@@ -144,7 +143,7 @@ TEST(ParallelEllipsoids, OneRankMatchesSerialSimulation) {
       },
       diff, scale);
   EXPECT_LE(diff, 1e-10 * scale) << "v";
-  std::printf("one rank vs serial: v differs by %.3g of its scale\n", diff / scale);
+  std::printf("deterministic vs fast: v differs by %.3g of its scale\n", diff / scale);
   max_diff(
       a.size(),
       [&](std::size_t i) {
@@ -152,7 +151,7 @@ TEST(ParallelEllipsoids, OneRankMatchesSerialSimulation) {
       },
       diff, scale);
   EXPECT_LE(diff, 1e-10 * scale) << "omega";
-  std::printf("one rank vs serial: omega differs by %.3g of its scale\n", diff / scale);
+  std::printf("deterministic vs fast: omega differs by %.3g of its scale\n", diff / scale);
   max_diff(
       a.size(),
       [&](std::size_t i) {
@@ -160,5 +159,5 @@ TEST(ParallelEllipsoids, OneRankMatchesSerialSimulation) {
       },
       diff, scale);
   EXPECT_LE(diff, 1e-10 * scale) << "orientation";
-  std::printf("one rank vs serial: orientation differs by %.3g of its scale\n", diff / scale);
+  std::printf("deterministic vs fast: orientation differs by %.3g of its scale\n", diff / scale);
 }

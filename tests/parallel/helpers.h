@@ -8,10 +8,18 @@
 #include <sstream>
 #include <string>
 
-#include "dem/parallel/parallel_simulation.h"
+#include "dem/engine/simulation.h"
 #include "dem/scene/fill.h"
 
 namespace upgrain::test {
+
+// The engine on one rank with the fast summation: the serial loop of LAMMPS's `newton on`, the
+// reference the deterministic summation is compared with to round-off.
+inline dem::EngineOptions fast_summation() {
+  dem::EngineOptions o;
+  o.summation = dem::Summation::fast;
+  return o;
+}
 
 inline int world_rank() {
   int r = 0;
@@ -67,23 +75,22 @@ inline void expect_bitwise_equal(const dem::ParticleStore& a, const dem::Particl
 
 // Runs `steps` steps on MPI_COMM_WORLD and, on rank 0, the same scene on MPI_COMM_SELF,
 // and compares the states bitwise. Returns the world run's diagnostics (this rank).
-inline dem::ParallelDiagnostics expect_rank_independent(const dem::SceneConfig& scene,
-                                                        const dem::ParticleStore& particles,
-                                                        const std::vector<dem::PlaneWall>& walls,
-                                                        const dem::ParallelOptions& world_options,
-                                                        const dem::ParallelOptions& self_options,
-                                                        long steps) {
-  dem::ParallelSimulation world(scene, particles, walls, MPI_COMM_WORLD, world_options);
+inline dem::RankDiagnostics expect_rank_independent(const dem::SceneConfig& scene,
+                                                    const dem::ParticleStore& particles,
+                                                    const std::vector<dem::PlaneWall>& walls,
+                                                    const dem::EngineOptions& world_options,
+                                                    const dem::EngineOptions& self_options, long steps) {
+  dem::Simulation world(scene, particles, walls, MPI_COMM_WORLD, world_options);
   world.run(steps);
   const dem::ParticleStore parallel = world.gather_sorted_by_id();
   if (world_rank() == 0) {
-    dem::ParallelSimulation self(scene, particles, walls, MPI_COMM_SELF, self_options);
+    dem::Simulation self(scene, particles, walls, MPI_COMM_SELF, self_options);
     self.run(steps);
     const dem::ParticleStore serial = self.gather_sorted_by_id();
     EXPECT_EQ(parallel.size(), particles.size());
     expect_bitwise_equal(parallel, serial, std::to_string(world_size()) + " ranks vs 1");
   }
-  return world.diagnostics();
+  return world.rank_diagnostics();
 }
 
 // The paper's patch test scene: 162 spheres, two layers of 9 x 9, dropped with some

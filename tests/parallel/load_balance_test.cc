@@ -56,19 +56,18 @@ long global_sum(long v) {
 // Steps until a neighbour-list rebuild has happened in the last step: ownership changes
 // only there (in between, grains drift up to half a skin across the planes), and the
 // positions after that step are those the owners were chosen by.
-void step_to_next_rebuild(ParallelSimulation& sim) {
-  const long rebuilds = sim.diagnostics().rebuilds;
-  for (int k = 0; k < 2000 && sim.diagnostics().rebuilds == rebuilds; ++k) sim.step();
-  ASSERT_GT(sim.diagnostics().rebuilds, rebuilds);
+void step_to_next_rebuild(Simulation& sim) {
+  const long rebuilds = sim.rank_diagnostics().rebuilds;
+  for (int k = 0; k < 2000 && sim.rank_diagnostics().rebuilds == rebuilds; ++k) sim.step();
+  ASSERT_GT(sim.rank_diagnostics().rebuilds, rebuilds);
 }
 
 // Right after a rebuild: every owned particle sits in this rank's block, and the gathered
 // state holds each id 0 .. n - 1 once.
-void expect_every_particle_home_once(const ParallelSimulation& sim, long n) {
+void expect_every_particle_home_once(const Simulation& sim, long n) {
   const Decomposition& dec = sim.decomposition();
   long strays = 0;
-  for (int i = 0; i < sim.owned(); ++i)
-    strays += dec.owner_of(sim.local_particles().x[i]) == dec.rank() ? 0 : 1;
+  for (int i = 0; i < sim.owned(); ++i) strays += dec.owner_of(sim.particles().x[i]) == dec.rank() ? 0 : 1;
   EXPECT_EQ(global_sum(strays), 0);
   EXPECT_EQ(global_sum(sim.owned()), n);
   const ParticleStore all = sim.gather_sorted_by_id();
@@ -90,17 +89,17 @@ TEST(LoadBalance, CornerColumnImbalanceFallsBelowBound) {
   std::mt19937_64 rng(21);
   const ParticleStore p = lattice({9, 9, 27}, 1e-3, Vec3(1.1e-3, 1.1e-3, 1.1e-3), 0.2, rng);
   const long n = static_cast<long>(p.size());
-  ParallelOptions fixed;
+  EngineOptions fixed;
   fixed.box = Box{Vec3::Zero(), Vec3(0.06, 0.06, 0.06)};
-  ParallelOptions balanced = fixed;
+  EngineOptions balanced = fixed;
   balanced.balance_interval = 50;
-  ParallelSimulation still(s, p, {}, MPI_COMM_WORLD, fixed);
-  ParallelSimulation moving(s, p, {}, MPI_COMM_WORLD, balanced);
+  Simulation still(s, p, {}, MPI_COMM_WORLD, fixed);
+  Simulation moving(s, p, {}, MPI_COMM_WORLD, balanced);
   // Balanced at construction: the column's blocks owned everything. On up to 4 ranks the
   // chosen blocks do not cut z, so one block owns it all (an imbalance of K); on 8 ranks
   // (2x2x2) two blocks share it (K/2).
   const double initial = still.load_imbalance().owned_ratio;
-  const ParallelDiagnostics d0 = moving.diagnostics();
+  const RankDiagnostics d0 = moving.rank_diagnostics();
   EXPECT_EQ(d0.rebalances, 1);
   EXPECT_NEAR(d0.imbalance_before, initial, 1e-12);
   if (size <= 4) {
@@ -111,14 +110,14 @@ TEST(LoadBalance, CornerColumnImbalanceFallsBelowBound) {
   moving.run(400);
   const LoadImbalance a = still.load_imbalance();
   const LoadImbalance b = moving.load_imbalance();
-  const ParallelDiagnostics d = moving.diagnostics();
+  const RankDiagnostics d = moving.rank_diagnostics();
   if (test::world_rank() == 0)
     std::printf(
         "corner column, %d ranks: %ld rebuilds, %ld rebalances; owned max/mean fixed %.3f, balanced %.3f "
         "(last rebalance at step %ld: %.3f -> %.3f)\n",
         size, d.rebuilds, d.rebalances, a.owned_ratio, b.owned_ratio, d.rebalance_step, d.imbalance_before,
         d.imbalance_after);
-  EXPECT_EQ(still.diagnostics().rebalances, 0);
+  EXPECT_EQ(still.rank_diagnostics().rebalances, 0);
   EXPECT_GE(d.rebalances, 2);  // rebuilds happen about every 100 steps here
   step_to_next_rebuild(moving);
   expect_every_particle_home_once(moving, n);
@@ -139,18 +138,18 @@ TEST(LoadBalance, DepositionWithBalancingIsBitwiseIdentical) {
   const SceneConfig s = test::deposition_scene(600);
   const ParticleStore p = fill_container(s);
   const std::vector<PlaneWall> walls = make_open_box(s.container);
-  ParallelOptions o;
+  EngineOptions o;
   // Blocks along z (the grains fall through the planes); above 4 ranks z blocks would be
   // thinner than the interaction range in this 20 mm fill, so x is cut in two as well.
   o.blocks = size > 4 && size % 2 == 0 ? std::array<int, 3>{2, 1, size / 2} : std::array<int, 3>{1, 1, size};
   o.balance_interval = 200;
-  ParallelSimulation world(s, p, walls, MPI_COMM_WORLD, o);
+  Simulation world(s, p, walls, MPI_COMM_WORLD, o);
   const Decomposition& dec = world.decomposition();
   const int nz = o.blocks[2];
   std::vector<double> start(static_cast<std::size_t>(nz + 1));
   for (int k = 0; k <= nz; ++k) start[k] = dec.plane(2, k);
   world.run(3000);
-  const ParallelDiagnostics d = world.diagnostics();
+  const RankDiagnostics d = world.rank_diagnostics();
   double shift = 0.0;
   for (int k = 0; k <= nz; ++k) shift = std::max(shift, std::abs(dec.plane(2, k) - start[k]));
   const long migrated = global_sum(d.migrated_out);
@@ -161,13 +160,13 @@ TEST(LoadBalance, DepositionWithBalancingIsBitwiseIdentical) {
         "plane shift %.2f mm; last rebalance %.3f -> %.3f\n",
         size, o.blocks[0], o.blocks[2], d.rebuilds, d.rebalances, migrated, 1e3 * shift, d.imbalance_before,
         d.imbalance_after);
-    ParallelOptions self;
+    EngineOptions self;
     self.balance_interval = 200;
-    ParallelSimulation one(s, p, walls, MPI_COMM_SELF, self);
+    Simulation one(s, p, walls, MPI_COMM_SELF, self);
     one.run(3000);
     const ParticleStore serial = one.gather_sorted_by_id();
     EXPECT_EQ(parallel.size(), p.size());
-    EXPECT_EQ(one.diagnostics().rebalances, d.rebalances);
+    EXPECT_EQ(one.rank_diagnostics().rebalances, d.rebalances);
     test::expect_bitwise_equal(parallel, serial, std::to_string(size) + " balanced ranks vs 1");
   }
   EXPECT_GE(d.rebalances, 10);
@@ -181,10 +180,10 @@ TEST(LoadBalance, DepositionWithBalancingIsBitwiseIdentical) {
 TEST(LoadBalance, PatchTestBalancedByPairSlotsIsBitwiseIdentical) {
   const SceneConfig s = test::patch_scene();
   const ParticleStore p = fill_container(s);
-  ParallelOptions o;
+  EngineOptions o;
   o.balance_interval = 40;
   o.balance_cost = BalanceCost::pair_slots;
-  const ParallelDiagnostics d = test::expect_rank_independent(s, p, make_open_box(s.container), o, o, 300);
+  const RankDiagnostics d = test::expect_rank_independent(s, p, make_open_box(s.container), o, o, 300);
   EXPECT_GE(d.rebalances, 2);
 }
 
@@ -199,16 +198,16 @@ TEST(LoadBalance, PlaneMovedByMoreThanABlockLosesNoParticle) {
   std::mt19937_64 rng(9);
   ParticleStore p;
   test::add_touching_cube(p, 4, 2e-3, Vec3(0.0465, 0.004, 0.008), Vec3(0.0, 8.0, 0.0), rng);
-  ParallelOptions o;
+  EngineOptions o;
   o.box = Box{Vec3::Zero(), Vec3(0.06, 0.03, 0.03)};
   o.blocks = {size, 1, 1};
   o.balance_interval = 1;
   o.balance_at_start = false;  // the first rebalance comes with springs to carry
-  ParallelSimulation sim(s, p, {}, MPI_COMM_WORLD, o);
+  Simulation sim(s, p, {}, MPI_COMM_WORLD, o);
   const double plane1 = sim.decomposition().plane(0, 1);
   // Step until the first rebalance, recording the contacts of the step that made it.
   long steps = 0;
-  while (sim.diagnostics().rebalances == 0 && steps < 100) {
+  while (sim.rank_diagnostics().rebalances == 0 && steps < 100) {
     sim.request_contacts();
     sim.step();
     ++steps;
@@ -217,11 +216,11 @@ TEST(LoadBalance, PlaneMovedByMoreThanABlockLosesNoParticle) {
   for (const ContactSample& c : sim.contacts()) touching += c.with_wall() ? 0 : 1;
   touching = global_sum(touching);
   const double shift = sim.decomposition().plane(0, 1) - plane1;
-  const long migrated = global_sum(sim.diagnostics().migrated_out);
+  const long migrated = global_sum(sim.rank_diagnostics().migrated_out);
   // Home right after the rebuild that moved the planes (the step ends with its positions).
   expect_every_particle_home_once(sim, 64);
   sim.run(200 - steps);
-  const ParallelDiagnostics d = sim.diagnostics();
+  const RankDiagnostics d = sim.rank_diagnostics();
   if (test::world_rank() == 0)
     std::printf(
         "cube: first rebalance at step %ld with %ld touching pair slots; plane 1 moved %.1f mm (block width "
@@ -237,9 +236,9 @@ TEST(LoadBalance, PlaneMovedByMoreThanABlockLosesNoParticle) {
   }
   const ParticleStore parallel = sim.gather_sorted_by_id();
   if (test::world_rank() == 0) {
-    ParallelOptions self = o;
+    EngineOptions self = o;
     self.blocks = {1, 1, 1};
-    ParallelSimulation one(s, p, {}, MPI_COMM_SELF, self);
+    Simulation one(s, p, {}, MPI_COMM_SELF, self);
     one.run(200);
     test::expect_bitwise_equal(parallel, one.gather_sorted_by_id(), "plane moved past blocks");
   }
@@ -255,15 +254,15 @@ TEST(LoadBalance, ThinSheetKeepsInteriorBlocksAtLeastTheRangeThick) {
   const SceneConfig s = free_scene();
   std::mt19937_64 rng(4);
   const ParticleStore p = lattice({1, 12, 12}, 1e-3, Vec3(0.0301, 0.001, 0.001), 0.2, rng);
-  ParallelOptions o;
+  EngineOptions o;
   o.box = Box{Vec3::Zero(), Vec3(0.06, 0.03, 0.03)};
   o.blocks = {size, 1, 1};
   o.balance_interval = 20;
-  ParallelSimulation sim(s, p, {}, MPI_COMM_WORLD, o);
+  Simulation sim(s, p, {}, MPI_COMM_WORLD, o);
   sim.run(300);
   const Decomposition& dec = sim.decomposition();
   const double range = sim.interaction_range();
-  EXPECT_GE(sim.diagnostics().rebalances, 1);
+  EXPECT_GE(sim.rank_diagnostics().rebalances, 1);
   for (int k = 1; k < size; ++k) {
     EXPECT_GE(dec.plane(0, k), 0.0);
     EXPECT_LE(dec.plane(0, k), 0.06);
@@ -289,9 +288,9 @@ TEST(LoadBalance, ThinSheetKeepsInteriorBlocksAtLeastTheRangeThick) {
   }
   const ParticleStore parallel = sim.gather_sorted_by_id();
   if (test::world_rank() == 0) {
-    ParallelOptions self = o;
+    EngineOptions self = o;
     self.blocks = {1, 1, 1};
-    ParallelSimulation one(s, p, {}, MPI_COMM_SELF, self);
+    Simulation one(s, p, {}, MPI_COMM_SELF, self);
     one.run(300);
     test::expect_bitwise_equal(parallel, one.gather_sorted_by_id(), "thin sheet");
   }

@@ -32,9 +32,9 @@ TEST(Migration, CrossingFacesEdgesAndCornersInTheSameStep) {
   ParticleStore p;
   const double r = 2e-3;
   test::add_touching_cube(p, 4, r, Vec3(0.022, 0.022, 0.022), Vec3(2.0, 2.0, 2.0), rng);
-  ParallelOptions o;
+  EngineOptions o;
   o.box = Box{Vec3::Zero(), Vec3(0.06, 0.06, 0.06)};
-  const ParallelDiagnostics d = test::expect_rank_independent(s, p, {}, o, o, 800);
+  const RankDiagnostics d = test::expect_rank_independent(s, p, {}, o, o, 800);
   long migrated = 0;
   MPI_Allreduce(&d.migrated_out, &migrated, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
   if (test::world_size() > 1) {
@@ -52,12 +52,12 @@ TEST(Migration, BlockEmptiedAndRefilled) {
   test::add_touching_cube(p, 3, r, Vec3(0.004, 0.011, 0.011), Vec3(5.0, 0, 0), rng);
   // B starts beyond the box's end: the outer blocks are open.
   test::add_touching_cube(p, 3, r, Vec3(0.070, 0.011, 0.041), Vec3(-5.0, 0, 0), rng);
-  ParallelOptions o;
+  EngineOptions o;
   o.box = Box{Vec3::Zero(), Vec3(0.06, 0.03, 0.06)};
   o.blocks = {test::world_size(), 1, 1};
-  ParallelOptions self = o;
+  EngineOptions self = o;
   self.blocks = {1, 1, 1};
-  ParallelSimulation sim(s, p, {}, MPI_COMM_WORLD, o);
+  Simulation sim(s, p, {}, MPI_COMM_WORLD, o);
   const bool first_block = sim.decomposition().coords()[0] == 0;
   bool emptied = !first_block, refilled = !first_block;
   for (int k = 0; k < 26; ++k) {
@@ -71,7 +71,7 @@ TEST(Migration, BlockEmptiedAndRefilled) {
   }
   const ParticleStore parallel = sim.gather_sorted_by_id();
   if (test::world_rank() == 0) {
-    ParallelSimulation one(s, p, {}, MPI_COMM_SELF, self);
+    Simulation one(s, p, {}, MPI_COMM_SELF, self);
     one.run(1300);
     test::expect_bitwise_equal(parallel, one.gather_sorted_by_id(), "emptied and refilled");
   }
@@ -85,10 +85,10 @@ TEST(Migration, ParticleJumpingPastABlockStopsTheRunOnEveryRank) {
   p.add_sphere(0, 2e-3, 2650, Vec3(0.030, 0.015, 0.015), Vec3::Zero(), Vec3::Zero());
   // 4 km/s: 40 mm in one step of 10 us, past the whole next block.
   p.add_sphere(7, 2e-3, 2650, Vec3(0.005, 0.015, 0.015), Vec3(4000.0, 0, 0), Vec3::Zero());
-  ParallelOptions o;
+  EngineOptions o;
   o.box = Box{Vec3::Zero(), Vec3(0.06, 0.03, 0.03)};
   o.blocks = {size, 1, 1};
-  ParallelSimulation sim(s, p, {}, MPI_COMM_WORLD, o);
+  Simulation sim(s, p, {}, MPI_COMM_WORLD, o);
   try {
     sim.run(5);
     ADD_FAILURE() << "no error";

@@ -1,13 +1,12 @@
 // FIRE on the MPI engine (dem/parallel/parallel_relaxation.h): the relaxed state and the
 // energy it removes are bitwise the same on any rank count, and the relaxation works (the
-// residual falls by orders of magnitude), like the serial relax_to_equilibrium.
+// residual falls by orders of magnitude), like the fast summation's.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
 #include <cstdio>
 
-#include "dem/parallel/parallel_relaxation.h"
-#include "dem/relaxation.h"
+#include "dem/engine/relaxation.h"
 #include "helpers.h"
 
 using namespace upgrain;
@@ -23,7 +22,7 @@ struct Relaxed {
 
 Relaxed deposit_and_relax(const SceneConfig& s, const ParticleStore& p, MPI_Comm comm, long steps,
                           const RelaxationOptions& o) {
-  ParallelSimulation sim(s, p, comm);
+  Simulation sim(s, p, comm);
   sim.run(steps);
   Relaxed r;
   r.before = equilibrium_residual(sim);
@@ -70,8 +69,8 @@ TEST(ParallelRelaxation, RelaxedStateAndRemovedEnergyAreBitwiseRankIndependent) 
       world.energy_before.kinetic(), world.energy.kinetic(), world.after.steps, world.after.kinetic_removed);
 }
 
-TEST(ParallelRelaxation, OneRankFollowsTheSerialRelaxation) {
-  // The serial relax_to_equilibrium sums in another order (not bitwise): after a few hundred
+TEST(ParallelRelaxation, OneRankFollowsTheFastSummationsRelaxation) {
+  // The fast summation's FIRE sums in another order (not bitwise): after a few hundred
   // FIRE steps both states agree to round-off growth, and both residuals fall alike.
   if (test::world_rank() != 0) return;
   const SceneConfig s = test::patch_scene();
@@ -79,11 +78,11 @@ TEST(ParallelRelaxation, OneRankFollowsTheSerialRelaxation) {
   RelaxationOptions o;
   o.max_steps = 200;
   const Relaxed mpi = deposit_and_relax(s, p, MPI_COMM_SELF, 300, o);
-  Simulation serial(s, p);
-  serial.run(300);
-  const RelaxationResult r = relax_to_equilibrium(serial, o);
+  Simulation fast(s, p, MPI_COMM_SELF, test::fast_summation());
+  fast.run(300);
+  const RelaxationResult r = relax_to_equilibrium(fast, o);
   ASSERT_EQ(r.steps, mpi.after.steps);
-  const ParticleStore& q = serial.particles();
+  const ParticleStore& q = fast.particles();
   double worst = 0.0, scale = 0.0;
   for (std::size_t i = 0; i < q.size(); ++i) {
     const auto k = static_cast<std::size_t>(

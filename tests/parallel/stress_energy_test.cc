@@ -2,7 +2,7 @@
 // docs/parallel.md): per-cell tensors of a fixed grid bitwise the same on 1-4 ranks and
 // equal to the serial grid_stress() on the same state; compute grids (the blocks) adding
 // up to the whole container; a contact across a block face external once in each block;
-// energies and wall forces rank-independent and equal to the serial Simulation's.
+// energies and wall forces rank-independent and equal to the fast summation's on one rank.
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -12,7 +12,7 @@
 #include <string>
 
 #include "../common/scenes.h"
-#include "dem/simulation.h"
+#include "dem/engine/simulation.h"
 #include "helpers.h"
 
 using namespace upgrain;
@@ -60,7 +60,7 @@ struct MidDeposition {
   ParticleStore particles = fill_container(scene);
 };
 
-void run_recording(ParallelSimulation& sim, long steps) {
+void run_recording(Simulation& sim, long steps) {
   sim.run(steps - 1);
   sim.request_contacts();
   sim.step();
@@ -72,7 +72,7 @@ TEST(ParallelStress, FixedGridIsBitwiseRankIndependentAndEqualsSerial) {
   const MidDeposition d;
   // The grid ends inside the falling cloud: grains above it are outside every cell.
   const RegularGrid grid = grid_3x3x4(d.scene, 0.02);
-  ParallelSimulation world(d.scene, d.particles, MPI_COMM_WORLD);
+  Simulation world(d.scene, d.particles, MPI_COMM_WORLD);
   run_recording(world, MidDeposition::kSteps);
   ASSERT_TRUE(world.contacts_recorded());
   const GridStress g = world.grid_stress(grid);
@@ -108,7 +108,7 @@ TEST(ParallelStress, FixedGridIsBitwiseRankIndependentAndEqualsSerial) {
       contacts.size());
 
   // The same scene on one rank: every number identical.
-  ParallelSimulation self(d.scene, d.particles, MPI_COMM_SELF);
+  Simulation self(d.scene, d.particles, MPI_COMM_SELF);
   run_recording(self, MidDeposition::kSteps);
   const GridStress g1 = self.grid_stress(grid);
   EXPECT_EQ(count_differences(g, g1), 0) << test::world_size() << " ranks vs 1";
@@ -141,7 +141,7 @@ TEST(ParallelStress, FixedGridIsBitwiseRankIndependentAndEqualsSerial) {
 
 TEST(ParallelStress, ComputeGridsAddUpToTheWholeContainer) {
   const MidDeposition d;
-  ParallelSimulation world(d.scene, d.particles, MPI_COMM_WORLD);
+  Simulation world(d.scene, d.particles, MPI_COMM_WORLD);
   run_recording(world, MidDeposition::kSteps);
   const ComputeGridStress cg = world.compute_grid_stress();
   const ParticleStore state = world.gather_sorted_by_id();
@@ -189,14 +189,14 @@ TEST(ParallelStress, ContactAcrossABlockFaceIsExternalOnceInEachBlock) {
   s.effects = {false, true, true, false, true, true};
   s.particles.material = {2650.0, 5e7, 0.25};
   const int k = test::world_size();
-  ParallelOptions o;
+  EngineOptions o;
   o.blocks = {k, 1, 1};
   o.box = Box{Vec3(0, 0, 0), Vec3(0.01 * k, 0.01, 0.01)};
   const double face = 0.01, r = 1e-3;
   ParticleStore p;
   p.add_sphere(0, r, 2650, Vec3(face - 0.95e-3, 0.005, 0.005), Vec3(0.1, 0, 0), Vec3::Zero());
   p.add_sphere(1, r, 2650, Vec3(face + 0.95e-3, 0.005, 0.005), Vec3(-0.1, 0, 0), Vec3::Zero());
-  ParallelSimulation sim(s, p, {}, MPI_COMM_WORLD, o);
+  Simulation sim(s, p, {}, MPI_COMM_WORLD, o);
   sim.request_contacts();
   sim.step();
   const ComputeGridStress cg = sim.compute_grid_stress();
@@ -257,22 +257,22 @@ void expect_energies_close(const EnergyBalance& a, const EnergyBalance& b, doubl
 
 }  // namespace
 
-TEST(ParallelEnergy, PatchTestEnergiesAndWallForcesEqualTheSerialSimulation) {
+TEST(ParallelEnergy, PatchTestEnergiesAndWallForcesEqualTheFastSummation) {
   const SceneConfig s = test::patch_scene();
   const ParticleStore p = fill_container(s);
-  ParallelSimulation world(s, p, MPI_COMM_WORLD);
+  Simulation world(s, p, MPI_COMM_WORLD);
   world.run(300);
   const EnergyBalance e = world.energy();
   const std::vector<Vec3> walls = world.wall_forces();
   if (test::world_rank() != 0) return;
-  Simulation serial(s, p);
-  serial.run(300);
-  const EnergyBalance es = serial.energy();
+  Simulation fast(s, p, MPI_COMM_SELF, test::fast_summation());
+  fast.run(300);
+  const EnergyBalance es = fast.energy();
   EXPECT_GT(es.elastic_normal, 0.0);
   EXPECT_GT(es.dissipated_damping, 0.0);
   EXPECT_GT(es.dissipated_friction, 0.0);
   expect_energies_close(e, es, 1e-12, "patch test vs Simulation");
-  const std::vector<Vec3>& ws = serial.wall_forces();
+  const std::vector<Vec3>& ws = fast.wall_forces();
   ASSERT_EQ(walls.size(), ws.size());
   double scale = 0.0;
   for (const Vec3& w : ws) scale = std::max(scale, w.cwiseAbs().maxCoeff());
@@ -283,7 +283,7 @@ TEST(ParallelEnergy, PatchTestEnergiesAndWallForcesEqualTheSerialSimulation) {
 
 TEST(ParallelEnergy, EnergiesAndWallForcesAreRankIndependent) {
   const MidDeposition d;
-  ParallelSimulation world(d.scene, d.particles, MPI_COMM_WORLD);
+  Simulation world(d.scene, d.particles, MPI_COMM_WORLD);
   world.run(MidDeposition::kSteps);
   const EnergyBalance e = world.energy();
   const std::vector<Vec3> walls = world.wall_forces();
@@ -294,7 +294,7 @@ TEST(ParallelEnergy, EnergiesAndWallForcesAreRankIndependent) {
   EXPECT_EQ(lo[0], hi[0]);
   EXPECT_EQ(lo[1], hi[1]);
   if (test::world_rank() != 0) return;
-  ParallelSimulation self(d.scene, d.particles, MPI_COMM_SELF);
+  Simulation self(d.scene, d.particles, MPI_COMM_SELF);
   self.run(MidDeposition::kSteps);
   const EnergyBalance e1 = self.energy();
   const std::vector<Vec3> walls1 = self.wall_forces();

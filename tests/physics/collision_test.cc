@@ -7,7 +7,7 @@
 
 #include "../common/scenes.h"
 #include "dem/contact/hertz_mindlin.h"
-#include "dem/simulation.h"
+#include "dem/engine/simulation.h"
 
 using namespace upgrain;
 using namespace upgrain::dem;
@@ -31,7 +31,7 @@ Collision collide(double zeta, double v_rel, int steps_per_contact) {
   s.time_step = t_hertz / steps_per_contact;
   s.effects.damping = zeta > 0.0;
   s.damping_ratio = zeta;
-  Simulation sim(s, p, {});
+  Simulation sim(s, p, std::vector<PlaneWall>{});
   long in_contact = 0;
   double first = -1.0, last = -1.0;
   // Run until the spheres have separated after touching.

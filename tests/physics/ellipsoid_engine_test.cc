@@ -8,7 +8,7 @@
 #include <numbers>
 
 #include "../common/scenes.h"
-#include "dem/simulation.h"
+#include "dem/engine/simulation.h"
 #include "dem/time_step.h"
 
 using namespace upgrain;
@@ -69,7 +69,7 @@ TEST(EllipsoidEngine, TorqueFreeTumblingKeepsMomentumAndEnergy) {
   const double e0 = p.rotational_energy(0);
   const double period = 2.0 * std::numbers::pi / 10.0;
   s.time_step = 1e-3 * period;
-  Simulation sim(s, p, {});
+  Simulation sim(s, p, std::vector<PlaneWall>{});
   Vec3 body_y_min = Vec3::Constant(1.0);
   for (int k = 0; k < 20000; ++k) {  // 20 turns: several flips of the intermediate axis
     sim.step();
@@ -201,7 +201,7 @@ TEST(EllipsoidHardCases, TenToOneGrainsTipToTipAndFaceToFace) {
     p.add_ellipsoid(1, k.axes, 2650, origin + (reach + 1e-5) * dir, q, -v * dir, Vec3::Zero());
     const Vec3 l0 = angular_momentum(p);
     const double e0 = kinetic_energy(p);
-    Simulation sim(s, p, {});
+    Simulation sim(s, p, std::vector<PlaneWall>{});
     bool touched = false;
     for (long step = 0; step < 2000000; ++step) {
       sim.step();
@@ -239,7 +239,7 @@ TEST(EllipsoidHardCases, OffCentreTenToOneImpactKeepsMomenta) {
   const Vec3 l0 = angular_momentum(p);
   const Vec3 momentum0 = p.mass(0) * p.v[0] + p.mass(1) * p.v[1];
   const double e0 = kinetic_energy(p);
-  Simulation sim(s, p, {});
+  Simulation sim(s, p, std::vector<PlaneWall>{});
   bool touched = false;
   long steps = 0;
   for (; steps < 400000; ++steps) {

@@ -10,7 +10,7 @@
 
 #include "../common/scenes.h"
 #include "dem/contact/hertz_mindlin.h"
-#include "dem/simulation.h"
+#include "dem/engine/simulation.h"
 
 using namespace upgrain;
 using namespace upgrain::dem;

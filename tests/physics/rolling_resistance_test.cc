@@ -12,7 +12,7 @@
 #include "../common/scenes.h"
 #include "dem/contact/hertz_mindlin.h"
 #include "dem/contact/rolling_resistance.h"
-#include "dem/simulation.h"
+#include "dem/engine/simulation.h"
 #include "dem/time_step.h"
 
 using namespace upgrain;

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "dem/boundary/plane_wall.h"
+#include "dem/boundary/container.h"
 #include "dem/io/atomic_file.h"
 #include "dem/io/csv_series.h"
 #include "dem/io/hdf5_snapshot.h"

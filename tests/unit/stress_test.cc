@@ -8,8 +8,8 @@
 #include <random>
 
 #include "../common/scenes.h"
+#include "dem/engine/simulation.h"
 #include "dem/scene/fill.h"
-#include "dem/simulation.h"
 #include "dem/stress/asymmetry.h"
 #include "dem/stress/grid_stress.h"
 
@@ -220,7 +220,7 @@ TEST(GridStress, LoneSpinningSphereGivesTheRigidBodyHoopStress) {
   const double r = 5e-3;
   const Vec3 w(30.0, -20.0, 100.0);
   p.add_sphere(0, r, 2650, Vec3(1.7, -0.4, 2.0), Vec3(0.1, 0, 0), w);
-  Simulation sim(s, p, {});
+  Simulation sim(s, p, std::vector<PlaneWall>{});
   sim.request_contacts();
   sim.step();
   RegularGrid box;
@@ -250,7 +250,7 @@ TEST(GridStress, LoneSpinningEllipsoidGivesTheRigidBodyResult) {
   const Eigen::Quaterniond q(Eigen::AngleAxisd(0.7, Vec3(1, -2, 0.5).normalized()));
   const Vec3 w_body(30.0, -20.0, 100.0);  // not about a principal axis: w_dot != 0
   p.add_ellipsoid(0, axes, 2650, Vec3(1.7, -0.4, 2.0), q, Vec3(0.1, 0, 0), q * w_body);
-  Simulation sim(s, p, {});
+  Simulation sim(s, p, std::vector<PlaneWall>{});
   sim.request_contacts();
   sim.step();
   const ParticleStore& after = sim.particles();

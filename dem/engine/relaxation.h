@@ -1,10 +1,15 @@
 #pragma once
 // Relaxation of a granular assembly to static equilibrium by FIRE, the fast inertial
 // relaxation engine (Bitzek et al., Phys. Rev. Lett. 97, 170201, 2006): the dynamics of the
-// run itself (same contact law, same time step) with velocities steered along the force
-// and zeroed whenever the power turns negative. Used to bring beds to the rest state in
-// which the paper's symmetry results hold (docs/stress.md, "Relaxed beds").
-#include "dem/simulation.h"
+// run itself (same contact law, same time step) with velocities steered along the force and
+// zeroed whenever the power turns negative. Used to bring beds to the rest state in which
+// the paper's symmetry results hold (docs/stress.md, "Relaxed beds").
+//
+// Collective: its global sums (the power of the resultant forces and torques, the norms of
+// the velocity mixing, the kinetic energy removed) follow the engine's summation
+// (dem/engine/particle_sums.h) and its residuals are maxima over the ranks, so with
+// deterministic summation the relaxed state is bitwise the same on any rank count.
+#include "dem/engine/simulation.h"
 
 namespace upgrain::dem {
 
@@ -13,8 +18,8 @@ struct RelaxationOptions {
   // weight and its contact torque below this fraction of m g r.
   double force_tolerance = 1e-9;
   long max_steps = 200000;
-  // FIRE constants (Bitzek et al. 2006, Table I, without the time-step adaptation: the
-  // DEM step is already at its stability limit).
+  // FIRE constants (Bitzek et al. 2006, Table I, without the time-step adaptation: the DEM
+  // step is already at its stability limit).
   double alpha_start = 0.1;
   double alpha_shrink = 0.99;
   int delay_steps = 5;
@@ -28,7 +33,7 @@ struct RelaxationResult {
   double kinetic_removed = 0.0;      // J, booked in the run's energy balance
 };
 
-// Residuals of the current state (no step taken).
+// Residuals of the current state (no step taken); the same on every rank.
 RelaxationResult equilibrium_residual(const Simulation& sim);
 
 RelaxationResult relax_to_equilibrium(Simulation& sim, const RelaxationOptions& options = {});

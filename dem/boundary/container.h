@@ -1,22 +1,13 @@
 #pragma once
-// Rigid planar walls. An open-top box container is a floor and four side planes, each
-// with its own Coulomb coefficient (paper brief section 1: friction on/off at walls).
+// Containers made of rigid planar walls (dem/core/plane_wall.h). An open-top box is a
+// floor and four side planes, each with its own Coulomb coefficient (friction on or off at
+// walls, as in the paper's scenes; docs/scenes.md).
 #include <string>
 #include <vector>
 
-#include "dem/core/types.h"
+#include "dem/core/plane_wall.h"
 
 namespace upgrain::dem {
-
-struct PlaneWall {
-  std::string name;
-  Vec3 point;       // a point on the plane
-  Vec3 normal;      // unit normal pointing into the granular domain
-  double friction;  // Coulomb coefficient particle-wall
-
-  // Signed distance of a point from the plane, positive inside the domain.
-  [[nodiscard]] double distance(const Vec3& p) const { return (p - point).dot(normal); }
-};
 
 struct BoxContainer {
   double lx = 0.06;     // inner length along x (m), walls at x = 0 and x = lx

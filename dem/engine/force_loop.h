@@ -1,0 +1,87 @@
+#pragma once
+// The force loop: every pair slot and wall entry of the lists (dem/core/pair_list.h) is
+// evaluated once per evaluation, its history read and written in the contact-history store,
+// and its force and torques added to both bodies in the order of the lists. The lists'
+// order is the summation (dem/neighbor/verlet_list.h, dem/engine/summation.h), so the same
+// loop serves both: only where the sums start and where the energies are booked differ.
+//
+// Written once, as a template on the effect set (dem/contact/effects.h), on whether the
+// scene has ellipsoids, on contact recording and on the summation. select_force_loops()
+// turns the scene's run-time choices into one instantiation, chosen once per run, so what a
+// scene switches off is not computed (docs/architecture.md).
+#include <vector>
+
+#include "dem/contact/contact_response.h"
+#include "dem/contact/contact_sample.h"
+#include "dem/contact/effects.h"
+#include "dem/contact/grain_poses.h"
+#include "dem/contact/rolling_resistance.h"
+#include "dem/contact/shaped_contact.h"
+#include "dem/core/contact_history.h"
+#include "dem/core/material.h"
+#include "dem/core/pair_list.h"
+#include "dem/core/particle_store.h"
+#include "dem/core/plane_wall.h"
+#include "dem/engine/summation.h"
+
+namespace upgrain::dem {
+
+// What an evaluation leaves besides the forces and torques in the store.
+struct ForceOutput {
+  // Energy tracking with damping: the viscous part of each local particle's contact force
+  // and, for ellipsoids, its torque; with rolling resistance, the viscous rolling torque. For
+  // the second half of their work (docs/integrator.md).
+  std::vector<Vec3> damping_force, damping_torque, rolling_damping_torque;
+  // Deterministic summation with energy tracking: each local particle's elastic energies, of
+  // its wall contacts and of the pairs it is first (lower id) in, so that every pair counts
+  // once over the ranks and the sum can run in global-id order.
+  std::vector<double> elastic_normal, elastic_tangential, elastic_rolling;
+  // Fast: the force of the particles on each wall. Deterministic: the force on the particle of
+  // each wall entry (zero when apart), summed per wall in global-id order for the output.
+  std::vector<Vec3> wall_force;
+  // Recording loops: every contact evaluated (a = the slot's first particle or the particle
+  // at a wall, b = the partner or -(w + 1); the force on a, the contact point).
+  std::vector<ContactSample> contacts;
+  // Fast: the energies of every contact (elastic and dissipated). Deterministic: the
+  // dissipation of the wall contacts and of the pairs whose first particle is owned.
+  ContactEnergy energy;
+  long pair_contacts = 0;  // touching pairs (deterministic: whose first particle is owned)
+  long wall_contacts = 0;
+  double max_overlap_ratio = 0.0;  // max of overlap / smallest semi-axis
+  // Ellipsoid scenes, per chunk of rows (buffers reused): the class of each slot and the
+  // shaped pairs past their bounding spheres.
+  std::vector<unsigned char> slot_class;
+  std::vector<ShapedPair> shaped_pairs;
+};
+
+// Plain views of what one evaluation reads and writes.
+struct ForceInput {
+  ParticleStore* particles = nullptr;  // owned first, then ghosts
+  int n_owned = 0;
+  const PairList* pairs = nullptr;
+  const WallList* wall_entries = nullptr;
+  const std::vector<PlaneWall>* walls = nullptr;
+  ContactHistory* history = nullptr;
+  ContactMaterial material;
+  RollingParameters rolling;  // scenes with rolling resistance
+  double dt = 0.0;
+  // Ellipsoid scenes: every local grain posed once per evaluation, and this rank's contact
+  // solver counters, cumulative.
+  GrainPoses* posed = nullptr;
+  ContactSolverStats* solver_stats = nullptr;
+  ForceOutput* out = nullptr;
+};
+
+using ForceLoop = void (*)(const ForceInput&);
+
+// The same loop without and with contact recording (stress output), so the steps between
+// outputs pay nothing for it.
+struct ForceLoops {
+  ForceLoop plain;
+  ForceLoop recording;
+};
+
+// `shapes`: the store holds ellipsoids; the sphere-only loops carry no shape branch at all.
+ForceLoops select_force_loops(const EffectSet& effects, bool shapes, Summation summation);
+
+}  // namespace upgrain::dem

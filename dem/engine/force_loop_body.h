@@ -1,0 +1,394 @@
+#pragma once
+// The one source of the force loop (force_loop.h), included by the two translation units that
+// instantiate it, one per summation, so that they compile side by side.
+//
+// Where the two summations differ (dem/engine/summation.h, dem/neighbor/verlet_list.h):
+//  - fast: rows are owned particles in local order; a row's sum starts from zero and is added
+//    to the particle at its end, partners (ghosts included) receive their share at once, and
+//    walls come after the pairs. The ghosts' sums go back to their owners afterwards
+//    (Domain::return_ghost_sums). Every contact's energy is one running sum.
+//  - deterministic: rows and partners in global-id order, walls first; a row's sum starts
+//    from the particle's force so far, so each particle adds walls by index, then partners
+//    by increasing global id. A pair across two ranks is evaluated on both, in the same
+//    orientation, and each keeps the share of its own particle. Elastic energies go to the
+//    pair's first particle (each pair once over the ranks), dissipation to the rank that owns
+//    it.
+#include <algorithm>
+#include <cmath>
+
+#include "dem/contact/ellipsoid_geometry.h"
+#include "dem/engine/force_loop.h"
+
+namespace upgrain::dem::force_loop_detail {
+
+// Inertia of grain i for the rolling dashpot: its moment about its centroid (an ellipsoid's
+// smallest principal moment, so the dashpot is never over-estimated) plus m l^2 for the
+// lever l to the contact point (Ai et al. 2011, with the lever for the radius).
+inline double rolling_inertia(const ParticleStore& p, std::size_t i, const Vec3& lever) {
+  const double own = p.is_ellipsoid(i) ? p.inertia_body[i].minCoeff() : 1.0 / p.inv_inertia[i];
+  return own + p.mass(i) * lever.squaredNorm();
+}
+
+// A contact's energy booked on its particle's elastic accounts (deterministic summation) and
+// the rank's dissipation.
+inline void book_elastic(const ContactEnergy& ce, double& normal, double& tangential, double& rolling) {
+  normal += ce.elastic_normal;
+  tangential += ce.elastic_tangential;
+  rolling += ce.elastic_rolling;
+}
+inline void book_dissipation(const ContactEnergy& ce, ContactEnergy& rank) {
+  rank.dissipated_damping += ce.dissipated_damping;
+  rank.dissipated_friction += ce.dissipated_friction;
+  rank.tangential_stiffness_change += ce.tangential_stiffness_change;
+  rank.dissipated_rolling += ce.dissipated_rolling;
+  rank.rolling_stiffness_change += ce.rolling_stiffness_change;
+}
+
+template <class E, bool Shapes, bool Record, Summation S>
+void compute(const ForceInput& in) {
+  constexpr bool kDeterministic = S == Summation::deterministic;
+  constexpr bool kTangential = E::friction;
+  constexpr bool kWallTangential = E::wall_friction;
+  // Ellipsoids: normal forces off the line of centres make torques, so rotation does not
+  // need friction (Effects::rotation assumes spheres).
+  constexpr bool kRotation = Shapes ? E::rotation_requested : E::rotation;
+  constexpr bool kRolling = E::rolling;
+  constexpr bool kEnergy = E::energy;
+  constexpr bool kDampingWork = E::damping && E::energy;
+  constexpr bool kRollingWork = kRolling && E::energy;
+  constexpr bool kElasticPerParticle = kDeterministic && kEnergy;
+
+  ParticleStore& p = *in.particles;
+  ForceOutput& out = *in.out;
+  ContactHistory& h = *in.history;
+  const PairList& pl = *in.pairs;
+  const WallList& wl = *in.wall_entries;
+  const std::vector<PlaneWall>& walls = *in.walls;
+  const ContactMaterial& mat = in.material;
+  const RollingParameters rp = in.rolling;
+  const std::size_t n = p.size();
+  const int n_owned = in.n_owned;
+
+  for (std::size_t i = 0; i < n; ++i) {
+    p.force[i].setZero();
+    if constexpr (kRotation) p.torque[i].setZero();
+  }
+  if constexpr (kDampingWork) out.damping_force.assign(n, Vec3::Zero());
+  if constexpr (kDampingWork && Shapes) out.damping_torque.assign(n, Vec3::Zero());
+  if constexpr (kRollingWork) out.rolling_damping_torque.assign(n, Vec3::Zero());
+  if constexpr (kElasticPerParticle) {
+    out.elastic_normal.assign(n, 0.0);
+    out.elastic_tangential.assign(n, 0.0);
+    out.elastic_rolling.assign(n, 0.0);
+  }
+  out.wall_force.assign(kDeterministic ? wl.size() : walls.size(), Vec3::Zero());
+  if constexpr (Shapes) in.posed->update(p);
+  if constexpr (Record) out.contacts.clear();
+  ContactEnergy energy;  // this rank's running sums (fast: every account; deterministic: dissipation)
+  long pair_contacts = 0, wall_contacts = 0;
+  double max_ratio = 0.0;
+  TangentialSpring dummy_spring;
+  Vec3 rolling_viscous;  // the dashpot part of one contact's rolling torque
+
+  // Particle-wall contacts: the wall is a rigid plane of the particles' own material, so
+  // R* = r and m* = m. The contact point lies on the plane, at arm r - delta.
+  ContactParameters wp{mat.e_star_pw, mat.g_star_pw, 0.0, 0.0, 0.0, mat.damping_ratio, in.dt};
+  auto forget_wall = [&](std::size_t e) {
+    if constexpr (kWallTangential) {
+      if (h.wall_spring[e].stiffness != 0.0) h.wall_spring[e] = TangentialSpring{};
+    }
+    if constexpr (kRolling) {
+      if (h.wall_rolling[e].stiffness != 0.0) h.wall_rolling[e] = RollingSpring{};
+    }
+  };
+  // The two loops are inlined into compute(): as calls, the sums they keep would live in the
+  // closure, in memory, instead of registers (measured with callgrind: +3 % instructions).
+  auto wall_loop = [&]() __attribute__((always_inline)) {
+    for (std::size_t e = 0; e < wl.size(); ++e) {
+      const int i = wl.particle[e];
+      const int w = wl.wall[e];
+      const PlaneWall& wall = walls[w];
+      const double gap = wall.distance(p.x[i]);
+      const double ri = p.radius[i];
+      if (gap >= ri) {
+        forget_wall(e);
+        if constexpr (Shapes) h.wall_r_star[e] = 0.0;
+        continue;
+      }
+      ContactKinematics kin;
+      kin.normal = -wall.normal;
+      bool shaped = false;
+      if constexpr (Shapes) shaped = p.is_ellipsoid(i);
+      if (shaped) {
+        if (!shaped_wall_geometry((*in.posed)[i], wall, h.wall_r_star[e], kin)) {
+          forget_wall(e);
+          continue;
+        }
+        wp.r_star = h.wall_r_star[e];
+      } else {
+        kin.overlap = ri - gap;
+        kin.lever_i = gap * kin.normal;
+        wp.r_star = ri;
+      }
+      kin.lever_j = Vec3::Zero();
+      kin.v_i = p.v[i];
+      kin.v_j = Vec3::Zero();
+      if constexpr (kRotation) {
+        kin.omega_i = p.omega[i];
+        kin.omega_j = Vec3::Zero();
+      }
+      wp.friction = wall.friction;
+      wp.m_star = p.mass(i);
+      ContactEnergy ce;
+      ContactEnergy& sink = kDeterministic ? ce : energy;
+      TangentialSpring& spring = kWallTangential ? h.wall_spring[e] : dummy_spring;
+      const ContactForce cf =
+          contact_response<kWallTangential, E::damping, kRotation, kEnergy>(wp, kin, spring, sink);
+      p.force[i] += cf.on_i;
+      if constexpr (kDeterministic)
+        out.wall_force[e] = cf.on_i;
+      else
+        out.wall_force[w] -= cf.on_i;
+      if constexpr (Record) out.contacts.push_back({i, -w - 1, p.x[i] + kin.lever_i, cf.on_i});
+      if constexpr (kDampingWork) {
+        out.damping_force[i] -= cf.damping * kin.normal;
+        if constexpr (Shapes) out.damping_torque[i] -= kin.lever_i.cross(cf.damping * kin.normal);
+      }
+      if constexpr (kRotation) {
+        if (shaped)
+          p.torque[i] += kin.lever_i.cross(cf.on_i);
+        else
+          p.torque[i] += gap * kin.normal.cross(cf.on_i);
+      }
+      if constexpr (kRolling) {
+        // The wall neither turns nor moves: omega_j = 0, and the grain's own inertia.
+        const double k_n = hertz::normal_stiffness(wp.e_star, wp.r_star, kin.overlap);
+        const Vec3 m_r = rolling_resistance<kEnergy>(rp, kin.normal, kin.omega_i, wp.r_star, k_n, cf.normal,
+                                                     rolling_inertia(p, i, kin.lever_i), wp.dt,
+                                                     h.wall_rolling[e], sink, rolling_viscous);
+        p.torque[i] += m_r;
+        if constexpr (kRollingWork) out.rolling_damping_torque[i] += rolling_viscous;
+      }
+      if constexpr (kElasticPerParticle) {
+        book_elastic(ce, out.elastic_normal[i], out.elastic_tangential[i], out.elastic_rolling[i]);
+        book_dissipation(ce, energy);
+      }
+      ++wall_contacts;
+      max_ratio = std::max(max_ratio, kin.overlap / (Shapes ? p.min_semi_axis(i) : ri));
+    }
+  };
+
+  // Particle pairs.
+  ContactParameters cp{mat.e_star_pp, mat.g_star_pp, 0.0, 0.0, mat.friction_pp, mat.damping_ratio, in.dt};
+  // A slot whose grains are apart forgets its history (written only when it has one: most
+  // slots of the list are not touching).
+  auto forget = [&](int k) {
+    if constexpr (kTangential) {
+      if (h.pair_spring[k].stiffness != 0.0) h.pair_spring[k] = TangentialSpring{};
+    }
+    if constexpr (kRolling) {
+      if (h.pair_rolling[k].stiffness != 0.0) h.pair_rolling[k] = RollingSpring{};
+    }
+  };
+  auto pair_loop = [&]() __attribute__((always_inline)) {
+    // Raw views of the arrays the loop indexes: a vector's data pointer lives in memory, and
+    // the compiler reloads it where a store might have changed it.
+    const int* const start = pl.row_start.data();
+    const int* const nbr = pl.partner.data();
+    const Vec3* const x = p.x.data();
+    const Vec3* const v = p.v.data();
+    const Vec3* const omega = p.omega.data();
+    const double* const radius = p.radius.data();
+    const double* const inv_mass = p.inv_mass.data();
+    Vec3* const force = p.force.data();
+    Vec3* const torque = p.torque.data();
+    const std::size_t rows = pl.num_rows();
+    // Ellipsoid scenes go by chunks of rows: first every slot of the chunk is classified
+    // (bounding spheres apart, a pair with an ellipsoid, or two spheres) and the shaped pairs
+    // are solved, two at a time (shaped_pair_geometries: the same bits as one at a time); then
+    // the forces follow in the slots' order, as for spheres.
+    enum : unsigned char { kFar, kShaped, kSpheres };
+    constexpr std::size_t kChunkRows = 16;
+    for (std::size_t r0 = 0; r0 < rows; r0 = Shapes ? std::min(rows, r0 + kChunkRows) : rows) {
+      const std::size_t r1 = Shapes ? std::min(rows, r0 + kChunkRows) : rows;
+      std::size_t shaped_next = 0;
+      // The chunk's slot classes, from its first slot (a raw pointer: the stores into it, of
+      // bytes, might otherwise alias every vector the loop reads).
+      unsigned char* slot_class = nullptr;
+      if constexpr (Shapes) {
+        out.slot_class.resize(static_cast<std::size_t>(start[r1] - start[r0]));
+        slot_class = out.slot_class.data() - start[r0];
+        out.shaped_pairs.clear();
+        for (std::size_t r = r0; r < r1; ++r) {
+          const int i = pl.row_particle[r];
+          const bool ellipsoid_i = p.is_ellipsoid(i);
+          for (int k = start[r]; k < start[r + 1]; ++k) {
+            const int j = nbr[k];
+            const double rsum = p.radius[i] + p.radius[j];
+            unsigned char& c = slot_class[k];
+            if ((p.x[j] - p.x[i]).squaredNorm() >= rsum * rsum) {
+              c = kFar;
+              forget(k);
+              if (!h.pair_memory[k].empty()) h.pair_memory[k] = ShapedContactMemory{};
+            } else if (ellipsoid_i || p.is_ellipsoid(j)) {
+              c = kShaped;
+              ShapedPair sp;
+              sp.i = static_cast<std::size_t>(i);
+              sp.j = static_cast<std::size_t>(j);
+              sp.memory = &h.pair_memory[k];
+              out.shaped_pairs.push_back(sp);
+            } else {
+              c = kSpheres;
+            }
+          }
+        }
+        if (!out.shaped_pairs.empty()) shaped_pair_geometries(*in.posed, out.shaped_pairs, *in.solver_stats);
+      }
+      const ShapedPair* const shaped_pairs = out.shaped_pairs.data();
+      for (std::size_t r = r0; r < r1; ++r) {
+        const int i = pl.row_particle[r];
+        const Vec3 xi = x[i];
+        const double ri = radius[i];
+        const double inv_mi = inv_mass[i];
+        const bool owned_i = i < n_owned;
+        // The row's sums: from zero, added at the end (fast); or from the particle's sums so
+        // far, in order (deterministic).
+        Vec3 fi = kDeterministic ? force[i] : Vec3::Zero();
+        Vec3 ti = Vec3::Zero();
+        if constexpr (kDeterministic && kRotation) ti = torque[i];
+        [[maybe_unused]] double en = 0.0, et = 0.0, er = 0.0;
+        if constexpr (kElasticPerParticle) {
+          en = out.elastic_normal[i];
+          et = out.elastic_tangential[i];
+          er = out.elastic_rolling[i];
+        }
+        for (int k = start[r]; k < start[r + 1]; ++k) {
+          const int j = nbr[k];
+          ContactKinematics kin;
+          double arm_i = 0.0, arm_j = 0.0;  // sphere pairs: lever lengths along the normal
+          bool shaped = false;
+          if constexpr (Shapes) {
+            const unsigned char c = slot_class[k];
+            if (c == kFar) continue;
+            shaped = c == kShaped;
+          }
+          if (shaped) {
+            const ShapedPair& sp = shaped_pairs[shaped_next++];
+            if (!sp.touching) {
+              forget(k);
+              continue;
+            }
+            sp.kinematics(kin, cp.r_star);
+          } else {
+            const Vec3 d = x[j] - xi;
+            const double rsum = ri + radius[j];
+            const double dist2 = d.squaredNorm();
+            if constexpr (!Shapes) {
+              if (dist2 >= rsum * rsum) {
+                forget(k);
+                continue;
+              }
+            }
+            sphere_pair_kinematics(d, dist2, ri, radius[j], kin, arm_i, arm_j, cp.r_star);
+          }
+          kin.v_i = v[i];
+          kin.v_j = v[j];
+          if constexpr (kRotation) {
+            kin.omega_i = omega[i];
+            kin.omega_j = omega[j];
+          }
+          cp.m_star = 1.0 / (inv_mi + inv_mass[j]);  // m_i m_j / (m_i + m_j)
+          ContactEnergy ce;
+          ContactEnergy& sink = kDeterministic ? ce : energy;
+          TangentialSpring& spring = kTangential ? h.pair_spring[k] : dummy_spring;
+          const ContactForce cf =
+              contact_response<kTangential, E::damping, kRotation, kEnergy>(cp, kin, spring, sink);
+          fi += cf.on_i;
+          force[j] -= cf.on_i;
+          if constexpr (Record) out.contacts.push_back({i, j, xi + kin.lever_i, cf.on_i});
+          if constexpr (kDampingWork) {
+            out.damping_force[i] -= cf.damping * kin.normal;
+            out.damping_force[j] += cf.damping * kin.normal;
+            if constexpr (Shapes) {
+              out.damping_torque[i] -= kin.lever_i.cross(cf.damping * kin.normal);
+              out.damping_torque[j] += kin.lever_j.cross(cf.damping * kin.normal);
+            }
+          }
+          if constexpr (kRotation) {
+            if (shaped) {
+              ti += kin.lever_i.cross(cf.on_i);
+              torque[j] -= kin.lever_j.cross(cf.on_i);
+            } else {
+              const Vec3 arm_x_f = kin.normal.cross(cf.on_i);
+              ti += arm_i * arm_x_f;
+              torque[j] += arm_j * arm_x_f;
+            }
+          }
+          if constexpr (kRolling) {
+            const double k_n = hertz::normal_stiffness(cp.e_star, cp.r_star, kin.overlap);
+            const double inertia_i = rolling_inertia(p, i, kin.lever_i);
+            const double inertia_j = rolling_inertia(p, j, kin.lever_j);
+            const Vec3 m_r =
+                rolling_resistance<kEnergy>(rp, kin.normal, kin.omega_i - kin.omega_j, cp.r_star, k_n,
+                                            cf.normal, inertia_i * inertia_j / (inertia_i + inertia_j), cp.dt,
+                                            h.pair_rolling[k], sink, rolling_viscous);
+            ti += m_r;
+            torque[j] -= m_r;
+            if constexpr (kRollingWork) {
+              out.rolling_damping_torque[i] += rolling_viscous;
+              out.rolling_damping_torque[j] -= rolling_viscous;
+            }
+          }
+          if constexpr (kElasticPerParticle) {
+            book_elastic(ce, en, et, er);
+            if (owned_i) book_dissipation(ce, energy);
+          }
+          if (!kDeterministic || owned_i) ++pair_contacts;
+          const double delta = kin.overlap;
+          const double r_min =
+              Shapes ? std::min(p.min_semi_axis(i), p.min_semi_axis(j)) : std::min(ri, radius[j]);
+          if (delta > max_ratio * r_min) max_ratio = delta / r_min;  // divides only on a new maximum
+        }
+        if constexpr (kDeterministic) {
+          force[i] = fi;
+          if constexpr (kRotation) torque[i] = ti;
+        } else {
+          force[i] += fi;
+          if constexpr (kRotation) torque[i] += ti;
+        }
+        if constexpr (kElasticPerParticle) {
+          out.elastic_normal[i] = en;
+          out.elastic_tangential[i] = et;
+          out.elastic_rolling[i] = er;
+        }
+      }
+    }
+  };
+
+  if constexpr (kDeterministic) {
+    wall_loop();
+    pair_loop();
+  } else {
+    pair_loop();
+    wall_loop();
+  }
+  out.energy = energy;
+  out.pair_contacts = pair_contacts;
+  out.wall_contacts = wall_contacts;
+  out.max_overlap_ratio = max_ratio;
+}
+
+// Every instantiation of one summation, through the one effect-dispatch ladder
+// (dem/contact/effects.h).
+template <Summation S>
+ForceLoops force_loops_for(const EffectSet& e, bool shapes) {
+  auto make = [&]<bool Shapes>() {
+    auto pick = []<class E>() {
+      return ForceLoops{&compute<E, Shapes, false, S>, &compute<E, Shapes, true, S>};
+    };
+    return e.rolling_resistance ? with_rolling_effects(e, pick) : with_effects(e, pick);
+  };
+  return shapes ? make.template operator()<true>() : make.template operator()<false>();
+}
+
+}  // namespace upgrain::dem::force_loop_detail

@@ -1,0 +1,604 @@
+#include "dem/engine/simulation.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "dem/boundary/container.h"
+#include "dem/core/error.h"
+#include "dem/engine/guards.h"
+#include "dem/motion/grain_rotation.h"
+#include "dem/parallel/exchange.h"
+#include "dem/parallel/parallel_stress.h"
+
+namespace upgrain::dem {
+
+namespace {
+
+// In chunks below 2 GB (int counts).
+template <class T>
+void broadcast_records(std::vector<T>& all, MPI_Comm comm) {
+  constexpr std::size_t kChunk = (1u << 30) / sizeof(T);
+  for (std::size_t s = 0; s < all.size(); s += kChunk) {
+    const std::size_t c = std::min(kChunk, all.size() - s);
+    MPI_Bcast(all.data() + s, static_cast<int>(c * sizeof(T)), MPI_BYTE, 0, comm);
+  }
+}
+
+// The scene's particles on every rank, so that every rank derives the same box and radii:
+// rank 0's store as flat records, with their shapes in `shapes` (same order) when it has
+// them. Not called on one rank, where the store is the scene.
+std::vector<StateRecord> broadcast_particles(const ParticleStore& p, MPI_Comm comm,
+                                             std::vector<ShapeRecord>& shapes) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  std::vector<StateRecord> all;
+  long n[2] = {0, 0};  // count, has shapes
+  if (rank == 0) {
+    n[0] = static_cast<long>(p.size());
+    n[1] = p.has_shapes() ? 1 : 0;
+    all.reserve(p.size());
+    for (std::size_t i = 0; i < p.size(); ++i) all.push_back(pack_state(p, i));
+    if (p.has_shapes())
+      for (std::size_t i = 0; i < p.size(); ++i) shapes.push_back(pack_shape(p, i));
+  }
+  MPI_Bcast(n, 2, MPI_LONG, 0, comm);
+  all.resize(static_cast<std::size_t>(n[0]));
+  broadcast_records(all, comm);
+  shapes.resize(n[1] != 0 ? all.size() : 0);
+  broadcast_records(shapes, comm);
+  return all;
+}
+
+// What the scene's particles set for the engine: their count, the largest radius, and the
+// heights of the lowest and highest centroid.
+struct SceneExtent {
+  long count = 0;
+  double max_radius = 0.0;
+  double z_min = 0.0, z_max = 0.0;
+
+  void add(const Vec3& x, double radius) {
+    z_min = count == 0 ? x[2] : std::min(z_min, x[2]);
+    z_max = count == 0 ? x[2] : std::max(z_max, x[2]);
+    max_radius = std::max(max_radius, radius);
+    ++count;
+  }
+};
+
+// The container footprint, from the floor (or the lowest particle surface) to the highest
+// particle surface, with every grain as large as the largest (r_max).
+Box default_box(const SceneConfig& scene, const SceneExtent& e, double r_max) {
+  Box b;
+  b.lo = Vec3(0.0, 0.0, e.count > 0 ? std::min(0.0, e.z_min - r_max) : 0.0);
+  b.hi = Vec3(scene.container.lx, scene.container.ly, e.count > 0 ? std::max(0.0, e.z_max + r_max) : 0.0);
+  return b;
+}
+
+}  // namespace
+
+Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, MPI_Comm comm,
+                       const EngineOptions& options)
+    : Simulation(scene, std::move(particles), make_open_box(scene.container), comm, options) {}
+
+Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, std::vector<PlaneWall> walls,
+                       MPI_Comm comm, const EngineOptions& options)
+    : scene_(scene),
+      walls_(std::move(walls)),
+      summation_(options.summation),
+      g_(scene.effects.gravity ? Vec3(0, 0, -scene.gravity) : Vec3::Zero()),
+      dt_(scene.time_step),
+      material_(ContactMaterial::from(scene.particles.material, scene.friction, scene.damping_ratio)),
+      rolling_{scene.rolling_friction, scene.rolling_damping_ratio} {
+  if (scene.effects.rolling_resistance && !scene.effects.rotation)
+    throw Error(
+        "rolling resistance needs rotation: set Effects/rotation = true or Effects/rolling resistance = "
+        "false");
+  if (!scene.effects.wall_friction) {
+    for (auto& w : walls_) w.friction = 0.0;
+  }
+  // Every rank holds the whole scene for a moment: rank 0's store on one rank, flat records
+  // of it on more (each then keeps the particles of its block).
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  std::vector<ShapeRecord> shapes;
+  std::vector<StateRecord> all;
+  if (size == 1)
+    p_ = std::move(particles);
+  else
+    all = broadcast_particles(particles, comm, shapes);
+  particles = ParticleStore{};
+  SceneExtent extent;
+  if (size == 1)
+    for (std::size_t i = 0; i < p_.size(); ++i) extent.add(p_.x[i], p_.radius[i]);
+  else
+    for (const StateRecord& r : all) extent.add(get(r.x), r.radius);
+  shapes_ = size == 1 ? p_.has_shapes() : !shapes.empty();
+  rotation_ = scene.effects.integrates_rotation(shapes_);
+  loops_ = select_force_loops(scene.effects, shapes_, summation_);
+  history_ = ContactHistory(
+      {scene.effects.friction, scene.effects.wall_friction, scene.effects.rolling_resistance, shapes_});
+  n_global_ = extent.count;
+  max_radius_ = extent.max_radius;
+  // The skin in units of the largest diameter.
+  skin_ = scene.neighbor_skin * 2.0 * max_radius_;
+  max_radius_ = std::max(max_radius_, 1e-12);
+  range_ = 2.0 * max_radius_ + skin_;
+  const Box box = options.box ? *options.box : default_box(scene, extent, max_radius_);
+  domain_ = std::make_unique<Domain>(comm, box, range_, shapes_, options);
+  lists_ = std::make_unique<VerletList>(
+      max_radius_, skin_, summation_ == Summation::deterministic ? PairOrder::global_id : PairOrder::local);
+  const Decomposition& dec = domain_->decomposition();
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    if (dec.owner_of(get(all[k].x)) != dec.rank()) continue;
+    append_state(p_, all[k]);
+    if (shapes_) append_shape(p_, shapes[k]);
+  }
+  all = {};
+  shapes = {};
+  n_owned_ = static_cast<int>(p_.size());
+  rebuild();
+  evaluate_forces();
+  e0_ = energy();
+  timings_ = {};  // step() only
+}
+
+void Simulation::step() {
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point t0 = Clock::now();
+  const int n = n_owned_;
+  const double half = 0.5 * dt_;
+  // Velocity Verlet, first half kick and drift (Allen and Tildesley 2017, eq. 3.19), with the
+  // Verlet list's displacement check in the same pass, then the rotational half.
+  const std::vector<Vec3>& x_built = lists_->positions_at_build();
+  const double limit2 = lists_->rebuild_displacement2();
+  bool moved = false;
+  for (int i = 0; i < n; ++i) {
+    p_.v[i] += half * (p_.force[i] * p_.inv_mass[i] + g_);
+    p_.x[i] += dt_ * p_.v[i];
+    moved = moved || (p_.x[i] - x_built[i]).squaredNorm() > limit2;
+  }
+  if (rotation_) rotation_first_half(p_, static_cast<std::size_t>(n), half, dt_);
+  // Second half of the work of the previous step's damping forces, with v(k+1/2); the owned
+  // particles are still those of that evaluation. Damping acts along the normal through the
+  // centroids of spheres: no torque; ellipsoids' normal misses the centroid.
+  if (!out_.damping_force.empty()) {
+    double work = 0.0;
+    for (int i = 0; i < n; ++i) work += out_.damping_force[i].dot(p_.v[i]);
+    if (!out_.damping_torque.empty())
+      for (int i = 0; i < n; ++i) work += out_.damping_torque[i].dot(p_.omega[i]);
+    dissipated_damping_ -= half * work;
+  }
+  // The same for the rolling dashpot (dem/contact/rolling_resistance.h).
+  if (!out_.rolling_damping_torque.empty()) {
+    double work = 0.0;
+    for (int i = 0; i < n; ++i) work += out_.rolling_damping_torque[i].dot(p_.omega[i]);
+    dissipated_rolling_ -= half * work;
+  }
+  // One reduction per step carries both global decisions: rebuild now (every rank at the
+  // same steps), and the runaway-overlap guard of the previous evaluation.
+  double local[2] = {moved ? 1.0 : 0.0, last_overlap_ratio_};
+  double global[2] = {0.0, 0.0};
+  const Clock::time_point t1 = Clock::now();
+  MPI_Allreduce(local, global, 2, MPI_DOUBLE, MPI_MAX, comm());
+  const Clock::time_point t2 = Clock::now();
+  const std::string overlap = runaway_overlap(global[1], kRunawayOverlapRatio, last_overlap_step_,
+                                              static_cast<double>(last_overlap_step_) * dt_, dt_);
+  if (!overlap.empty()) throw Error(overlap);
+  const bool rebuilding = global[0] > 0.0;
+  if (rebuilding)
+    rebuild();
+  else if (ranks() > 1)
+    domain_->refresh_ghosts(p_);
+  const Clock::time_point t3 = Clock::now();
+  evaluate_forces();
+  const Clock::time_point t4 = Clock::now();
+  // Fast summation: the ghosts' shares go home (LAMMPS's reverse communication).
+  if (summation_ == Summation::fast && ranks() > 1) {
+    std::vector<std::vector<Vec3>*> sums{&p_.force};
+    if (rotation_) sums.push_back(&p_.torque);
+    for (std::vector<Vec3>* v : {&out_.damping_force, &out_.damping_torque, &out_.rolling_damping_torque})
+      if (!v->empty()) sums.push_back(v);
+    domain_->return_ghost_sums(sums);
+  }
+  const Clock::time_point t5 = Clock::now();
+  // Second half kick with the new forces.
+  for (int i = 0; i < n_owned_; ++i) p_.v[i] += half * (p_.force[i] * p_.inv_mass[i] + g_);
+  if (rotation_) rotation_second_half(p_, static_cast<std::size_t>(n_owned_), half);
+  ++step_;
+  const Clock::time_point t6 = Clock::now();
+  auto seconds = [](Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double>(b - a).count();
+  };
+  timings_.integrate += seconds(t0, t1) + seconds(t5, t6);
+  timings_.reduction += seconds(t1, t2);
+  (rebuilding ? timings_.rebuild : timings_.ghost_refresh) += seconds(t2, t3);
+  timings_.ghost_refresh += seconds(t4, t5);
+  timings_.forces += seconds(t3, t4);
+  ++timings_.steps;
+}
+
+void Simulation::run(long steps) {
+  for (long s = 0; s < steps; ++s) step();
+}
+
+void Simulation::rebuild() {
+  const double messages_before = domain_->message_seconds();
+  std::chrono::steady_clock::time_point t = std::chrono::steady_clock::now();
+  check_finite();
+  timings_.rebuild_messages += seconds_since(t);
+  // Histories of the contacts, keyed by global ids, before local indices change. The
+  // separation budgets of ellipsoid pairs rest on grains keeping their local index, which
+  // depends on the decomposition: the deterministic summation drops them.
+  std::vector<ContactHistoryRecord> records;
+  history_.collect(lists_->pairs(), lists_->walls(), p_.id, summation_ == Summation::fast, records);
+  // Drop the ghosts; they are rebuilt below from the new owners.
+  truncate_store(p_, static_cast<std::size_t>(n_owned_));
+  domain_->migrate(p_, records, lists_->slots_per_owned(), step_, time());
+  n_owned_ = static_cast<int>(p_.size());
+  long count = n_owned_;
+  long total = 0;
+  t = std::chrono::steady_clock::now();
+  MPI_Allreduce(&count, &total, 1, MPI_LONG, MPI_SUM, comm());
+  timings_.rebuild_messages += seconds_since(t);
+  const std::string lost = lost_particles(total, n_global_, step_);
+  if (!lost.empty()) throw Error(lost);
+  sort_unique(records);
+  // Memory locality only: the lists fix the order of every sum.
+  sort_by_cell(p_, range_);
+  domain_->build_ghosts(p_, n_owned_);
+  lists_->build(p_, n_owned_, walls_);
+  history_.restore(lists_->pairs(), lists_->walls(), p_.id, records);
+  ++rebuilds_;
+  domain_->measure_balance(n_owned_, lists_->slots_per_owned());
+  timings_.rebuild_messages += domain_->message_seconds() - messages_before;
+}
+
+void Simulation::evaluate_forces() {
+  ForceInput in;
+  in.particles = &p_;
+  in.n_owned = n_owned_;
+  in.pairs = &lists_->pairs();
+  in.wall_entries = &lists_->walls();
+  in.walls = &walls_;
+  in.history = &history_;
+  in.material = material_;
+  in.rolling = rolling_;
+  in.dt = dt_;
+  in.posed = &posed_;
+  in.solver_stats = &solver_stats_;
+  in.out = &out_;
+  recorded_ = record_next_;
+  (record_next_ ? loops_.recording : loops_.plain)(in);
+  if (!record_next_) out_.contacts.clear();
+  record_next_ = false;
+  dissipated_damping_ += out_.energy.dissipated_damping;
+  dissipated_friction_ += out_.energy.dissipated_friction;
+  stiffness_change_ += out_.energy.tangential_stiffness_change;
+  dissipated_rolling_ += out_.energy.dissipated_rolling;
+  rolling_stiffness_change_ += out_.energy.rolling_stiffness_change;
+  last_overlap_ratio_ = out_.max_overlap_ratio;
+  last_overlap_step_ = step_;
+}
+
+void Simulation::remove_wall(const std::string& name) {
+  for (PlaneWall& w : walls_) {
+    if (w.name != name) continue;
+    // Far along its own normal's opposite side: every grain is then at a distance of order
+    // 1e100 inside the domain, and no contact can form (distance() stays finite).
+    w.point -= 1e100 * w.normal;
+    rebuild();
+    return;
+  }
+  throw Error("no wall named '" + name + "' to remove");
+}
+
+void Simulation::set_gravity(const Vec3& g) {
+  g_ = g;
+  e0_ = energy();
+}
+
+void Simulation::check_finite() const { throw_if_any(comm(), non_finite_state(p_, n_owned_, step_, time())); }
+
+void Simulation::on_root(const std::function<void()>& work) const { run_on_root(comm(), work); }
+
+const ParticleStore& Simulation::whole_state() {
+  gathered_ = gather_sorted_by_id();
+  std::string error;
+  if (is_root()) {
+    double mass = 0.0;
+    for (std::size_t i = 0; i < gathered_.size(); ++i) mass += gathered_.mass(i);
+    if (reference_mass_ < 0.0) reference_mass_ = mass;
+    error = inconsistent_state(gathered_, n_global_, mass, reference_mass_, step_);
+  }
+  throw_if_any(comm(), error);
+  return gathered_;
+}
+
+ParticleStore Simulation::gather_sorted_by_id() const {
+  struct Shaped {
+    StateRecord state;
+    ShapeRecord shape;
+  };
+  ParticleStore out;
+  if (shapes_) {
+    std::vector<Shaped> mine;
+    mine.reserve(static_cast<std::size_t>(n_owned_));
+    for (int i = 0; i < n_owned_; ++i)
+      mine.push_back(
+          {pack_state(p_, static_cast<std::size_t>(i)), pack_shape(p_, static_cast<std::size_t>(i))});
+    std::vector<Shaped> all = gather_to_root(mine, comm());
+    std::sort(all.begin(), all.end(),
+              [](const Shaped& a, const Shaped& b) { return a.state.gid < b.state.gid; });
+    out.reserve(all.size());
+    for (const Shaped& r : all) {
+      append_state(out, r.state);
+      append_shape(out, r.shape);
+    }
+    return out;
+  }
+  std::vector<StateRecord> mine;
+  mine.reserve(static_cast<std::size_t>(n_owned_));
+  for (int i = 0; i < n_owned_; ++i) mine.push_back(pack_state(p_, static_cast<std::size_t>(i)));
+  std::vector<StateRecord> all = gather_to_root(mine, comm());
+  std::sort(all.begin(), all.end(), [](const StateRecord& a, const StateRecord& b) { return a.gid < b.gid; });
+  out.reserve(all.size());
+  for (const StateRecord& r : all) append_state(out, r);
+  return out;
+}
+
+std::vector<int> Simulation::gather_owners_sorted_by_id() const {
+  struct Owned {
+    GlobalId gid;
+    int rank;
+  };
+  std::vector<Owned> mine(static_cast<std::size_t>(n_owned_));
+  for (int i = 0; i < n_owned_; ++i) mine[static_cast<std::size_t>(i)] = {p_.id[i], rank()};
+  std::vector<Owned> all = gather_to_root(mine, comm());
+  std::sort(all.begin(), all.end(), [](const Owned& a, const Owned& b) { return a.gid < b.gid; });
+  std::vector<int> owner(all.size());
+  for (std::size_t k = 0; k < all.size(); ++k) owner[k] = all[k].rank;
+  return owner;
+}
+
+std::vector<Box> Simulation::compute_grid_blocks() const { return dem::compute_grid_blocks(decomposition()); }
+
+int Simulation::owner_of_local(std::size_t i) const {
+  return i < static_cast<std::size_t>(n_owned_) ? rank() : domain_->ghost_owner(i);
+}
+
+GridStress Simulation::grid_stress(const RegularGrid& grid) const {
+  if (!recorded_) throw Error("grid stress: no contacts recorded at the last step (request_contacts())");
+  if (summation_ == Summation::deterministic)
+    return parallel_grid_stress(p_, n_owned_, out_.contacts, grid, grain_dynamics(), comm());
+  return summed_grid_stress(p_, n_owned_, out_.contacts, grid, grain_dynamics(), comm());
+}
+
+ComputeGridStress Simulation::compute_grid_stress() const {
+  if (!recorded_) throw Error("grid stress: no contacts recorded at the last step (request_contacts())");
+  if (summation_ == Summation::deterministic)
+    return parallel_compute_grid_stress(p_, n_owned_, out_.contacts, decomposition(), grain_dynamics());
+  std::vector<int> owner(p_.size());
+  for (std::size_t i = 0; i < owner.size(); ++i) owner[i] = owner_of_local(i);
+  return summed_compute_grid_stress(p_, n_owned_, out_.contacts, decomposition(), owner, grain_dynamics());
+}
+
+std::vector<ContactRecord> Simulation::gather_contacts_by_id() const {
+  if (!recorded_) throw Error("contacts: none recorded at the last step (request_contacts())");
+  std::vector<ContactRecord> mine;
+  for (const ContactSample& c : out_.contacts) {
+    // Walls belong to owned particles. A pair is sent once: deterministic, by the owner of its
+    // lower id (its first particle); fast, by the rank that evaluated it, turned to put the
+    // lower id first.
+    if (c.with_wall()) {
+      ContactRecord r{p_.id[c.a], wall_key(c.wall()), {}, {}};
+      put(r.point, c.point);
+      put(r.force, c.force_on_a);
+      mine.push_back(r);
+      continue;
+    }
+    if (summation_ == Summation::deterministic && c.a >= n_owned_) continue;
+    const bool a_lower = p_.id[c.a] < p_.id[c.b];
+    ContactRecord r{a_lower ? p_.id[c.a] : p_.id[c.b], a_lower ? p_.id[c.b] : p_.id[c.a], {}, {}};
+    put(r.point, c.point);
+    put(r.force, a_lower ? c.force_on_a : Vec3(-c.force_on_a));
+    mine.push_back(r);
+  }
+  std::vector<ContactRecord> all = gather_to_root(mine, comm());
+  std::sort(all.begin(), all.end());
+  return all;
+}
+
+std::vector<ContactSample> contacts_in_store(const std::vector<ContactRecord>& contacts,
+                                             const ParticleStore& sorted) {
+  auto index = [&](GlobalId gid) {
+    const auto it = std::lower_bound(sorted.id.begin(), sorted.id.end(), gid);
+    if (it == sorted.id.end() || *it != gid) throw Error("contacts_in_store: particle not in the store");
+    return static_cast<int>(it - sorted.id.begin());
+  };
+  std::vector<ContactSample> out;
+  out.reserve(contacts.size());
+  for (const ContactRecord& r : contacts)
+    out.push_back({index(r.a), r.b < 0 ? static_cast<int>(r.b) : index(r.b), get(r.point), get(r.force)});
+  return out;
+}
+
+EnergyBalance Simulation::energy() const {
+  // Kinetic, potential and elastic energies, and this rank's cumulative dissipation.
+  constexpr int kTerms =
+      6;  // kinetic translational, rotational, potential, elastic normal, tangential, rolling
+  const bool elastic_per_particle = !out_.elastic_normal.empty();
+  auto terms = [&](int i, double* e) {
+    const auto k = static_cast<std::size_t>(i);
+    const double m = p_.mass(k);
+    e[0] = 0.5 * m * p_.v[i].squaredNorm();
+    e[1] = rotation_ ? p_.rotational_energy(k) : 0.0;
+    e[2] = -m * g_.dot(p_.x[i]);
+    e[3] = elastic_per_particle ? out_.elastic_normal[k] : 0.0;
+    e[4] = elastic_per_particle ? out_.elastic_tangential[k] : 0.0;
+    e[5] = elastic_per_particle ? out_.elastic_rolling[k] : 0.0;
+  };
+  double sums[kTerms + 5] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  const double dissipated[5] = {dissipated_damping_, dissipated_friction_, stiffness_change_,
+                                dissipated_rolling_, rolling_stiffness_change_};
+  if (summation_ == Summation::deterministic) {
+    // Per particle in global-id order on rank 0 (bitwise rank-independent); the dissipation
+    // is a per-rank running sum reduced over the ranks (rank-independent to round-off).
+    struct Record {
+      GlobalId gid;
+      double e[kTerms];
+    };
+    std::vector<Record> mine(static_cast<std::size_t>(n_owned_));
+    for (int i = 0; i < n_owned_; ++i) {
+      mine[i].gid = p_.id[i];
+      terms(i, mine[i].e);
+    }
+    std::vector<Record> all = gather_to_root(mine, comm());
+    std::sort(all.begin(), all.end(), [](const Record& a, const Record& b) { return a.gid < b.gid; });
+    for (const Record& r : all)
+      for (int k = 0; k < kTerms; ++k) sums[k] += r.e[k];
+    MPI_Reduce(dissipated, sums + kTerms, 5, MPI_DOUBLE, MPI_SUM, 0, comm());
+    MPI_Bcast(sums, kTerms + 5, MPI_DOUBLE, 0, comm());
+  } else {
+    // In local order, the elastic energies from the force loop, reduced over the ranks.
+    double e[kTerms];
+    for (int i = 0; i < n_owned_; ++i) {
+      terms(i, e);
+      sums[0] += e[0];
+      if (rotation_) sums[1] += e[1];
+      sums[2] += e[2];
+    }
+    sums[3] = out_.energy.elastic_normal;
+    sums[4] = out_.energy.elastic_tangential;
+    sums[5] = out_.energy.elastic_rolling;
+    std::copy(dissipated, dissipated + 5, sums + kTerms);
+    if (ranks() > 1) MPI_Allreduce(MPI_IN_PLACE, sums, kTerms + 5, MPI_DOUBLE, MPI_SUM, comm());
+  }
+  EnergyBalance b;
+  b.kinetic_translational = sums[0];
+  b.kinetic_rotational = sums[1];
+  b.potential = sums[2];
+  b.elastic_normal = sums[3];
+  b.elastic_tangential = sums[4];
+  b.elastic_rolling = sums[5];
+  b.dissipated_damping = sums[6];
+  b.dissipated_friction = sums[7];
+  b.tangential_stiffness_change = sums[8];
+  b.dissipated_rolling = sums[9];
+  b.rolling_stiffness_change = sums[10];
+  b.removed_by_relaxation = removed_by_relaxation_;
+  return b;
+}
+
+std::vector<Vec3> Simulation::wall_forces() const {
+  std::vector<double> total(3 * walls_.size(), 0.0);
+  if (summation_ == Summation::deterministic) {
+    // Per wall, the entries' forces in global-id order (bitwise rank-independent).
+    struct Record {
+      long wall;
+      GlobalId gid;
+      double f[3];
+    };
+    const WallList& entries = lists_->walls();
+    std::vector<Record> mine;
+    for (std::size_t e = 0; e < entries.size(); ++e) {
+      const Vec3& f = out_.wall_force[e];
+      if (f == Vec3::Zero()) continue;
+      Record r{entries.wall[e], p_.id[entries.particle[e]], {}};
+      put(r.f, f);
+      mine.push_back(r);
+    }
+    std::vector<Record> all = gather_to_root(mine, comm());
+    std::sort(all.begin(), all.end(), [](const Record& a, const Record& b) {
+      return a.wall < b.wall || (a.wall == b.wall && a.gid < b.gid);
+    });
+    for (const Record& r : all)
+      for (int d = 0; d < 3; ++d) total[3 * r.wall + d] -= r.f[d];
+    MPI_Bcast(total.data(), static_cast<int>(total.size()), MPI_DOUBLE, 0, comm());
+  } else {
+    for (std::size_t w = 0; w < walls_.size(); ++w) put(total.data() + 3 * w, out_.wall_force[w]);
+    if (ranks() > 1)
+      MPI_Allreduce(MPI_IN_PLACE, total.data(), static_cast<int>(total.size()), MPI_DOUBLE, MPI_SUM, comm());
+  }
+  std::vector<Vec3> out(walls_.size());
+  for (std::size_t w = 0; w < walls_.size(); ++w) out[w] = get(total.data() + 3 * w);
+  return out;
+}
+
+StepDiagnostics Simulation::diagnostics() const {
+  long counts[2] = {out_.pair_contacts, out_.wall_contacts};
+  MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_LONG, MPI_SUM, comm());
+  double overlap = last_overlap_ratio_;
+  MPI_Allreduce(MPI_IN_PLACE, &overlap, 1, MPI_DOUBLE, MPI_MAX, comm());
+  StepDiagnostics d;
+  d.particle_contacts = counts[0];
+  d.wall_contacts = counts[1];
+  d.max_overlap_ratio = overlap;
+  d.neighbor_builds = rebuilds_;
+  const ContactSolverStats& s = solver_stats_;
+  std::int64_t c[9] = {s.calls,    s.warm_starts, s.warm_rejected, s.newton_iterations, s.fallbacks,
+                       s.failures, s.uncertified, s.proven_apart,  s.still_apart};
+  MPI_Allreduce(MPI_IN_PLACE, c, 9, MPI_INT64_T, MPI_SUM, comm());
+  d.contact_solver.calls = c[0];
+  d.contact_solver.warm_starts = c[1];
+  d.contact_solver.warm_rejected = c[2];
+  d.contact_solver.newton_iterations = c[3];
+  d.contact_solver.fallbacks = c[4];
+  d.contact_solver.failures = c[5];
+  d.contact_solver.uncertified = c[6];
+  d.contact_solver.proven_apart = c[7];
+  d.contact_solver.still_apart = c[8];
+  return d;
+}
+
+RankDiagnostics Simulation::rank_diagnostics() const {
+  RankDiagnostics d;
+  d.particles = n_global_;
+  d.owned = n_owned_;
+  d.ghosts = static_cast<long>(p_.size()) - n_owned_;
+  d.pair_slots = static_cast<long>(lists_->pairs().num_pairs());
+  d.rebuilds = rebuilds_;
+  d.migrated_out = domain_->migrated_out();
+  d.max_overlap_ratio = last_overlap_ratio_;
+  const BalanceRecord& b = domain_->balance();
+  d.rebalances = b.count;
+  d.rebalance_step = b.last_step;
+  d.imbalance_before = b.before;
+  d.imbalance_after = b.after;
+  return d;
+}
+
+LoadImbalance Simulation::load_imbalance() const {
+  const double mine[3] = {static_cast<double>(n_owned_), static_cast<double>(lists_->pairs().num_pairs()),
+                          timings_.compute()};
+  double max[3] = {0, 0, 0}, sum[3] = {0, 0, 0};
+  MPI_Allreduce(mine, max, 3, MPI_DOUBLE, MPI_MAX, comm());
+  MPI_Allreduce(mine, sum, 3, MPI_DOUBLE, MPI_SUM, comm());
+  LoadImbalance b;
+  b.ranks = ranks();
+  const double k = static_cast<double>(b.ranks);
+  auto ratio = [](double hi, double mean) { return mean > 0.0 ? hi / mean : 1.0; };
+  b.owned_max = static_cast<long>(max[0]);
+  b.owned_mean = sum[0] / k;
+  b.owned_ratio = ratio(max[0], b.owned_mean);
+  b.pairs_max = static_cast<long>(max[1]);
+  b.pairs_mean = sum[1] / k;
+  b.pairs_ratio = ratio(max[1], b.pairs_mean);
+  b.compute_max = max[2];
+  b.compute_mean = sum[2] / k;
+  b.compute_ratio = ratio(max[2], b.compute_mean);
+  return b;
+}
+
+EngineLoad Simulation::load() const {
+  const LoadImbalance b = load_imbalance();
+  double share = timings_.total() > 0.0 ? timings_.communication() / timings_.total() : 0.0;
+  MPI_Allreduce(MPI_IN_PLACE, &share, 1, MPI_DOUBLE, MPI_MAX, comm());
+  EngineLoad l;
+  l.ranks = ranks();
+  l.rebalances = domain_->balance().count;
+  l.owned_imbalance = b.owned_ratio;
+  l.compute_imbalance = b.compute_ratio;
+  l.communication_share = share;
+  return l;
+}
+
+}  // namespace upgrain::dem

@@ -1,0 +1,221 @@
+#pragma once
+// The DEM engine: one step loop for any number of MPI ranks, one rank included
+// (docs/architecture.md). Each rank owns the particles of its block of a Cartesian
+// decomposition and holds ghosts of its neighbours' (dem/parallel/domain.h); one force loop
+// (force_loop.h) evaluates every contact of the neighbour lists (dem/neighbor/verlet_list.h),
+// whose histories live in one store (dem/core/contact_history.h); the integrator is velocity
+// Verlet for translation and rotation (docs/integrator.md), with the symplectic splitting of
+// rigid_rotation.h for ellipsoids. The summation (summation.h) decides the order of every sum:
+// with the default, deterministic, the particle states and every output are bitwise the same
+// on any number of ranks.
+//
+// Every method is collective over the engine's communicator unless it says otherwise: every
+// rank calls it at the same point of the run. Errors (a non-finite state, a runaway overlap,
+// a lost particle) are thrown as upgrain::Error on every rank (guards.h).
+#include <mpi.h>
+
+#include <chrono>
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "dem/contact/contact_sample.h"
+#include "dem/core/box.h"
+#include "dem/core/contact_history.h"
+#include "dem/core/material.h"
+#include "dem/core/particle_store.h"
+#include "dem/core/plane_wall.h"
+#include "dem/engine/diagnostics.h"
+#include "dem/engine/energy.h"
+#include "dem/engine/force_loop.h"
+#include "dem/engine/summation.h"
+#include "dem/neighbor/verlet_list.h"
+#include "dem/parallel/domain.h"
+#include "dem/parallel/records.h"
+#include "dem/scene/scene_config.h"
+#include "dem/stress/grid_stress.h"
+
+namespace upgrain::dem {
+
+// The domain decomposition's blocks and load balance (DomainOptions), and:
+struct EngineOptions : DomainOptions {
+  Summation summation = Summation::deterministic;
+  // The box the blocks divide; default: the container footprint, from the floor (or the
+  // lowest particle) to the highest particle surface. Outer blocks are open outwards.
+  std::optional<Box> box;
+};
+
+// Largest overlap (as a fraction of the smallest semi-axis) tolerated before the run stops:
+// beyond it the contact law is far outside its validity and the step is too large.
+inline constexpr double kRunawayOverlapRatio = 0.25;
+
+class Simulation {
+ public:
+  // The particles of rank 0 are the scene (other ranks may pass the same or an empty store);
+  // each rank keeps those in its block (on one rank, the store itself: move it in to save a
+  // copy). Walls: the scene's open box, or the given planes. Evaluates the initial forces.
+  Simulation(const SceneConfig& scene, ParticleStore particles, MPI_Comm comm = MPI_COMM_SELF,
+             const EngineOptions& options = {});
+  Simulation(const SceneConfig& scene, ParticleStore particles, std::vector<PlaneWall> walls,
+             MPI_Comm comm = MPI_COMM_SELF, const EngineOptions& options = {});
+  // `Simulation(scene, particles, {})` would pass a null communicator (MPI_Comm is a pointer):
+  // refused, so that "no walls" is written std::vector<PlaneWall>{}.
+  Simulation(const SceneConfig&, const ParticleStore&, std::nullptr_t) = delete;
+
+  void step();
+  void run(long steps);
+
+  // --- State.
+  // This rank's particles: the owned ones [0, owned()), then the ghosts. Not collective.
+  // Owned velocities and angular velocities may be changed between steps (a relaxation); the
+  // ghosts receive them at the next step.
+  [[nodiscard]] const ParticleStore& particles() const { return p_; }
+  [[nodiscard]] ParticleStore& particles() { return p_; }
+  [[nodiscard]] int owned() const { return n_owned_; }
+  [[nodiscard]] long particle_count() const { return n_global_; }  // not collective
+  // The whole state sorted by global id on rank 0 (empty elsewhere), with the forces and
+  // torques of the last evaluation.
+  [[nodiscard]] ParticleStore gather_sorted_by_id() const;
+  // The same, checked (guards.h: no particle lost or doubled, the mass unchanged since the
+  // first call) and kept until the next call or step; the reference is valid on rank 0.
+  [[nodiscard]] const ParticleStore& whole_state();
+  // The rank that owns each particle, in the order of gather_sorted_by_id() (its compute
+  // grid: the block that held its centroid at the last migration), on rank 0.
+  [[nodiscard]] std::vector<int> gather_owners_sorted_by_id() const;
+  // The compute grids, block r of rank r, clipped to the decomposition box. Not collective.
+  [[nodiscard]] std::vector<Box> compute_grid_blocks() const;
+
+  // --- The scene. Not collective, except set_gravity() and remove_wall().
+  [[nodiscard]] const SceneConfig& scene() const { return scene_; }
+  [[nodiscard]] Summation summation() const { return summation_; }
+  [[nodiscard]] double time() const { return static_cast<double>(step_) * dt_; }
+  [[nodiscard]] long step_count() const { return step_; }
+  [[nodiscard]] double time_step() const { return dt_; }
+  [[nodiscard]] Vec3 gravity() const { return g_; }
+  // Any direction of gravity (an incline is a tilted gravity over a flat floor). Resets the
+  // energy reference, since the potential energy is -m g.x.
+  void set_gravity(const Vec3& g);
+  // Whether rotation is integrated (EffectSet::integrates_rotation).
+  [[nodiscard]] bool integrates_rotation() const { return rotation_; }
+  [[nodiscard]] GrainDynamics grain_dynamics() const { return {g_, rotation_}; }
+  [[nodiscard]] const std::vector<PlaneWall>& walls() const { return walls_; }
+  // Takes a wall out of the scene (the collapse's gate and side walls): it is moved far
+  // behind its own plane and the lists are rebuilt, so no contact with it remains. Throws when
+  // no wall has that name.
+  void remove_wall(const std::string& name);
+
+  // --- Contacts and stress.
+  // Asks the next force evaluation (the next step()) to record its contacts (ForceOutput::
+  // contacts, local indices); they stay valid until the following step. Not collective.
+  void request_contacts() { record_next_ = true; }
+  [[nodiscard]] const std::vector<ContactSample>& contacts() const { return out_.contacts; }
+  [[nodiscard]] bool contacts_recorded() const { return recorded_; }
+  // Every recorded contact once, on rank 0, sorted by key (a < b, force on a; or wall w as
+  // b = -1 - w); empty elsewhere.
+  [[nodiscard]] std::vector<ContactRecord> gather_contacts_by_id() const;
+  // After a step that recorded contacts (else upgrain::Error): the stress of a fixed grid and
+  // of the compute grids (one cell per block), on every rank (docs/stress.md, "Stress in
+  // parallel"). Deterministic summation: bitwise the same on any rank count.
+  [[nodiscard]] GridStress grid_stress(const RegularGrid& grid) const;
+  [[nodiscard]] ComputeGridStress compute_grid_stress() const;
+
+  // --- Energy (docs/integrator.md), the same on every rank.
+  [[nodiscard]] EnergyBalance energy() const;
+  [[nodiscard]] const EnergyBalance& initial_energy() const { return e0_; }
+  // (E_total(t) - E_total(0)) / (initial kinetic energy + |potential energy released|).
+  [[nodiscard]] double energy_balance_error() const { return balance_error(e0_, energy()); }
+  // Kinetic energy over the potential energy released since the start: the measure of a bed
+  // at rest. Infinity while no potential energy has been released.
+  [[nodiscard]] double kinetic_to_released() const { return dem::kinetic_to_released(e0_, energy()); }
+  // Books kinetic energy that a caller removed by changing velocities (relaxation), so the
+  // balance stays closed; the same global value on every rank. Not collective.
+  void account_removed_kinetic_energy(double joules) { removed_by_relaxation_ += joules; }
+  // The force exerted by the particles on each wall at the last evaluation.
+  [[nodiscard]] std::vector<Vec3> wall_forces() const;
+
+  // --- Guards (guards.h).
+  // upgrain::Error on every rank, naming the particle, if an owned particle has a non-finite
+  // position, velocity, angular velocity or orientation.
+  void check_finite() const;
+
+  // --- Ranks, load and diagnostics.
+  [[nodiscard]] MPI_Comm comm() const { return domain_->comm(); }
+  [[nodiscard]] int rank() const { return domain_->rank(); }
+  [[nodiscard]] int ranks() const { return domain_->size(); }
+  [[nodiscard]] bool is_root() const { return domain_->rank() == 0; }
+  // Runs `work` on rank 0; an exception there is thrown on every rank.
+  void on_root(const std::function<void()>& work) const;
+  [[nodiscard]] const Decomposition& decomposition() const { return domain_->decomposition(); }
+  [[nodiscard]] double interaction_range() const { return range_; }
+  // The contact counts of the last evaluation over all ranks (each pair once), its largest
+  // overlap ratio and the rebuilds so far.
+  [[nodiscard]] StepDiagnostics diagnostics() const;
+  [[nodiscard]] RankDiagnostics rank_diagnostics() const;  // not collective
+  [[nodiscard]] const StepTimings& timings() const { return timings_; }
+  void reset_timings() { timings_ = {}; }
+  [[nodiscard]] LoadImbalance load_imbalance() const;
+  [[nodiscard]] EngineLoad load() const;
+  // This rank's ellipsoid contact solver counters since the start. Not collective.
+  [[nodiscard]] const ContactSolverStats& contact_solver_stats() const { return solver_stats_; }
+
+ private:
+  void rebuild();
+  void evaluate_forces();
+  [[nodiscard]] int owner_of_local(std::size_t i) const;
+  static double seconds_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+
+  SceneConfig scene_;
+  std::vector<PlaneWall> walls_;
+  Summation summation_;
+  Vec3 g_ = Vec3::Zero();
+  double dt_ = 0.0;
+  bool rotation_ = false;
+  bool shapes_ = false;
+  ContactMaterial material_;
+  RollingParameters rolling_;
+  ForceLoops loops_{};
+
+  std::unique_ptr<Domain> domain_;
+  ParticleStore p_;
+  int n_owned_ = 0;
+  long n_global_ = 0;
+  double max_radius_ = 0.0;
+  double skin_ = 0.0;
+  double range_ = 0.0;  // largest diameter + skin
+  std::unique_ptr<VerletList> lists_;
+  ContactHistory history_;
+  GrainPoses posed_;
+  ForceOutput out_;
+
+  long step_ = 0;
+  long rebuilds_ = 0;
+  bool record_next_ = false;
+  bool recorded_ = false;
+  double last_overlap_ratio_ = 0.0;
+  long last_overlap_step_ = 0;
+
+  // Cumulative dissipation on this rank (docs/integrator.md).
+  double dissipated_damping_ = 0.0;
+  double dissipated_friction_ = 0.0;
+  double stiffness_change_ = 0.0;
+  double dissipated_rolling_ = 0.0;
+  double rolling_stiffness_change_ = 0.0;
+  double removed_by_relaxation_ = 0.0;
+  EnergyBalance e0_;
+  ContactSolverStats solver_stats_;  // this rank's, cumulative
+  StepTimings timings_;
+  ParticleStore gathered_;        // whole_state()
+  double reference_mass_ = -1.0;  // of the first whole_state() (rank 0)
+};
+
+// Gathered contacts (Simulation::gather_contacts_by_id) as ContactSamples indexing a store
+// sorted by id (Simulation::gather_sorted_by_id): what grid_stress() takes.
+std::vector<ContactSample> contacts_in_store(const std::vector<ContactRecord>& contacts,
+                                             const ParticleStore& sorted_by_id);
+
+}  // namespace upgrain::dem

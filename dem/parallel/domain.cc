@@ -1,0 +1,332 @@
+#include "dem/parallel/domain.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <sstream>
+
+#include "dem/parallel/exchange.h"
+
+namespace upgrain::dem {
+
+namespace {
+
+constexpr int kTagMigrate = 100;
+constexpr int kTagHistory = 200;
+constexpr int kTagGhosts = 300;
+constexpr int kTagRefresh = 400;
+constexpr int kTagShapes = 500;        // migration, next to kTagMigrate
+constexpr int kTagGhostShapes = 700;   // next to kTagGhosts
+constexpr int kTagOrientations = 800;  // next to kTagRefresh
+constexpr int kTagSums = 900;          // ghost sums returned to their owners
+
+// The records that involve a particle of `leaving` (sorted), appended to out.
+void records_of(const std::vector<ContactHistoryRecord>& records, const std::vector<GlobalId>& leaving,
+                std::vector<ContactHistoryRecord>& out) {
+  for (const ContactHistoryRecord& r : records) {
+    if (std::binary_search(leaving.begin(), leaving.end(), r.a) ||
+        (r.b >= 0 && std::binary_search(leaving.begin(), leaving.end(), r.b)))
+      out.push_back(r);
+  }
+}
+
+std::string block_name(const std::array<int, 3>& c) {
+  std::ostringstream m;
+  m << "(" << c[0] << ", " << c[1] << ", " << c[2] << ")";
+  return m.str();
+}
+
+}  // namespace
+
+Domain::Domain(MPI_Comm comm, const Box& box, double range, bool shapes, const DomainOptions& options)
+    : decomp_(std::make_unique<Decomposition>(comm, box, range, options.blocks)),
+      shapes_(shapes),
+      range_(range) {
+  if (options.balance_interval < 0) throw Error("load balance: balance_interval must be >= 0 steps");
+  balance_state_.interval = options.balance_interval;
+  balance_state_.cost = options.balance_cost;
+  balance_state_.next_step = options.balance_at_start ? 0 : options.balance_interval;
+}
+
+template <class Exchange>
+void Domain::timed(Exchange exchange) {
+  const std::chrono::steady_clock::time_point t = std::chrono::steady_clock::now();
+  exchange();
+  message_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+void Domain::migrate(ParticleStore& p, std::vector<ContactHistoryRecord>& records,
+                     const std::vector<int>& slots_per_owned, long step, double time) {
+  const Decomposition& dec = *decomp_;
+  const std::array<int, 3>& me = dec.coords();
+  const int n = static_cast<int>(p.size());
+  // A particle may only move to an adjacent block between two rebuilds: farther, and the
+  // ghosts it should have met were never here. Stop, naming it, rather than lose contacts.
+  std::string message;
+  for (int i = 0; i < n && message.empty(); ++i) {
+    const std::array<int, 3> c = dec.block_of(p.x[i]);
+    if (std::abs(c[0] - me[0]) > 1 || std::abs(c[1] - me[1]) > 1 || std::abs(c[2] - me[2]) > 1) {
+      std::ostringstream m;
+      m << "particle " << p.id[i] << " at (" << p.x[i][0] << ", " << p.x[i][1] << ", " << p.x[i][2]
+        << ") m moved from block " << block_name(me) << " (rank " << dec.rank() << ") to block "
+        << block_name(c) << ", farther than one block, by step " << step << " (t = " << time
+        << " s); the time step is too large or the particle was ejected";
+      message = m.str();
+    }
+  }
+  timed([&] { throw_if_any(comm(), message); });
+
+  // The check above used the planes the particles were last sorted by; a rebalance moves
+  // them only now. A particle may then be several blocks from home: each pass moves it one
+  // block along every axis, and a global reduction decides whether another pass is needed
+  // (at most max(blocks) - 1 passes; the records travel with it at every hop).
+  if (!rebalance_if_due(p, slots_per_owned, step)) {
+    migration_pass(p, records);
+    return;
+  }
+  const std::array<int, 3>& b = dec.blocks();
+  const int max_passes = std::max({b[0], b[1], b[2]});
+  for (int pass = 1;; ++pass) {
+    migration_pass(p, records);
+    int away = 0;
+    for (std::size_t i = 0; i < p.size() && away == 0; ++i) away = dec.block_of(p.x[i]) == me ? 0 : 1;
+    int any_away = 0;
+    timed([&] { MPI_Allreduce(&away, &any_away, 1, MPI_INT, MPI_MAX, comm()); });
+    if (any_away == 0) return;
+    // Collective: every rank sees the same any_away and pass.
+    if (pass >= max_passes)
+      throw Error("load balance: particles still away from their blocks after migration");
+  }
+}
+
+void Domain::migration_pass(ParticleStore& p, std::vector<ContactHistoryRecord>& records) {
+  const Decomposition& dec = *decomp_;
+  const std::array<int, 3>& me = dec.coords();
+  std::array<std::vector<GlobalId>, 2> leaving;
+  for (int d = 0; d < 3; ++d) {
+    for (int s = 0; s < 2; ++s) {
+      state_out_[s].clear();
+      history_out_[s].clear();
+      shape_out_[s].clear();
+      leaving[s].clear();
+    }
+    // Compact the owned particles in place, packing the leavers.
+    const std::size_t n = p.size();
+    std::size_t keep = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const int c = dec.block_of(p.x[i])[d];
+      if (c != me[d]) {
+        const int s = c < me[d] ? 0 : 1;
+        const StateRecord r = pack_state(p, i);
+        state_out_[s].push_back(r);
+        if (shapes_) shape_out_[s].push_back(pack_shape(p, i));
+        leaving[s].push_back(r.gid);
+        continue;
+      }
+      if (keep != i) copy_particle(p, i, keep);
+      ++keep;
+    }
+    truncate_store(p, keep);
+    // Every record of a leaver goes with it (a copy stays: the partner may stay here).
+    for (int s = 0; s < 2; ++s) {
+      std::sort(leaving[s].begin(), leaving[s].end());
+      if (!leaving[s].empty()) records_of(records, leaving[s], history_out_[s]);
+    }
+    const std::array<int, 2> nb{dec.neighbor(d, 0), dec.neighbor(d, 1)};
+    timed([&] {
+      exchange_along_axis(comm(), nb, state_out_, state_in_, false, kTagMigrate + 10 * d);
+      exchange_along_axis(comm(), nb, history_out_, history_in_, false, kTagHistory + 10 * d);
+      if (shapes_) exchange_along_axis(comm(), nb, shape_out_, shape_in_, false, kTagShapes + 10 * d);
+    });
+    for (int s = 0; s < 2; ++s) {
+      migrated_out_ += static_cast<long>(state_out_[s].size());
+      for (const StateRecord& r : state_in_[s]) append_state(p, r);
+      records.insert(records.end(), history_in_[s].begin(), history_in_[s].end());
+      if (shapes_)
+        for (const ShapeRecord& r : shape_in_[s]) append_shape(p, r);
+    }
+  }
+}
+
+void Domain::build_ghosts(ParticleStore& p, int n_owned) {
+  const Decomposition& dec = *decomp_;
+  const Box& block = dec.block();
+  n_owned_ = n_owned;
+  for (int d = 0; d < 3; ++d) {
+    for (int s = 0; s < 2; ++s) {
+      std::vector<int>& send = ghost_send_[d][s];
+      send.clear();
+      ghost_out_[s].clear();
+      shape_out_[s].clear();
+      if (dec.neighbor(d, s) == MPI_PROC_NULL) continue;
+      // Everything within the interaction range of the face, ghosts of earlier stages
+      // included (they cover the edges and corners).
+      const double bound = s == 0 ? block.lo[d] + range_ : block.hi[d] - range_;
+      const int n = static_cast<int>(p.size());
+      for (int i = 0; i < n; ++i) {
+        if (s == 0 ? p.x[i][d] < bound : p.x[i][d] > bound) send.push_back(i);
+      }
+      for (int i : send) {
+        ghost_out_[s].push_back(pack_state(p, static_cast<std::size_t>(i)));
+        if (shapes_) shape_out_[s].push_back(pack_shape(p, static_cast<std::size_t>(i)));
+      }
+    }
+    const std::array<int, 2> nb{dec.neighbor(d, 0), dec.neighbor(d, 1)};
+    timed([&] {
+      exchange_along_axis(comm(), nb, ghost_out_, ghost_in_, false, kTagGhosts + 10 * d);
+      if (shapes_) exchange_along_axis(comm(), nb, shape_out_, shape_in_, false, kTagGhostShapes + 10 * d);
+    });
+    for (int s = 0; s < 2; ++s) {
+      ghost_recv_start_[d][s] = static_cast<int>(p.size());
+      ghost_recv_count_[d][s] = static_cast<int>(ghost_in_[s].size());
+      for (const StateRecord& r : ghost_in_[s]) append_state(p, r);
+      if (shapes_)
+        for (const ShapeRecord& r : shape_in_[s]) append_shape(p, r);
+    }
+  }
+  // Every particle is inside its owner's block at a build (migration has just run), so the
+  // block holding a ghost's centroid names its owner.
+  ghost_owner_.resize(p.size() - static_cast<std::size_t>(n_owned));
+  for (std::size_t k = 0; k < ghost_owner_.size(); ++k)
+    ghost_owner_[k] = dec.owner_of(p.x[static_cast<std::size_t>(n_owned) + k]);
+}
+
+void Domain::refresh_ghosts(ParticleStore& p) {
+  const Decomposition& dec = *decomp_;
+  for (int d = 0; d < 3; ++d) {
+    for (int s = 0; s < 2; ++s) {
+      const std::vector<int>& send = ghost_send_[d][s];
+      motion_out_[s].resize(send.size());
+      for (std::size_t k = 0; k < send.size(); ++k) {
+        MotionRecord& r = motion_out_[s][k];
+        put(r.x, p.x[send[k]]);
+        put(r.v, p.v[send[k]]);
+        put(r.omega, p.omega[send[k]]);
+      }
+      motion_in_[s].resize(static_cast<std::size_t>(ghost_recv_count_[d][s]));
+      if (shapes_) {
+        orientation_out_[s].resize(send.size());
+        for (std::size_t k = 0; k < send.size(); ++k) put(orientation_out_[s][k].q, p.orientation[send[k]]);
+        orientation_in_[s].resize(static_cast<std::size_t>(ghost_recv_count_[d][s]));
+      }
+    }
+    const std::array<int, 2> nb{dec.neighbor(d, 0), dec.neighbor(d, 1)};
+    exchange_along_axis(comm(), nb, motion_out_, motion_in_, true, kTagRefresh + 10 * d);
+    if (shapes_)
+      exchange_along_axis(comm(), nb, orientation_out_, orientation_in_, true, kTagOrientations + 10 * d);
+    for (int s = 0; s < 2; ++s) {
+      const int start = ghost_recv_start_[d][s];
+      for (std::size_t k = 0; k < motion_in_[s].size(); ++k) {
+        const MotionRecord& r = motion_in_[s][k];
+        const std::size_t i = static_cast<std::size_t>(start) + k;
+        p.x[i] = get(r.x);
+        p.v[i] = get(r.v);
+        p.omega[i] = get(r.omega);
+      }
+      if (shapes_)
+        for (std::size_t k = 0; k < orientation_in_[s].size(); ++k)
+          p.orientation[static_cast<std::size_t>(start) + k] = get_quaternion(orientation_in_[s][k].q);
+    }
+  }
+}
+
+void Domain::return_ghost_sums(const std::vector<std::vector<Vec3>*>& fields) {
+  const Decomposition& dec = *decomp_;
+  const std::size_t f = fields.size();
+  // The stages in reverse: what a ghost of stage z collected goes back to the rank that sent
+  // it, where it may itself be a ghost of stage y or x and travels on in the next stage.
+  for (int d = 2; d >= 0; --d) {
+    for (int s = 0; s < 2; ++s) {
+      const int start = ghost_recv_start_[d][s];
+      const int count = ghost_recv_count_[d][s];
+      std::vector<double>& out = sums_out_[s];
+      out.resize(static_cast<std::size_t>(count) * 3 * f);
+      double* o = out.data();
+      for (int k = 0; k < count; ++k)
+        for (const std::vector<Vec3>* field : fields) {
+          const Vec3& v = (*field)[static_cast<std::size_t>(start + k)];
+          *o++ = v[0], *o++ = v[1], *o++ = v[2];
+        }
+      sums_in_[s].resize(ghost_send_[d][s].size() * 3 * f);
+    }
+    exchange_along_axis(comm(), {dec.neighbor(d, 0), dec.neighbor(d, 1)}, sums_out_, sums_in_, true,
+                        kTagSums + 10 * d);
+    for (int s = 0; s < 2; ++s) {
+      const std::vector<int>& send = ghost_send_[d][s];
+      const double* in = sums_in_[s].data();
+      for (int i : send)
+        for (std::vector<Vec3>* field : fields) {
+          (*field)[static_cast<std::size_t>(i)] += Vec3(in[0], in[1], in[2]);
+          in += 3;
+        }
+    }
+  }
+}
+
+long Domain::owned_cost(const std::vector<int>& slots_per_owned, int n_owned, int i) const {
+  if (balance_state_.cost == BalanceCost::particles) return 1;
+  // The particle and its list slots (lists of the last build: the owned particles have not
+  // changed since).
+  if (slots_per_owned.size() != static_cast<std::size_t>(n_owned)) return 1;
+  return 1 + slots_per_owned[static_cast<std::size_t>(i)];
+}
+
+// The load balance (docs/parallel.md, "Load balance"): at a rebuild, before migration, every
+// rank bins the cost of its owned particles along each cut axis; one integer MPI_Allreduce
+// sums the histograms (exact, so the same numbers on every rank whatever the reduction
+// order), and every rank places the planes at the quantiles of the same histogram
+// (quantile_cuts, clamp_cuts: load_balance.h). The planes are therefore bit for bit the same
+// everywhere; they never enter the physics.
+bool Domain::rebalance_if_due(const ParticleStore& p, const std::vector<int>& slots_per_owned, long step) {
+  if (balance_state_.interval <= 0 || step < balance_state_.next_step) return false;
+  balance_state_.next_step = step + balance_state_.interval;
+  Decomposition& dec = *decomp_;
+  const std::array<int, 3>& blocks = dec.blocks();
+  const Box& box = dec.box();
+  const int n_owned = static_cast<int>(p.size());
+  const std::size_t n = 3 * static_cast<std::size_t>(kBalanceBins) + 1;
+  balance_state_.histogram.assign(n, 0);
+  balance_state_.reduced.assign(n, 0);
+  long* h = balance_state_.histogram.data();
+  long mine = 0;
+  for (int i = 0; i < n_owned; ++i) {
+    const long w = owned_cost(slots_per_owned, n_owned, i);
+    mine += w;
+    for (int d = 0; d < 3; ++d) {
+      if (blocks[d] < 2) continue;
+      h[d * kBalanceBins + balance_bin(p.x[i][d], box.lo[d], box.hi[d], kBalanceBins)] += w;
+    }
+  }
+  h[n - 1] = mine;
+  long max_cost = 0;
+  timed([&] {
+    MPI_Allreduce(h, balance_state_.reduced.data(), static_cast<int>(n), MPI_LONG, MPI_SUM, comm());
+    MPI_Allreduce(&mine, &max_cost, 1, MPI_LONG, MPI_MAX, comm());
+  });
+  balance_.before = imbalance_ratio(max_cost, balance_state_.reduced[n - 1], dec.size());
+  for (int d = 0; d < 3; ++d) {
+    if (blocks[d] < 2) continue;
+    std::vector<double> cuts = quantile_cuts(balance_state_.reduced.data() + d * kBalanceBins, kBalanceBins,
+                                             box.lo[d], box.hi[d], blocks[d]);
+    clamp_cuts(cuts, box.lo[d], box.hi[d], dec.min_block());
+    dec.set_cuts(d, cuts);
+  }
+  ++balance_.count;
+  balance_.last_step = step;
+  balance_state_.measure_after = true;
+  return true;
+}
+
+void Domain::measure_balance(int n_owned, const std::vector<int>& slots_per_owned) {
+  if (!balance_state_.measure_after) return;
+  balance_state_.measure_after = false;
+  long mine = 0;
+  for (int i = 0; i < n_owned; ++i) mine += owned_cost(slots_per_owned, n_owned, i);
+  long max_cost = 0, total = 0;
+  timed([&] {
+    MPI_Allreduce(&mine, &max_cost, 1, MPI_LONG, MPI_MAX, comm());
+    MPI_Allreduce(&mine, &total, 1, MPI_LONG, MPI_SUM, comm());
+  });
+  balance_.after = imbalance_ratio(max_cost, total, decomp_->size());
+}
+
+}  // namespace upgrain::dem

@@ -1,0 +1,128 @@
+#pragma once
+// The spatial domain of one rank: its block of a Cartesian decomposition (decomposition.h;
+// planes fixed or moved by the load balance, load_balance.h), the migration of particles
+// between blocks, and the ghosts over the 26 neighbours (docs/parallel.md). Every exchange
+// goes by the three stages x, then y, then z, each with the two face neighbours: forwarding
+// what arrived in earlier stages reaches the 12 edge and 8 corner neighbours without
+// messages to them (Plimpton 1995, J. Comput. Phys. 117:1, sec. 4). On one rank every
+// neighbour is MPI_PROC_NULL and nothing is sent.
+//
+// The local store holds the owned particles first, then the ghosts, in the order they
+// arrived: by stage, then face.
+#include <mpi.h>
+
+#include <array>
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "dem/core/box.h"
+#include "dem/core/contact_history.h"
+#include "dem/core/particle_store.h"
+#include "dem/parallel/decomposition.h"
+#include "dem/parallel/load_balance.h"
+#include "dem/parallel/records.h"
+
+namespace upgrain::dem {
+
+struct DomainOptions {
+  std::array<int, 3> blocks{0, 0, 0};  // {0,0,0}: chosen from the rank count and the box
+  // Load balance (docs/parallel.md, "Load balance"): at the first neighbour-list rebuild at
+  // or after every `balance_interval` steps, the planes move to the quantiles of
+  // `balance_cost` along each cut axis; with `balance_at_start` also at the first rebuild.
+  // 0: fixed (Eulerian) blocks.
+  long balance_interval = 0;
+  BalanceCost balance_cost = BalanceCost::particles;
+  bool balance_at_start = true;
+};
+
+// The load balance so far (identical on every rank): the number of rebalances, the step of
+// the last, and max/mean over ranks of the balanced cost just before it and once its rebuild
+// is complete. 1 = perfect balance.
+struct BalanceRecord {
+  long count = 0;
+  long last_step = -1;
+  double before = 1.0;
+  double after = 1.0;
+};
+
+class Domain {
+ public:
+  // Collective over `comm`. `range`: the interaction range (largest diameter + skin), the
+  // least block thickness and the depth of the ghost layer. `shapes`: shape and orientation
+  // records travel with the particles.
+  Domain(MPI_Comm comm, const Box& box, double range, bool shapes, const DomainOptions& options);
+
+  [[nodiscard]] const Decomposition& decomposition() const { return *decomp_; }
+  [[nodiscard]] MPI_Comm comm() const { return decomp_->comm(); }
+  [[nodiscard]] int rank() const { return decomp_->rank(); }
+  [[nodiscard]] int size() const { return decomp_->size(); }
+
+  // Collective, at a rebuild (the store holds owned particles only). Sends every particle
+  // whose centroid left the block to the block that holds it now, with the history records
+  // that involve it (a copy stays: the partner may stay). When a load balance is due, the
+  // planes move first (`slots_per_owned`: the list slots of each owned particle, for the
+  // pair-slot cost; another size counts 1 per particle). Throws upgrain::Error on every rank
+  // when a particle moved farther than one block (naming it, `step` and `time`).
+  void migrate(ParticleStore& p, std::vector<ContactHistoryRecord>& records,
+               const std::vector<int>& slots_per_owned, long step, double time);
+  // Collective, once the rebuild is complete: measures the balance a rebalance left.
+  void measure_balance(int n_owned, const std::vector<int>& slots_per_owned);
+  // Collective: appends to `p` (its owned particles) every particle of the other ranks within
+  // the interaction range of this block, and remembers the routes.
+  void build_ghosts(ParticleStore& p, int n_owned);
+  // Collective: the ghosts' positions, velocities (and orientations) along the same routes.
+  void refresh_ghosts(ParticleStore& p);
+  // Collective, for the fast summation (newton on): what the force loop added to each ghost
+  // in each of `fields` (vectors indexed by local particle) is sent back along the routes,
+  // in reverse, and added to its owner's entry.
+  void return_ghost_sums(const std::vector<std::vector<Vec3>*>& fields);
+  // The rank that owns local ghost i (i >= n_owned), from the last build_ghosts().
+  [[nodiscard]] int ghost_owner(std::size_t i) const { return ghost_owner_[i - n_owned_]; }
+
+  [[nodiscard]] const BalanceRecord& balance() const { return balance_; }
+  [[nodiscard]] long migrated_out() const { return migrated_out_; }
+  // Wall-clock seconds spent in messages and reductions by migrate() and build_ghosts().
+  [[nodiscard]] double message_seconds() const { return message_seconds_; }
+
+ private:
+  bool rebalance_if_due(const ParticleStore& p, const std::vector<int>& slots_per_owned, long step);
+  void migration_pass(ParticleStore& p, std::vector<ContactHistoryRecord>& records);
+  [[nodiscard]] long owned_cost(const std::vector<int>& slots_per_owned, int n_owned, int i) const;
+  template <class Exchange>
+  void timed(Exchange exchange);
+
+  std::unique_ptr<Decomposition> decomp_;
+  bool shapes_ = false;
+  double range_ = 0.0;
+  long migrated_out_ = 0;
+  double message_seconds_ = 0.0;
+  int n_owned_ = 0;  // at the last build_ghosts()
+
+  struct {
+    long interval = 0;
+    BalanceCost cost = BalanceCost::particles;
+    long next_step = 0;
+    bool measure_after = false;
+    std::vector<long> histogram, reduced;  // 3 axes x kBalanceBins, then the total cost
+  } balance_state_;
+  BalanceRecord balance_;
+
+  // Ghost routes of the last build, per axis and face: the local indices sent and where the
+  // received ghosts start in the store.
+  std::array<std::array<std::vector<int>, 2>, 3> ghost_send_;
+  std::array<std::array<int, 2>, 3> ghost_recv_start_{};
+  std::array<std::array<int, 2>, 3> ghost_recv_count_{};
+  std::vector<int> ghost_owner_;
+  // Message buffers, kept between steps (a ghost refresh allocates nothing after warm-up).
+  std::array<std::vector<StateRecord>, 2> ghost_out_, ghost_in_;  // a ghost arrives whole at a build
+  std::array<std::vector<MotionRecord>, 2> motion_out_, motion_in_;
+  std::array<std::vector<StateRecord>, 2> state_out_, state_in_;
+  std::array<std::vector<ContactHistoryRecord>, 2> history_out_, history_in_;
+  std::array<std::vector<ShapeRecord>, 2> shape_out_, shape_in_;
+  std::array<std::vector<OrientationRecord>, 2> orientation_out_, orientation_in_;
+  std::array<std::vector<double>, 2> sums_out_, sums_in_;
+};
+
+}  // namespace upgrain::dem
