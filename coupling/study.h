@@ -11,9 +11,8 @@
 
 namespace upgrain::coupling {
 
-// Collective over `comm`. The DEM runs on the engine of coupling/dem_run.h (the MPI engine
-// on every rank, or the serial one on rank 0); the continuum solve and the mesh output use
-// every rank. Returns the process exit code.
+// Collective over `comm`. The DEM runs on every rank (coupling/dem_run.h); the continuum
+// solve and the mesh output use every rank too. Returns the process exit code.
 // on_dem_done is called on rank 0 once the DEM part has finished.
 int run_study(const SceneInput& in, MPI_Comm comm,
               const std::function<void(const dem::Progress&)>& on_progress,

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 #include "dem/boundary/wall_release.h"
 #include "dem/io/compute_grid_stress_output.h"
@@ -50,8 +51,7 @@ DepositionResult run_deposition(const SceneConfig& scene, const RunControl& cont
     }
   }
   throw_if_any(comm, error);
-  Simulation sim(scene, fill, comm, options);
-  fill = ParticleStore{};
+  Simulation sim(scene, std::move(fill), comm, options);
   return run_deposition(sim, scene, control, output, on_progress);
 }
 

@@ -37,7 +37,7 @@ struct RankDiagnostics {
 };
 
 // Wall-clock seconds spent by this rank in the parts of step(), accumulated since the end of
-// construction (or reset_timings()): steady_clock reads, six per step and two per message
+// construction (or reset_timings()): steady_clock reads, seven per step and two per message
 // phase of a rebuild, so the overhead is a few hundred nanoseconds per step.
 struct StepTimings {
   long steps = 0;

@@ -21,6 +21,19 @@
 
 namespace upgrain::dem::force_loop_detail {
 
+// A contact whose grains are apart forgets its history: written only when it has one, since
+// most slots of the list are not touching.
+template <bool Tangential, bool Rolling>
+inline __attribute__((always_inline)) void forget_history(TangentialSpring* springs, RollingSpring* rolling,
+                                                          std::size_t k) {
+  if constexpr (Tangential) {
+    if (springs[k].stiffness != 0.0) springs[k] = TangentialSpring{};
+  }
+  if constexpr (Rolling) {
+    if (rolling[k].stiffness != 0.0) rolling[k] = RollingSpring{};
+  }
+}
+
 // Inertia of grain i for the rolling dashpot: its moment about its centroid (an ellipsoid's
 // smallest principal moment, so the dashpot is never over-estimated) plus m l^2 for the
 // lever l to the contact point (Ai et al. 2011, with the lever for the radius).
@@ -94,12 +107,7 @@ void compute(const ForceInput& in) {
   // R* = r and m* = m. The contact point lies on the plane, at arm r - delta.
   ContactParameters wp{mat.e_star_pw, mat.g_star_pw, 0.0, 0.0, 0.0, mat.damping_ratio, in.dt};
   auto forget_wall = [&](std::size_t e) {
-    if constexpr (kWallTangential) {
-      if (h.wall_spring[e].stiffness != 0.0) h.wall_spring[e] = TangentialSpring{};
-    }
-    if constexpr (kRolling) {
-      if (h.wall_rolling[e].stiffness != 0.0) h.wall_rolling[e] = RollingSpring{};
-    }
+    forget_history<kWallTangential, kRolling>(h.wall_spring.data(), h.wall_rolling.data(), e);
   };
   // The two loops are inlined into compute(): as calls, the sums they keep would live in the
   // closure, in memory, instead of registers (measured with callgrind: +3 % instructions).
@@ -180,15 +188,9 @@ void compute(const ForceInput& in) {
 
   // Particle pairs.
   ContactParameters cp{mat.e_star_pp, mat.g_star_pp, 0.0, 0.0, mat.friction_pp, mat.damping_ratio, in.dt};
-  // A slot whose grains are apart forgets its history (written only when it has one: most
-  // slots of the list are not touching).
   auto forget = [&](int k) {
-    if constexpr (kTangential) {
-      if (h.pair_spring[k].stiffness != 0.0) h.pair_spring[k] = TangentialSpring{};
-    }
-    if constexpr (kRolling) {
-      if (h.pair_rolling[k].stiffness != 0.0) h.pair_rolling[k] = RollingSpring{};
-    }
+    forget_history<kTangential, kRolling>(h.pair_spring.data(), h.pair_rolling.data(),
+                                          static_cast<std::size_t>(k));
   };
   auto pair_loop = [&]() __attribute__((always_inline)) {
     // Raw views of the arrays the loop indexes: a vector's data pointer lives in memory, and
@@ -215,9 +217,10 @@ void compute(const ForceInput& in) {
       // The chunk's slot classes, from its first slot (a raw pointer: the stores into it, of
       // bytes, might otherwise alias every vector the loop reads).
       unsigned char* slot_class = nullptr;
+      const int first_slot = start[r0];
       if constexpr (Shapes) {
-        out.slot_class.resize(static_cast<std::size_t>(start[r1] - start[r0]));
-        slot_class = out.slot_class.data() - start[r0];
+        out.slot_class.resize(static_cast<std::size_t>(start[r1] - first_slot));
+        slot_class = out.slot_class.data();
         out.shaped_pairs.clear();
         for (std::size_t r = r0; r < r1; ++r) {
           const int i = pl.row_particle[r];
@@ -225,7 +228,7 @@ void compute(const ForceInput& in) {
           for (int k = start[r]; k < start[r + 1]; ++k) {
             const int j = nbr[k];
             const double rsum = p.radius[i] + p.radius[j];
-            unsigned char& c = slot_class[k];
+            unsigned char& c = slot_class[k - first_slot];
             if ((p.x[j] - p.x[i]).squaredNorm() >= rsum * rsum) {
               c = kFar;
               forget(k);
@@ -268,7 +271,7 @@ void compute(const ForceInput& in) {
           double arm_i = 0.0, arm_j = 0.0;  // sphere pairs: lever lengths along the normal
           bool shaped = false;
           if constexpr (Shapes) {
-            const unsigned char c = slot_class[k];
+            const unsigned char c = slot_class[k - first_slot];
             if (c == kFar) continue;
             shaped = c == kShaped;
           }

@@ -175,7 +175,7 @@ void Simulation::step() {
   }
   // One reduction per step carries both global decisions: rebuild now (every rank at the
   // same steps), and the runaway-overlap guard of the previous evaluation.
-  double local[2] = {moved ? 1.0 : 0.0, last_overlap_ratio_};
+  double local[2] = {moved || rebuild_pending_ ? 1.0 : 0.0, last_overlap_ratio_};
   double global[2] = {0.0, 0.0};
   const Clock::time_point t1 = Clock::now();
   MPI_Allreduce(local, global, 2, MPI_DOUBLE, MPI_MAX, comm());
@@ -184,9 +184,10 @@ void Simulation::step() {
                                               static_cast<double>(last_overlap_step_) * dt_, dt_);
   if (!overlap.empty()) throw Error(overlap);
   const bool rebuilding = global[0] > 0.0;
-  if (rebuilding)
+  if (rebuilding) {
     rebuild();
-  else if (ranks() > 1)
+    rebuild_pending_ = false;
+  } else if (ranks() > 1)
     domain_->refresh_ghosts(p_);
   const Clock::time_point t3 = Clock::now();
   evaluate_forces();
@@ -285,7 +286,10 @@ void Simulation::remove_wall(const std::string& name) {
     // Far along its own normal's opposite side: every grain is then at a distance of order
     // 1e100 inside the domain, and no contact can form (distance() stays finite).
     w.point -= 1e100 * w.normal;
-    rebuild();
+    // Its wall entries go at the next step's rebuild: rebuilding now would reorder the
+    // particles under the last evaluation's per-particle output, whose damping work the next
+    // step still books.
+    rebuild_pending_ = true;
     return;
   }
   throw Error("no wall named '" + name + "' to remove");
@@ -313,36 +317,50 @@ const ParticleStore& Simulation::whole_state() {
   return gathered_;
 }
 
-ParticleStore Simulation::gather_sorted_by_id() const {
-  struct Shaped {
-    StateRecord state;
-    ShapeRecord shape;
+namespace {
+
+// The owned particles of every rank on rank 0, sorted by global id: `pack` makes a record
+// of one particle (with .gid, or .state.gid), `append` adds one to the result.
+template <typename Record, typename Pack, typename Append>
+ParticleStore gather_by_id(int n_owned, MPI_Comm comm, Pack pack, Append append) {
+  std::vector<Record> mine;
+  mine.reserve(static_cast<std::size_t>(n_owned));
+  for (int i = 0; i < n_owned; ++i) mine.push_back(pack(static_cast<std::size_t>(i)));
+  std::vector<Record> all = gather_to_root(mine, comm);
+  auto gid = [](const Record& r) {
+    if constexpr (requires { r.gid; })
+      return r.gid;
+    else
+      return r.state.gid;
   };
+  std::sort(all.begin(), all.end(), [&](const Record& a, const Record& b) { return gid(a) < gid(b); });
   ParticleStore out;
-  if (shapes_) {
-    std::vector<Shaped> mine;
-    mine.reserve(static_cast<std::size_t>(n_owned_));
-    for (int i = 0; i < n_owned_; ++i)
-      mine.push_back(
-          {pack_state(p_, static_cast<std::size_t>(i)), pack_shape(p_, static_cast<std::size_t>(i))});
-    std::vector<Shaped> all = gather_to_root(mine, comm());
-    std::sort(all.begin(), all.end(),
-              [](const Shaped& a, const Shaped& b) { return a.state.gid < b.state.gid; });
-    out.reserve(all.size());
-    for (const Shaped& r : all) {
-      append_state(out, r.state);
-      append_shape(out, r.shape);
-    }
-    return out;
-  }
-  std::vector<StateRecord> mine;
-  mine.reserve(static_cast<std::size_t>(n_owned_));
-  for (int i = 0; i < n_owned_; ++i) mine.push_back(pack_state(p_, static_cast<std::size_t>(i)));
-  std::vector<StateRecord> all = gather_to_root(mine, comm());
-  std::sort(all.begin(), all.end(), [](const StateRecord& a, const StateRecord& b) { return a.gid < b.gid; });
   out.reserve(all.size());
-  for (const StateRecord& r : all) append_state(out, r);
+  for (const Record& r : all) append(out, r);
   return out;
+}
+
+struct ShapedStateRecord {
+  StateRecord state;
+  ShapeRecord shape;
+};
+
+}  // namespace
+
+ParticleStore Simulation::gather_sorted_by_id() const {
+  if (shapes_)
+    return gather_by_id<ShapedStateRecord>(
+        n_owned_, comm(),
+        [&](std::size_t i) {
+          return ShapedStateRecord{pack_state(p_, i), pack_shape(p_, i)};
+        },
+        [](ParticleStore& out, const ShapedStateRecord& r) {
+          append_state(out, r.state);
+          append_shape(out, r.shape);
+        });
+  return gather_by_id<StateRecord>(
+      n_owned_, comm(), [&](std::size_t i) { return pack_state(p_, i); },
+      [](ParticleStore& out, const StateRecord& r) { append_state(out, r); });
 }
 
 std::vector<int> Simulation::gather_owners_sorted_by_id() const {
@@ -528,6 +546,10 @@ StepDiagnostics Simulation::diagnostics() const {
   MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_LONG, MPI_SUM, comm());
   double overlap = last_overlap_ratio_;
   MPI_Allreduce(MPI_IN_PLACE, &overlap, 1, MPI_DOUBLE, MPI_MAX, comm());
+  // step() checks each evaluation at the next step's reduction; this covers a run's last one.
+  const std::string runaway = runaway_overlap(overlap, kRunawayOverlapRatio, last_overlap_step_,
+                                              static_cast<double>(last_overlap_step_) * dt_, dt_);
+  if (!runaway.empty()) throw Error(runaway);
   StepDiagnostics d;
   d.particle_contacts = counts[0];
   d.wall_contacts = counts[1];

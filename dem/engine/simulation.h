@@ -103,13 +103,14 @@ class Simulation {
   [[nodiscard]] GrainDynamics grain_dynamics() const { return {g_, rotation_}; }
   [[nodiscard]] const std::vector<PlaneWall>& walls() const { return walls_; }
   // Takes a wall out of the scene (the collapse's gate and side walls): it is moved far
-  // behind its own plane and the lists are rebuilt, so no contact with it remains. Throws when
-  // no wall has that name.
+  // behind its own plane, and the next step() rebuilds the lists before it evaluates forces,
+  // so no contact with it remains. Throws when no wall has that name.
   void remove_wall(const std::string& name);
 
   // --- Contacts and stress.
   // Asks the next force evaluation (the next step()) to record its contacts (ForceOutput::
-  // contacts, local indices); they stay valid until the following step. Not collective.
+  // contacts, local indices); they stay valid until the following step. Call it on every
+  // rank: the stress functions below are collective and refuse a step that did not record.
   void request_contacts() { record_next_ = true; }
   [[nodiscard]] const std::vector<ContactSample>& contacts() const { return out_.contacts; }
   [[nodiscard]] bool contacts_recorded() const { return recorded_; }
@@ -194,6 +195,7 @@ class Simulation {
 
   long step_ = 0;
   long rebuilds_ = 0;
+  bool rebuild_pending_ = false;  // a wall was removed: rebuild at the next step (on every rank)
   bool record_next_ = false;
   bool recorded_ = false;
   double last_overlap_ratio_ = 0.0;

@@ -22,7 +22,7 @@ struct StateRecord {
 };
 
 // The shape of an ellipsoid scene's particle (every grain; spheres as a = b = c): sent next
-// to a GhostRecord or StateRecord, in the same order, only when the scene has shapes, so
+// to a StateRecord, in the same order, only when the scene has shapes, so
 // sphere runs send nothing more.
 struct ShapeRecord {
   double semi_axes[3], orientation[4], inertia_body[3];  // orientation as x, y, z, w

@@ -1,4 +1,4 @@
-// FIRE on the MPI engine (dem/parallel/parallel_relaxation.h): the relaxed state and the
+// FIRE on several ranks (dem/engine/relaxation.h): the relaxed state and the
 // energy it removes are bitwise the same on any rank count, and the relaxation works (the
 // residual falls by orders of magnitude), like the fast summation's.
 #include <gtest/gtest.h>
