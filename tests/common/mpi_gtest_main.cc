@@ -7,10 +7,14 @@
 #include "dem/parallel/mpi_start.h"
 
 int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  // Listing the tests (GoogleTest's discovery, at build time) starts no MPI: the sanitizer
+  // build's leak check would count Open MPI's never-freed start-up allocations, and the
+  // discovery runs without the tests' environment.
+  if (::testing::GTEST_FLAG(list_tests)) return RUN_ALL_TESTS();
   // GoogleTest's discovery runs each test case as a process of its own: a singleton.
   upgrain::dem::prefer_isolated_singleton();
   MPI_Init(&argc, &argv);
-  ::testing::InitGoogleTest(&argc, argv);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   if (rank != 0) {
