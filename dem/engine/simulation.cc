@@ -1,6 +1,8 @@
 #include "dem/engine/simulation.h"
 
 #include <algorithm>
+#include <array>
+#include <span>
 #include <utility>
 
 #include "dem/boundary/container.h"
@@ -194,11 +196,13 @@ void Simulation::step() {
   const Clock::time_point t4 = Clock::now();
   // Fast summation: the ghosts' shares go home (LAMMPS's reverse communication).
   if (summation_ == Summation::fast && ranks() > 1) {
-    std::vector<std::vector<Vec3>*> sums{&p_.force};
-    if (rotation_) sums.push_back(&p_.torque);
+    // A fixed array: no allocation per step.
+    std::array<std::vector<Vec3>*, 5> sums{&p_.force};
+    std::size_t m = 1;
+    if (rotation_) sums[m++] = &p_.torque;
     for (std::vector<Vec3>* v : {&out_.damping_force, &out_.damping_torque, &out_.rolling_damping_torque})
-      if (!v->empty()) sums.push_back(v);
-    domain_->return_ghost_sums(sums);
+      if (!v->empty()) sums[m++] = v;
+    domain_->return_ghost_sums(std::span<std::vector<Vec3>* const>(sums.data(), m));
   }
   const Clock::time_point t5 = Clock::now();
   // Second half kick with the new forces.

@@ -229,7 +229,7 @@ void Domain::refresh_ghosts(ParticleStore& p) {
   }
 }
 
-void Domain::return_ghost_sums(const std::vector<std::vector<Vec3>*>& fields) {
+void Domain::return_ghost_sums(std::span<std::vector<Vec3>* const> fields) {
   const Decomposition& dec = *decomp_;
   const std::size_t f = fields.size();
   // The stages in reverse: what a ghost of stage z collected goes back to the rank that sent

@@ -15,6 +15,7 @@
 #include <chrono>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "dem/core/box.h"
@@ -77,7 +78,7 @@ class Domain {
   // Collective, for the fast summation (newton on): what the force loop added to each ghost
   // in each of `fields` (vectors indexed by local particle) is sent back along the routes,
   // in reverse, and added to its owner's entry.
-  void return_ghost_sums(const std::vector<std::vector<Vec3>*>& fields);
+  void return_ghost_sums(std::span<std::vector<Vec3>* const> fields);
   // The rank that owns local ghost i (i >= n_owned), from the last build_ghosts().
   [[nodiscard]] int ghost_owner(std::size_t i) const { return ghost_owner_[i - n_owned_]; }
 
