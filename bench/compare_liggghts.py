@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Side-by-side dense-bed benchmark: Upgrain vs LIGGGHTS 3.8 (issue 3).
+"""Side-by-side dense-bed benchmark: Upgrain vs LIGGGHTS 3.8.
 
 For each bed size: Upgrain settles a bed once (bench_dense_bed settle) and writes a data
 file; then both codes run 2,000 steps from that same file, on 1 rank, alternately,

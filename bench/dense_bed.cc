@@ -1,4 +1,4 @@
-// Dense-bed benchmark (issue 3): a settled bed of monodisperse spheres, 2,000 steps from
+// Dense-bed benchmark: a settled bed of monodisperse spheres, 2,000 steps from
 // the settled state. Two modes, so that Upgrain and LIGGGHTS start from the same file:
 //   bench_dense_bed settle N bed.data   deposit N spheres, relax them with the benchmark
 //                                        material, write a LAMMPS/LIGGGHTS data file
@@ -159,7 +159,7 @@ int run(const std::string& path, long steps, Summation summation) {
   return 0;
 }
 
-// Cost of grid stress (issue 7): `steps` plain steps against `evaluations` steps that
+// Cost of grid stress: `steps` plain steps against `evaluations` steps that
 // record their contacts, each followed by all seven formulas on a 3 x 3 x 4 grid and the
 // HDF5 + CSV + XDMF output of the result, all in one run. Prints the cost per contact and
 // the share of a run that evaluates stress every 1,000 steps.

@@ -1,5 +1,5 @@
 #pragma once
-// The dense-bed benchmark scene (issue 3) and the settled-bed files that
+// The dense-bed benchmark scene and the settled-bed files that
 // `bench_dense_bed settle` writes, shared by bench_dense_bed and bench_parallel_bed.
 // Scene: r = 1.5 mm, 2,650 kg/m^3, E = 29 GPa, nu = 0.25, mu = 0.5 (particles and walls),
 // zeta = 0.5, dt = 1e-6 s, gravity on, energy tracking off.

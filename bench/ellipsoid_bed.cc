@@ -1,4 +1,4 @@
-// Ellipsoid dense-bed benchmark (issue 4, Deliver item 7): the foundation benchmark's dense
+// Ellipsoid dense-bed benchmark: the foundation benchmark's dense
 // bed (bench/dense_bed.cc: r = 1.5 mm, 2,650 kg/m^3, E = 29 GPa, nu = 0.25, mu = 0.5,
 // zeta = 0.5, dt = 1e-6 s) built twice in one run, once of spheres and once of ellipsoids
 // 1:0.8:0.6 of the same volume-equivalent radius (a = 1.5 mm / cbrt(0.48)) in uniformly
@@ -28,6 +28,7 @@
 #include <numbers>
 #include <string>
 
+#include "bench/callgrind_marks.h"
 #include "bench/dense_bed_scene.h"
 #include "dem/engine/relaxation.h"
 #include "dem/engine/simulation.h"
@@ -39,16 +40,6 @@
 #include <memory>
 #include <vector>
 
-#if __has_include(<valgrind/callgrind.h>)
-#include <valgrind/callgrind.h>
-#define UPGRAIN_ON_VALGRIND() (RUNNING_ON_VALGRIND != 0)
-#define UPGRAIN_ZERO_STATS() CALLGRIND_ZERO_STATS
-#define UPGRAIN_DUMP_STATS(what) CALLGRIND_DUMP_STATS_AT(what)
-#else
-#define UPGRAIN_ON_VALGRIND() false
-#define UPGRAIN_ZERO_STATS()
-#define UPGRAIN_DUMP_STATS(what)
-#endif
 
 using namespace upgrain::dem;
 

@@ -1,4 +1,4 @@
-// Cost of the grid kinematics (issue 8, docs/strain.md "Cost"): per evaluation of a grid,
+// Cost of the grid kinematics (docs/strain.md "Cost"): per evaluation of a grid,
 // F and L per cell by best fit, by the tessellation, or both, with all measures and the
 // increment (dem::grid_strain, given the previous evaluation as in a run, so the reference
 // tessellations of unchanged Lagrangian sets are reused), plus the objective stress rates

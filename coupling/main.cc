@@ -155,6 +155,9 @@ int run(int argc, char** argv) {
       std::printf(
           "  study: DEM deposition -> grid stress -> continuum column (Q%u) -> comparison and report\n",
           in.study.continuum.degree);
+    std::printf("  effects (Effects section; auto = derived from the scene):\n");
+    for (const dem::EffectChoice& c : in.output.effect_choices)
+      std::printf("    %-20s %-3s  %s\n", c.entry.c_str(), c.on ? "on" : "off", c.reason.c_str());
     std::printf("  %d MPI rank%s, %s summation (Parallel/summation)\n", ranks, ranks > 1 ? "s" : "",
                 dem::to_string(in.parallel.summation).c_str());
     if (in.parallel.legacy_engine != "auto")

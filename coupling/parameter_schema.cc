@@ -2,14 +2,45 @@
 
 #include <algorithm>
 
+#include "dem/contact/contact_laws.h"
+
 namespace upgrain::coupling {
+
+namespace {
+
+// Contact/law and every law's own parameters, from the law table, after the other Contact
+// entries. A parameter two laws share is declared once.
+std::vector<ParameterSpec> with_contact_laws(std::vector<ParameterSpec> schema) {
+  std::string names;
+  std::vector<ParameterSpec> rows;
+  for (const dem::LawInfo& law : dem::contact_law_table()) {
+    if (!names.empty()) names += '|';
+    names += law.name;
+    for (const dem::LawParameter& p : law.parameters) {
+      const bool known = std::any_of(rows.begin(), rows.end(), [&](const ParameterSpec& r) { return r.name == p.name; });
+      if (!known) rows.push_back({"Contact", p.name, p.default_value, Kind::real, p.min, p.max, "", p.unit, p.doc});
+    }
+  }
+  rows.insert(rows.begin(), ParameterSpec{"Contact", "law", dem::contact_law_table().front().name, Kind::selection,
+                                          0, 0, names, "-",
+                                          "Contact law (docs/contact-law.md). hertz-mindlin: Hertz normal force and "
+                                          "Mindlin tangential stiffness from the grains' E and nu (the paper's "
+                                          "law). hooke: linear spring-dashpot (Cundall and Strack 1979) with "
+                                          "'normal stiffness' and 'tangential stiffness'."});
+  auto last_contact = std::find_if(schema.rbegin(), schema.rend(),
+                                   [](const ParameterSpec& p) { return p.section == "Contact"; });
+  schema.insert(last_contact.base(), rows.begin(), rows.end());
+  return schema;
+}
+
+}  // namespace
 
 const std::vector<ParameterSpec>& parameter_schema() {
   using K = Kind;
   // The defaults are the built-in default scene: about 2,000 spheres of the paper's size
   // deposited into a 4.5 cm square box. Young's modulus is lowered from the paper's tens
   // of GPa to 5 GPa so that the default run takes about a minute (docs/parameters.md).
-  static const std::vector<ParameterSpec> schema = {
+  static const std::vector<ParameterSpec> schema = with_contact_laws({
       {"Simulation", "time step", "1e-6", K::real, 1e-12, 1.0, "", "s",
        "Fixed time step of the velocity Verlet integrator. Refused when above the safe step "
        "(see Rayleigh fraction, Hertz fraction) unless 'allow unsafe time step' is true."},
@@ -29,23 +60,28 @@ const std::vector<ParameterSpec>& parameter_schema() {
       {"Simulation", "neighbor skin", "0.2", K::real, 0.01, 5.0, "", "largest diameters",
        "Verlet list skin; the list is rebuilt when a grain has moved more than half of it."},
 
-      {"Effects", "gravity", "true", K::boolean, 0, 0, "", "-", "Gravity along -z."},
+      // Each effect: auto (derived from the scene's parameters, dem/scene/effect_choice.h),
+      // true or false. Switching off an effect a parameter calls for is refused.
+      {"Effects", "gravity", "auto", K::selection, 0, 0, "auto|true|false", "-",
+       "Gravity along -z. auto: on when 'gravity acceleration' > 0."},
       {"Effects", "gravity acceleration", "9.81", K::real, 0.0, 1e3, "", "m/s^2", "Magnitude of gravity."},
-      {"Effects", "tangential friction", "true", K::boolean, 0, 0, "", "-",
-       "Mindlin tangential spring with Coulomb friction between particles. Off: frictionless contacts, no "
-       "history."},
-      {"Effects", "damping", "true", K::boolean, 0, 0, "", "-",
-       "Normal viscous damping c_n = 2 zeta sqrt(m* k_n)."},
-      {"Effects", "wall friction", "true", K::boolean, 0, 0, "", "-",
-       "Mindlin tangential spring with Coulomb friction at walls. Off: frictionless walls."},
-      {"Effects", "rotation", "true", K::boolean, 0, 0, "", "-",
-       "Integrate the angular velocity from contact torques. Off: grains do not rotate."},
-      {"Effects", "energy tracking", "true", K::boolean, 0, 0, "", "-",
-       "Accumulate elastic energy and dissipation per contact for the energy balance."},
-      {"Effects", "rolling resistance", "false", K::boolean, 0, 0, "", "-",
+      {"Effects", "tangential friction", "auto", K::selection, 0, 0, "auto|true|false", "-",
+       "Mindlin tangential spring with Coulomb friction between particles. auto: on when Contact/friction "
+       "coefficient > 0; off means frictionless contacts and no tangential history."},
+      {"Effects", "damping", "auto", K::selection, 0, 0, "auto|true|false", "-",
+       "Normal viscous damping c_n = 2 zeta sqrt(m* k_n). auto: on when Contact/damping ratio > 0."},
+      {"Effects", "wall friction", "auto", K::selection, 0, 0, "auto|true|false", "-",
+       "Mindlin tangential spring with Coulomb friction at walls. auto: on when a Container wall friction is "
+       "> 0; off means frictionless walls and no wall history."},
+      {"Effects", "rotation", "auto", K::selection, 0, 0, "auto|true|false", "-",
+       "Integrate the angular velocity from contact torques. auto: on when a torque can act (friction, wall "
+       "friction, rolling resistance or ellipsoids). false holds every grain from turning."},
+      {"Effects", "energy tracking", "auto", K::selection, 0, 0, "auto|true|false", "-",
+       "Accumulate elastic energy and dissipation per contact for the energy balance. auto: on when "
+       "Output/energy balance is true."},
+      {"Effects", "rolling resistance", "auto", K::selection, 0, 0, "auto|true|false", "-",
        "Rolling resistance at every contact: elastic-plastic spring-dashpot (Iwashita and Oda 1998; Ai et "
-       "al. "
-       "2011, model C), |M_r| <= mu_r R* F_n. Not part of the paper's law. Needs rotation; one rank only."},
+       "al. 2011, model C), |M_r| <= mu_r R* F_n. Not part of the paper's law: auto is off. Needs rotation."},
 
       {"Particles", "count", "2000", K::integer, 1, 1e9, "", "-", "Number of grains."},
       {"Particles", "radius", "1.5e-3", K::real, 1e-9, 10.0, "", "m",
@@ -127,6 +163,10 @@ const std::vector<ParameterSpec>& parameter_schema() {
        "Simulated time between HDF5 snapshots; 0 = first and last only."},
       {"Output", "time series interval", "0.002", K::real, 0.0, 1e6, "", "s",
        "Simulated time between rows of time_series.csv."},
+      {"Output", "energy balance", "true", K::boolean, 0, 0, "", "-",
+       "Write the elastic energies, the dissipation and the balance error into time_series.csv and "
+       "summary.json. false: with Effects/energy tracking = auto the contacts track no energy (faster), and "
+       "those columns are nan (null in summary.json)."},
 
       {"Parallel", "summation", "deterministic", K::selection, 0, 0, "deterministic|fast", "-",
        "How the DEM sums forces and global quantities (docs/architecture.md). deterministic: each grain adds "
@@ -207,7 +247,7 @@ const std::vector<ParameterSpec>& parameter_schema() {
        "Global refinements of the mesh whose coarse cells are the stress grid's cells."},
       {"Continuum", "degree", "2", K::integer, 1, 4, "", "-",
        "Polynomial degree of the displacement element (Q2 reproduces the analytic column exactly)."},
-  };
+  });
   return schema;
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 // Every parameter of a scene file, described once: subsection, name, default, allowed
 // values, unit and meaning. From this one table come the ParameterHandler declarations,
-// `upgrain --print-parameters`, docs/parameters.md and the unknown-entry diagnostics
-// (STYLE.md section 4).
+// `upgrain --print-parameters`, docs/parameters.md and the unknown-entry diagnostics. The
+// contact laws' own parameters come from their table (dem/contact/contact_laws.h).
 #include <string>
 #include <vector>
 

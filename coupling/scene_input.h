@@ -7,6 +7,7 @@
 #include "coupling/study_options.h"
 #include "dem/deposition.h"
 #include "dem/io/run_recorder.h"
+#include "dem/scene/effect_choice.h"
 #include "dem/scene/scene_config.h"
 
 namespace upgrain::coupling {
@@ -25,6 +26,7 @@ struct ParallelInput {
 struct SceneInput {
   std::string source;  // file name, or "built-in default scene"
   dem::SceneConfig scene;
+  dem::EffectSwitches effect_switches;  // the Effects section as written; validate_scene derives scene.effects
   dem::io::OutputOptions output;
   dem::RunControl control;
   bool overwrite = false;

@@ -11,6 +11,7 @@
 #include "coupling/parameter_schema.h"
 #include "coupling/prm_syntax.h"
 #include "coupling/scene_input.h"
+#include "dem/contact/contact_laws.h"
 #include "dem/core/error.h"
 
 namespace upgrain::coupling {
@@ -133,14 +134,18 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   prm.leave_subsection();
 
   prm.enter_subsection("Effects");
-  s.effects.gravity = prm.get_bool("gravity");
+  {
+    auto sw = [&](const char* name) { return dem::parse_effect_switch(prm.get(name), std::string("Effects/") + name); };
+    dem::EffectSwitches& e = in.effect_switches;
+    e.gravity = sw("gravity");
+    e.friction = sw("tangential friction");
+    e.damping = sw("damping");
+    e.wall_friction = sw("wall friction");
+    e.rotation = sw("rotation");
+    e.energy_tracking = sw("energy tracking");
+    e.rolling_resistance = sw("rolling resistance");
+  }
   s.gravity = prm.get_double("gravity acceleration");
-  s.effects.friction = prm.get_bool("tangential friction");
-  s.effects.damping = prm.get_bool("damping");
-  s.effects.wall_friction = prm.get_bool("wall friction");
-  s.effects.rotation = prm.get_bool("rotation");
-  s.effects.energy_tracking = prm.get_bool("energy tracking");
-  s.effects.rolling_resistance = prm.get_bool("rolling resistance");
   prm.leave_subsection();
 
   prm.enter_subsection("Particles");
@@ -158,6 +163,10 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   s.damping_ratio = prm.get_double("damping ratio");
   s.rolling_friction = prm.get_double("rolling friction coefficient");
   s.rolling_damping_ratio = prm.get_double("rolling damping ratio");
+  s.contact_law = prm.get("law");
+  for (const dem::LawInfo& law : dem::contact_law_table())
+    for (const dem::LawParameter& p : law.parameters)
+      if (law.name == s.contact_law) s.law_parameters.push_back({p.name, prm.get_double(p.name)});
   prm.leave_subsection();
 
   prm.enter_subsection("Container");
@@ -195,6 +204,7 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   in.overwrite = prm.get_bool("overwrite");
   in.output.snapshot_interval = prm.get_double("snapshot interval");
   in.output.series_interval = prm.get_double("time series interval");
+  in.output.energy_balance = prm.get_bool("energy balance");
   prm.leave_subsection();
 
   prm.enter_subsection("Parallel");

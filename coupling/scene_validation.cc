@@ -94,6 +94,14 @@ void validate_collapse(const SceneInput& in, const std::string& where) {
 void validate_scene(SceneInput& in) {
   const dem::SceneConfig& s = in.scene;
   const std::string where = in.source + ": ";
+  // The effect set first: the time-step estimate below depends on it (gravity).
+  try {
+    dem::ChosenEffects chosen = dem::choose_effects(s, in.effect_switches, {in.output.energy_balance});
+    in.scene.effects = chosen.set;
+    in.output.effect_choices = std::move(chosen.choices);
+  } catch (const Error& e) {
+    throw Error(where + e.what());
+  }
   apply_stress_box(in, where);
   try {
     if (!s.particles.gradation.empty()) dem::validate_gradation(s.particles.gradation);
@@ -139,10 +147,12 @@ void validate_scene(SceneInput& in) {
     std::ostringstream m;
     m.precision(4);
     m << where << "Simulation/time step = " << s.time_step << " s exceeds the safe step " << ts.safe_step
-      << " s (" << ts.limiting << "-limited: " << s.time_step_rule.rayleigh_fraction << " x Rayleigh time "
-      << ts.rayleigh_time << " s, " << s.time_step_rule.hertz_fraction << " x Hertz contact time "
-      << ts.hertz_time << " s at " << ts.impact_speed
-      << " m/s); lower the time step or set 'allow unsafe time step = true'";
+      << " s (" << ts.limiting << "-limited: ";
+    if (ts.rayleigh_time > 0.0)
+      m << s.time_step_rule.rayleigh_fraction << " x Rayleigh time " << ts.rayleigh_time << " s, ";
+    m << s.time_step_rule.hertz_fraction << " x " << s.contact_law << " contact time " << ts.contact_time << " s";
+    if (ts.hertz_time > 0.0) m << " at " << ts.impact_speed << " m/s";
+    m << "); lower the time step or set 'allow unsafe time step = true'";
     throw Error(m.str());
   }
   if (s.end_time < s.time_step) {
@@ -192,8 +202,6 @@ void validate_scene(SceneInput& in) {
       throw Error(m.str());
     }
   }
-  if (s.effects.rolling_resistance && !s.effects.rotation)
-    throw Error(where + "Effects/rolling resistance needs Effects/rotation = true (it acts on the spins)");
   namespace fs = std::filesystem;
   const fs::path& folder = in.output.folder;
   std::error_code ec;

@@ -13,7 +13,10 @@
 namespace upgrain::dem {
 
 namespace {
+// JSON has no NaN: a quantity that was not computed (energy channels without energy
+// tracking) is null.
 std::string num(double v) {
+  if (!std::isfinite(v)) return "null";
   std::ostringstream s;
   s.precision(17);
   s << v;
@@ -260,6 +263,8 @@ DepositionResult run_deposition(Simulation& sim, const SceneConfig& scene, const
         {"particles", num(n)},
         {"mpi_ranks", num(sim.ranks())},
         {"summation", "\"" + to_string(sim.summation()) + "\""},
+        {"effects", effects_json(output->effect_choices.empty() ? describe_effects(scene.effects)
+                                                                 : output->effect_choices)},
         {"load_rebalances", num(static_cast<double>(r.load.rebalances))},
         {"load_owned_imbalance", num(r.load.owned_imbalance)},
         {"load_compute_imbalance", num(r.load.compute_imbalance)},

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "dem/contact/hertz_mindlin.h"
+#include "dem/contact/contact_laws.h"
 #include "dem/scene/fill.h"
 
 namespace upgrain::dem {
@@ -16,34 +16,31 @@ double expected_impact_speed(const SceneConfig& s, double fill_top) {
 }
 
 TimeStepEstimate estimate_time_step(const SceneConfig& s) {
-  const Material& m = s.particles.material;
-  double r_min = s.particles.radius;
-  if (!s.particles.gradation.empty()) r_min = s.particles.gradation.front().radius;
-  const double nu = m.poisson_ratio;
-  // Ellipsoids (docs/ellipsoids.md): the Rayleigh time of the thinnest semi-axis c, and the
-  // Hertz time of the stiffest contact, at the flattest point of a grain (Gaussian radius
-  // a b / c at the c pole) with the lightest grain's mass. Spheres: thin = flat = mass = 1.
-  double thin = 1.0, flat = 1.0, mass_factor = 1.0;
+  SceneTimeScales t;
+  t.material = s.particles.material;
+  t.r_min = s.particles.gradation.empty() ? s.particles.radius : s.particles.gradation.front().radius;
+  // Ellipsoids (docs/ellipsoids.md): the thinnest semi-axis c, the flattest point of a grain
+  // (Gaussian radius a b / c at the c pole) and the lightest grain's mass. Spheres: 1.
+  double mass_factor = 1.0;
   for (const GrainShape& g : s.particles.shapes) {
-    thin = std::min(thin, g.c_over_a);
-    flat = std::max(flat, g.b_over_a / g.c_over_a);
+    t.thinnest = std::min(t.thinnest, g.c_over_a);
+    t.flattest = std::max(t.flattest, g.b_over_a / g.c_over_a);
     mass_factor = std::min(mass_factor, g.b_over_a * g.c_over_a);
   }
+  t.lightest = mass_factor * t.material.density * 4.0 / 3.0 * std::numbers::pi * t.r_min * t.r_min * t.r_min;
   TimeStepEstimate e;
-  e.rayleigh_time =
-      std::numbers::pi * thin * r_min * std::sqrt(m.density / m.shear_modulus()) / (0.1631 * nu + 0.8766);
   e.impact_speed = s.time_step_rule.impact_speed > 0.0 ? s.time_step_rule.impact_speed
                                                        : expected_impact_speed(s, fill_top_height(s));
-  const double v = std::max(e.impact_speed, 1e-3);  // a resting bed still has contacts
-  const double mass = mass_factor * m.density * 4.0 / 3.0 * std::numbers::pi * r_min * r_min * r_min;
-  const ContactMaterial cm = ContactMaterial::from(m, s.friction, s.damping_ratio);
-  const double t_pp = hertz::contact_duration(cm.e_star_pp, 0.5 * flat * r_min, 0.5 * mass, v);
-  const double t_pw = hertz::contact_duration(cm.e_star_pw, flat * r_min, mass, v);
-  e.hertz_time = std::min(t_pp, t_pw);
-  const double by_rayleigh = s.time_step_rule.rayleigh_fraction * e.rayleigh_time;
-  const double by_hertz = s.time_step_rule.hertz_fraction * e.hertz_time;
-  e.safe_step = std::min(by_rayleigh, by_hertz);
-  e.limiting = by_rayleigh <= by_hertz ? "Rayleigh" : "Hertz";
+  t.impact_speed = std::max(e.impact_speed, 1e-3);  // a resting bed still has contacts
+  const LawInfo& law = find_contact_law(s.contact_law);
+  law.constants(s, t.law_constants);
+  const LawTimeLimit limit =
+      law.time_limit(t, s.time_step_rule.rayleigh_fraction, s.time_step_rule.hertz_fraction);
+  e.rayleigh_time = limit.rayleigh_time;
+  e.contact_time = limit.contact_time;
+  e.hertz_time = s.contact_law == HertzMindlin::name ? limit.contact_time : 0.0;
+  e.safe_step = limit.safe_step;
+  e.limiting = limit.limiting;
   return e;
 }
 

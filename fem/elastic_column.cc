@@ -265,7 +265,7 @@ void ElasticColumn::solve() {
   LA::MPI::PreconditionAMG preconditioner;
   preconditioner.initialize(system_matrix_, amg_data);
 
-  // The brief's tolerance: relative residual 1e-12. Q2 reproduces the quadratic exact
+  // The paper.s tolerance: relative residual 1e-12. Q2 reproduces the quadratic exact
   // solution, so the solver tolerance is the only error left in that case.
   SolverControl control(dof_handler_.n_dofs(), 1e-12 * system_rhs_.l2_norm());
   SolverCG<LA::MPI::Vector> cg(control);

@@ -1,7 +1,7 @@
 #pragma once
 // The grid strain of one evaluation as plain per-cell fields for the deal.II mesh
 // (upscale/grid_mesh.h), so ParaView shows ln J, the equivalent shear strain and any
-// component of F and of the Hencky strain ln V as cell data (docs/strain.md, issue 8).
+// component of F and of the Hencky strain ln V as cell data (docs/strain.md).
 // No deal.II here.
 #include <filesystem>
 

@@ -1,30 +1,11 @@
 #pragma once
-// The physical effects a scene opts into. The force loop is a template on the subset that
-// matters for contact forces, instantiated once per combination and chosen once per run
-// (dem/engine/force_loop.h), so a frictionless scene carries no tangential history and no
-// rotation work (docs/architecture.md).
+// The effect set as types: the force loop is a template on the subset of EffectSet
+// (dem/core/effect_set.h) that matters for contact forces, instantiated once per
+// combination and chosen once per run (dem/engine/force_loop.h), so a frictionless scene
+// carries no tangential history and no rotation work (docs/architecture.md).
+#include "dem/core/effect_set.h"
 
 namespace upgrain::dem {
-
-struct EffectSet {
-  bool gravity = true;
-  bool friction = true;         // tangential Mindlin spring + Coulomb between particles
-  bool damping = true;          // normal viscous damping, brief eq. (21)
-  bool wall_friction = true;    // tangential Mindlin spring + Coulomb at walls
-  bool rotation = true;         // integrate angular velocity from contact torques
-  bool energy_tracking = true;  // accumulate dissipation and elastic energy per contact
-  // Rolling resistance (elastic-plastic spring-dashpot, contact/rolling_resistance.h) at
-  // every contact. Off by default: not part of the paper's law. Needs rotation.
-  bool rolling_resistance = false;
-
-  // Tangential history is only carried when some tangential force exists.
-  [[nodiscard]] bool needs_history() const { return friction || wall_friction; }
-  // Whether the grains' rotation is integrated: spheres turn only under tangential forces
-  // and rolling resistance, ellipsoids under normal forces as well (`shapes`).
-  [[nodiscard]] bool integrates_rotation(bool shapes) const {
-    return rotation && (friction || wall_friction || rolling_resistance || shapes);
-  }
-};
 
 template <bool Friction, bool Damping, bool WallFriction, bool Rotation, bool Energy, bool Rolling = false>
 struct Effects {

@@ -1,5 +1,5 @@
 #pragma once
-// Contact geometry of three-axis ellipsoids (issue 4, Deliver item 3): overlap depth, unit
+// Contact geometry of three-axis ellipsoids: overlap depth, unit
 // normal, contact points and principal curvatures for ellipsoid-ellipsoid, ellipsoid-sphere
 // and ellipsoid-plane pairs. Algorithm, proofs and verification: docs/ellipsoid-contact.md.
 //

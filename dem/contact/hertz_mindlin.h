@@ -5,14 +5,20 @@
 
 namespace upgrain::dem::hertz {
 
-// Hertz normal force F = 4/3 E* sqrt(R*) delta^(3/2)  (Johnson 1985, eq. 4.23).
+// Radius of the contact circle a = sqrt(R* delta) (Johnson 1985, eq. 4.22). The force, the
+// stiffnesses and the energy of a contact all follow from it; the force loop works it out once.
+inline double contact_radius(double r_star, double delta) { return std::sqrt(r_star * delta); }
+
+// Hertz normal force F = 4/3 E* a delta = 4/3 E* sqrt(R*) delta^(3/2)  (Johnson 1985, eq. 4.23).
+inline double normal_force_at(double e_star, double a, double delta) { return 4.0 / 3.0 * e_star * a * delta; }
 inline double normal_force(double e_star, double r_star, double delta) {
-  return 4.0 / 3.0 * e_star * std::sqrt(r_star) * delta * std::sqrt(delta);
+  return normal_force_at(e_star, contact_radius(r_star, delta), delta);
 }
 
 // Tangent normal stiffness k_n = dF/d(delta) = 2 E* sqrt(R* delta) = 2 E* a.
+inline double normal_stiffness_at(double e_star, double a) { return 2.0 * e_star * a; }
 inline double normal_stiffness(double e_star, double r_star, double delta) {
-  return 2.0 * e_star * std::sqrt(r_star * delta);
+  return normal_stiffness_at(e_star, contact_radius(r_star, delta));
 }
 
 // Elastic energy stored in the normal spring, the integral of F: 8/15 E* sqrt(R*) delta^(5/2).
@@ -22,11 +28,12 @@ inline double normal_energy(double e_star, double r_star, double delta) {
 
 // Mindlin no-slip tangential stiffness k_t = 8 G* a, a = sqrt(R* delta)
 // (Mindlin 1949; Di Renzo and Di Maio 2004, eq. 8).
+inline double tangential_stiffness_at(double g_star, double a) { return 8.0 * g_star * a; }
 inline double tangential_stiffness(double g_star, double r_star, double delta) {
-  return 8.0 * g_star * std::sqrt(r_star * delta);
+  return tangential_stiffness_at(g_star, contact_radius(r_star, delta));
 }
 
-// Normal viscous damping coefficient c_n = 2 zeta sqrt(m* k_n) (paper brief eq. 21-22),
+// Normal viscous damping coefficient c_n = 2 zeta sqrt(m* k_n) (paper eq. 21-22),
 // with m* = m1 m2 / (m1 + m2) and k_n the tangent Hertz stiffness above.
 inline double damping_coefficient(double zeta, double m_star, double k_n) {
   return 2.0 * zeta * std::sqrt(m_star * k_n);

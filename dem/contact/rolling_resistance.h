@@ -7,7 +7,8 @@
 // choices (rolling radius of ellipsoids, inertia of the dashpot): docs/contact-law.md.
 #include <cmath>
 
-#include "dem/contact/contact_response.h"
+#include "dem/contact/contact_parameters.h"
+#include "dem/core/contact_history.h"
 #include "dem/core/types.h"
 
 namespace upgrain::dem {
@@ -36,17 +37,7 @@ template <bool Energy>
                                                       ContactEnergy& energy, Vec3& viscous) {
   const double k_r = rolling_stiffness(k_n, p.friction, r_star);
   Vec3& m = s.torque;
-  // Carry the stored torque into the current contact plane, keeping its magnitude.
-  const double old_norm2 = m.squaredNorm();
-  if (old_norm2 > 0.0) {
-    m -= m.dot(n) * n;
-    const double new_norm2 = m.squaredNorm();
-    if (new_norm2 > 0.0) m *= std::sqrt(old_norm2 / new_norm2);
-    if constexpr (Energy) {
-      if (s.stiffness > 0.0)
-        energy.rolling_stiffness_change += 0.5 * old_norm2 * (1.0 / k_r - 1.0 / s.stiffness);
-    }
-  }
+  carry_into_plane<Energy>(m, n, s.stiffness, k_r, energy.rolling_stiffness_change);
   // Relative rolling: the part of omega_i - omega_j perpendicular to the normal (the normal
   // part is twisting, not resisted here).
   const Vec3 w_r = omega_rel - omega_rel.dot(n) * n;
@@ -74,5 +65,17 @@ template <bool Energy>
   if constexpr (Energy) energy.elastic_rolling += 0.5 * m.squaredNorm() / k_r;
   return m + viscous;
 }
+
+// The rolling part of a contact law (law/contact_law.h), with the normal part's stiffness.
+struct RollingSpringDashpot {
+  static constexpr bool needs_history = true;
+  static constexpr bool needs_rotation = true;
+  template <bool Energy>
+  [[gnu::always_inline]] static Vec3 torque(const RollingParameters& p, const Vec3& n, const Vec3& omega_rel,
+                                            double r_star, double k_n, double f_n, double inertia, double dt,
+                                            RollingSpring& s, ContactEnergy& energy, Vec3& viscous) {
+    return rolling_resistance<Energy>(p, n, omega_rel, r_star, k_n, f_n, inertia, dt, s, energy, viscous);
+  }
+};
 
 }  // namespace upgrain::dem

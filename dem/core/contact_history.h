@@ -89,6 +89,13 @@ class ContactHistory {
  public:
   explicit ContactHistory(HistoryKinds kinds = {}) : kinds_(kinds) {}
   [[nodiscard]] const HistoryKinds& kinds() const { return kinds_; }
+  // Bytes the store holds (its arrays' sizes): what the force loop reads and writes of it
+  // per evaluation.
+  [[nodiscard]] std::size_t bytes() const {
+    return pair_spring.size() * sizeof(TangentialSpring) + pair_rolling.size() * sizeof(RollingSpring) +
+           pair_memory.size() * sizeof(ShapedContactMemory) + wall_spring.size() * sizeof(TangentialSpring) +
+           wall_rolling.size() * sizeof(RollingSpring) + wall_r_star.size() * sizeof(double);
+  }
 
   // Per pair slot of the current PairList, oriented from the slot's first particle.
   std::vector<TangentialSpring> pair_spring;

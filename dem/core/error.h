@@ -1,6 +1,6 @@
 #pragma once
 // Errors carry their context (file, parameter, particle id) in the message, so that
-// main() can print one clear line per problem and exit non-zero (DESIGN.md).
+// main() can print one clear line per problem and exit non-zero (docs/architecture.md).
 #include <stdexcept>
 #include <string>
 

@@ -1,6 +1,6 @@
 #pragma once
 // Particle state as structure-of-arrays indexed by local index, with a persistent global
-// id that survives reordering (and, later, migration between ranks). DESIGN.md.
+// id that survives reordering (and migration between ranks).
 #include <Eigen/Geometry>
 #include <cstddef>
 #include <vector>

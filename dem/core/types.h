@@ -1,5 +1,5 @@
 #pragma once
-// Basic numeric types. SI units everywhere, z up, gravity along -z (DESIGN.md).
+// Basic numeric types. SI units everywhere, z up, gravity along -z.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>

@@ -5,10 +5,12 @@
 // order is the summation (dem/neighbor/verlet_list.h, dem/engine/summation.h), so the same
 // loop serves both: only where the sums start and where the energies are booked differ.
 //
-// Written once, as a template on the effect set (dem/contact/effects.h), on whether the
-// scene has ellipsoids, on contact recording and on the summation. select_force_loops()
+// Written once, as a template on the contact law (dem/contact/contact_laws.h), the effect
+// set (dem/contact/effects.h), on whether the scene has ellipsoids, on contact recording and
+// on the summation. select_force_loops()
 // turns the scene's run-time choices into one instantiation, chosen once per run, so what a
 // scene switches off is not computed (docs/architecture.md).
+#include <string_view>
 #include <vector>
 
 #include "dem/contact/contact_response.h"
@@ -79,9 +81,15 @@ using ForceLoop = void (*)(const ForceInput&);
 struct ForceLoops {
   ForceLoop plain;
   ForceLoop recording;
+  // The effects the two loops were compiled with (what a frictionless scene leaves out, for
+  // tests and the run's report): rotation as the loop does it, so off for spheres without a
+  // torque; gravity is not the loop's.
+  EffectSet compiled;
+  const char* law = "";  // the contact law's name (dem/contact/contact_laws.h)
 };
 
 // `shapes`: the store holds ellipsoids; the sphere-only loops carry no shape branch at all.
-ForceLoops select_force_loops(const EffectSet& effects, bool shapes, Summation summation);
+// `law`: a name of the contact-law table (Contact/law).
+ForceLoops select_force_loops(const EffectSet& effects, bool shapes, Summation summation, std::string_view law);
 
 }  // namespace upgrain::dem

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dem/contact/contact_laws.h"
 #include "dem/contact/ellipsoid_geometry.h"
 #include "dem/engine/force_loop.h"
 
@@ -57,7 +58,7 @@ inline void book_dissipation(const ContactEnergy& ce, ContactEnergy& rank) {
   rank.rolling_stiffness_change += ce.rolling_stiffness_change;
 }
 
-template <class E, bool Shapes, bool Record, Summation S>
+template <class Law, class E, bool Shapes, bool Record, Summation S>
 void compute(const ForceInput& in) {
   constexpr bool kDeterministic = S == Summation::deterministic;
   constexpr bool kTangential = E::friction;
@@ -105,7 +106,7 @@ void compute(const ForceInput& in) {
 
   // Particle-wall contacts: the wall is a rigid plane of the particles' own material, so
   // R* = r and m* = m. The contact point lies on the plane, at arm r - delta.
-  ContactParameters wp{mat.e_star_pw, mat.g_star_pw, 0.0, 0.0, 0.0, mat.damping_ratio, in.dt};
+  ContactParameters wp{mat.e_star_pw, mat.g_star_pw, 0.0, 0.0, 0.0, mat.damping_ratio, in.dt, mat.k_n, mat.k_t};
   auto forget_wall = [&](std::size_t e) {
     forget_history<kWallTangential, kRolling>(h.wall_spring.data(), h.wall_rolling.data(), e);
   };
@@ -151,7 +152,7 @@ void compute(const ForceInput& in) {
       ContactEnergy& sink = kDeterministic ? ce : energy;
       TangentialSpring& spring = kWallTangential ? h.wall_spring[e] : dummy_spring;
       const ContactForce cf =
-          contact_response<kWallTangential, E::damping, kRotation, kEnergy>(wp, kin, spring, sink);
+          contact_response<kWallTangential, E::damping, kRotation, kEnergy, Law>(wp, kin, spring, sink);
       p.force[i] += cf.on_i;
       if constexpr (kDeterministic)
         out.wall_force[e] = cf.on_i;
@@ -170,10 +171,9 @@ void compute(const ForceInput& in) {
       }
       if constexpr (kRolling) {
         // The wall neither turns nor moves: omega_j = 0, and the grain's own inertia.
-        const double k_n = hertz::normal_stiffness(wp.e_star, wp.r_star, kin.overlap);
-        const Vec3 m_r = rolling_resistance<kEnergy>(rp, kin.normal, kin.omega_i, wp.r_star, k_n, cf.normal,
-                                                     rolling_inertia(p, i, kin.lever_i), wp.dt,
-                                                     h.wall_rolling[e], sink, rolling_viscous);
+        const Vec3 m_r = Law::Rolling::template torque<kEnergy>(
+            rp, kin.normal, kin.omega_i, wp.r_star, cf.stiffness, cf.normal, rolling_inertia(p, i, kin.lever_i),
+            wp.dt, h.wall_rolling[e], sink, rolling_viscous);
         p.torque[i] += m_r;
         if constexpr (kRollingWork) out.rolling_damping_torque[i] += rolling_viscous;
       }
@@ -187,7 +187,7 @@ void compute(const ForceInput& in) {
   };
 
   // Particle pairs.
-  ContactParameters cp{mat.e_star_pp, mat.g_star_pp, 0.0, 0.0, mat.friction_pp, mat.damping_ratio, in.dt};
+  ContactParameters cp{mat.e_star_pp, mat.g_star_pp, 0.0, 0.0, mat.friction_pp, mat.damping_ratio, in.dt, mat.k_n, mat.k_t};
   auto forget = [&](int k) {
     forget_history<kTangential, kRolling>(h.pair_spring.data(), h.pair_rolling.data(),
                                           static_cast<std::size_t>(k));
@@ -305,7 +305,7 @@ void compute(const ForceInput& in) {
           ContactEnergy& sink = kDeterministic ? ce : energy;
           TangentialSpring& spring = kTangential ? h.pair_spring[k] : dummy_spring;
           const ContactForce cf =
-              contact_response<kTangential, E::damping, kRotation, kEnergy>(cp, kin, spring, sink);
+              contact_response<kTangential, E::damping, kRotation, kEnergy, Law>(cp, kin, spring, sink);
           fi += cf.on_i;
           force[j] -= cf.on_i;
           if constexpr (Record) out.contacts.push_back({i, j, xi + kin.lever_i, cf.on_i});
@@ -328,13 +328,11 @@ void compute(const ForceInput& in) {
             }
           }
           if constexpr (kRolling) {
-            const double k_n = hertz::normal_stiffness(cp.e_star, cp.r_star, kin.overlap);
             const double inertia_i = rolling_inertia(p, i, kin.lever_i);
             const double inertia_j = rolling_inertia(p, j, kin.lever_j);
-            const Vec3 m_r =
-                rolling_resistance<kEnergy>(rp, kin.normal, kin.omega_i - kin.omega_j, cp.r_star, k_n,
-                                            cf.normal, inertia_i * inertia_j / (inertia_i + inertia_j), cp.dt,
-                                            h.pair_rolling[k], sink, rolling_viscous);
+            const Vec3 m_r = Law::Rolling::template torque<kEnergy>(
+                rp, kin.normal, kin.omega_i - kin.omega_j, cp.r_star, cf.stiffness, cf.normal,
+                inertia_i * inertia_j / (inertia_i + inertia_j), cp.dt, h.pair_rolling[k], sink, rolling_viscous);
             ti += m_r;
             torque[j] -= m_r;
             if constexpr (kRollingWork) {
@@ -381,17 +379,27 @@ void compute(const ForceInput& in) {
   out.max_overlap_ratio = max_ratio;
 }
 
-// Every instantiation of one summation, through the one effect-dispatch ladder
-// (dem/contact/effects.h).
+// Every instantiation of one summation: per contact law (dem/contact/contact_laws.h), shape
+// class and effect set (dem/contact/effects.h), each through its one dispatch point.
 template <Summation S>
-ForceLoops force_loops_for(const EffectSet& e, bool shapes) {
-  auto make = [&]<bool Shapes>() {
-    auto pick = []<class E>() {
-      return ForceLoops{&compute<E, Shapes, false, S>, &compute<E, Shapes, true, S>};
+ForceLoops force_loops_for(const EffectSet& e, bool shapes, std::string_view law) {
+  return with_contact_law(law, [&]<class Law>() {
+    auto make = [&]<bool Shapes>() {
+      auto pick = []<class E>() {
+        EffectSet compiled;
+        compiled.gravity = false;
+        compiled.friction = E::friction;
+        compiled.damping = E::damping;
+        compiled.wall_friction = E::wall_friction;
+        compiled.rotation = Shapes ? E::rotation_requested : E::rotation;
+        compiled.energy_tracking = E::energy;
+        compiled.rolling_resistance = E::rolling;
+        return ForceLoops{&compute<Law, E, Shapes, false, S>, &compute<Law, E, Shapes, true, S>, compiled, Law::name};
+      };
+      return e.rolling_resistance ? with_rolling_effects(e, pick) : with_effects(e, pick);
     };
-    return e.rolling_resistance ? with_rolling_effects(e, pick) : with_effects(e, pick);
-  };
-  return shapes ? make.template operator()<true>() : make.template operator()<false>();
+    return shapes ? make.template operator()<true>() : make.template operator()<false>();
+  });
 }
 
 }  // namespace upgrain::dem::force_loop_detail

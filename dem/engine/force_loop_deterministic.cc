@@ -3,6 +3,6 @@
 
 namespace upgrain::dem::force_loop_detail {
 
-template ForceLoops force_loops_for<Summation::deterministic>(const EffectSet&, bool);
+template ForceLoops force_loops_for<Summation::deterministic>(const EffectSet&, bool, std::string_view);
 
 }  // namespace upgrain::dem::force_loop_detail

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 #include <span>
 #include <utility>
 
 #include "dem/boundary/container.h"
+#include "dem/contact/contact_laws.h"
 #include "dem/core/error.h"
 #include "dem/engine/guards.h"
 #include "dem/motion/grain_rotation.h"
@@ -94,6 +96,7 @@ Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, std::v
     throw Error(
         "rolling resistance needs rotation: set Effects/rotation = true or Effects/rolling resistance = "
         "false");
+  find_contact_law(scene.contact_law).constants(scene, material_);
   if (!scene.effects.wall_friction) {
     for (auto& w : walls_) w.friction = 0.0;
   }
@@ -115,7 +118,7 @@ Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, std::v
     for (const StateRecord& r : all) extent.add(get(r.x), r.radius);
   shapes_ = size == 1 ? p_.has_shapes() : !shapes.empty();
   rotation_ = scene.effects.integrates_rotation(shapes_);
-  loops_ = select_force_loops(scene.effects, shapes_, summation_);
+  loops_ = select_force_loops(scene.effects, shapes_, summation_, scene.contact_law);
   history_ = ContactHistory(
       {scene.effects.friction, scene.effects.wall_friction, scene.effects.rolling_resistance, shapes_});
   n_global_ = extent.count;
@@ -507,6 +510,15 @@ EnergyBalance Simulation::energy() const {
   b.dissipated_rolling = sums[9];
   b.rolling_stiffness_change = sums[10];
   b.removed_by_relaxation = removed_by_relaxation_;
+  if (!scene_.effects.energy_tracking) {
+    // Not tracked: the contacts' channels are unknown, not zero, and so are the total and the
+    // balance error; kinetic and potential energy (the at-rest test) stay.
+    const double unknown = std::numeric_limits<double>::quiet_NaN();
+    for (double* c : {&b.elastic_normal, &b.elastic_tangential, &b.elastic_rolling, &b.dissipated_damping,
+                      &b.dissipated_friction, &b.tangential_stiffness_change, &b.dissipated_rolling,
+                      &b.rolling_stiffness_change})
+      *c = unknown;
+  }
   return b;
 }
 

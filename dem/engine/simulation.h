@@ -91,6 +91,8 @@ class Simulation {
   // --- The scene. Not collective, except set_gravity() and remove_wall().
   [[nodiscard]] const SceneConfig& scene() const { return scene_; }
   [[nodiscard]] Summation summation() const { return summation_; }
+  // The effects the chosen force loop was compiled with (dem/engine/force_loop.h).
+  [[nodiscard]] const EffectSet& force_loop_effects() const { return loops_.compiled; }
   [[nodiscard]] double time() const { return static_cast<double>(step_) * dt_; }
   [[nodiscard]] long step_count() const { return step_; }
   [[nodiscard]] double time_step() const { return dt_; }
@@ -113,6 +115,17 @@ class Simulation {
   // rank: the stress functions below are collective and refuse a step that did not record.
   void request_contacts() { record_next_ = true; }
   [[nodiscard]] const std::vector<ContactSample>& contacts() const { return out_.contacts; }
+  // Bytes of per-contact and per-particle state that the chosen effects add and each
+  // evaluation reads and writes: the contact-history store and the force loop's energy and
+  // damping arrays (for the effect cost benchmark, bench/effect_cost.cc).
+  [[nodiscard]] std::size_t effect_state_bytes() const {
+    std::size_t b = history_.bytes();
+    for (const auto* v : {&out_.damping_force, &out_.damping_torque, &out_.rolling_damping_torque})
+      b += v->size() * sizeof(Vec3);
+    for (const auto* v : {&out_.elastic_normal, &out_.elastic_tangential, &out_.elastic_rolling})
+      b += v->size() * sizeof(double);
+    return b;
+  }
   [[nodiscard]] bool contacts_recorded() const { return recorded_; }
   // Every recorded contact once, on rank 0, sorted by key (a < b, force on a; or wall w as
   // b = -1 - w); empty elsewhere.

@@ -12,6 +12,7 @@
 #include "dem/engine/energy.h"
 #include "dem/io/csv_series.h"
 #include "dem/io/hdf5_snapshot.h"
+#include "dem/scene/effect_choice.h"
 #include "dem/strain/grid_strain.h"
 #include "dem/stress/grid_stress.h"
 
@@ -53,6 +54,11 @@ struct OutputOptions {
   double series_interval = 0.005;   // s of simulated time between time-series rows
   GridStressOptions grid_stress;
   GridStrainOutputOptions grid_strain;
+  // Output/energy balance: elastic energy and dissipation in the time series and summary
+  // (without it, the scene's effects leave energy tracking out, dem/scene/effect_choice.h).
+  bool energy_balance = true;
+  // The effect set and its reasons, for summary.json; empty: the scene's set as given.
+  std::vector<EffectChoice> effect_choices;
 };
 
 class RunRecorder {

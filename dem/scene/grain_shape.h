@@ -1,5 +1,5 @@
 #pragma once
-// The shapes of a granular mix (issue 4): three-axis ellipsoids given by their aspect ratios
+// The shapes of a granular mix: three-axis ellipsoids given by their aspect ratios
 // and number fractions. The grain's size (Particles/radius or the gradation) is its major
 // semi-axis a, as the paper's radii 1.0-2.5 mm (docs/ellipsoids.md).
 #include <Eigen/Geometry>

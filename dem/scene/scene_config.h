@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "dem/boundary/container.h"
-#include "dem/contact/effects.h"
+#include "dem/core/effect_set.h"
 #include "dem/core/material.h"
 #include "dem/core/types.h"
 #include "dem/scene/grain_shape.h"
@@ -50,13 +50,23 @@ struct TimeStepRule {
   bool allow_unsafe = false;       // explicit override of the refusal
 };
 
+// A parameter of the scene's contact law, by the name the law declares (law/law_parameter.h).
+struct NamedValue {
+  std::string name;
+  double value;
+};
+
 struct SceneConfig {
   ParticleSpec particles;
   BoxContainer container;
   FillSpec fill;
   EffectSet effects;
+  // The contact law (dem/contact/contact_laws.h) and the values of its own parameters; a
+  // parameter not listed takes the law's default.
+  std::string contact_law = "hertz-mindlin";
+  std::vector<NamedValue> law_parameters;
   double friction = 0.5;       // particle-particle Coulomb coefficient
-  double damping_ratio = 0.5;  // zeta, brief eq. (21)
+  double damping_ratio = 0.5;  // zeta, paper eq. (21)
   double gravity = 9.81;       // m/s^2 along -z, when effects.gravity
   double time_step = 5e-6;     // s
   double end_time = 0.5;       // s

@@ -1,5 +1,5 @@
 #pragma once
-// Finite-strain measures per cell of a regular grid (issue 8, docs/strain.md "Grids").
+// Finite-strain measures per cell of a regular grid (docs/strain.md "Grids").
 //
 // A reference snapshot holds the particles' positions at the reference time t0 by global
 // id, and the grid of that instant. At each evaluation a cell's particle set is either

@@ -1,5 +1,5 @@
 #pragma once
-// Objective stress rates per grid cell over a run (issue 8, docs/strain.md "Stress rates
+// Objective stress rates per grid cell over a run (docs/strain.md "Stress rates
 // over time"): at each output the Jaumann, Green-Naghdi, Truesdell and Oldroyd rates
 // (objective_rates.h, eq. (9)) of each cell from
 //   - sigma: the cell's grid stress of one formula at this and the earlier outputs,

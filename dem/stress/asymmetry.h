@@ -1,5 +1,5 @@
 #pragma once
-// Relative asymmetry index of a stress tensor (paper eq. 20, as restated in the brief):
+// Relative asymmetry index of a stress tensor (paper eq. 20; docs/stress.md):
 // RAI = ||skew(s)|| / ||sym(s) with its diagonal set to 0||, with the induced 2-norm
 // (largest singular value). This reading reproduces the paper's printed values (e.g.
 // Weber, 68 spheres: 15.1 %).

@@ -1,5 +1,5 @@
 #pragma once
-// The seven average-stress formulas of the paper brief, section 2 (paper eqs. 1-7), by
+// The seven average-stress formulas of the paper (eqs. 1-7), by
 // name, so outputs can ask for any subset.
 #include <array>
 #include <optional>

@@ -1,5 +1,5 @@
 // The paper's stress tables on beds of monodisperse spheres (r = 1.5 mm) relaxed to static
-// equilibrium (docs/stress.md; brief section 7):
+// equilibrium (docs/stress.md):
 //   stress_examples symmetry OUT N...        Tables 2 and 4: symmetry against particle
 //                                            count, every formula on each bed;
 //   stress_examples ellipsoids OUT N...      Table 3: the same on the paper's polydisperse
@@ -38,7 +38,7 @@ int symmetry(const std::filesystem::path& out, const std::vector<long>& counts, 
               "settled bagi", "bagi RAI%", "weber RAI%", "drescher", "mod. nicot", "bagi szz", "weber szz");
   for (long n : counts) {
     const auto t0 = std::chrono::steady_clock::now();
-    const SceneConfig s = ellipsoids ? test::paper_ellipsoid_bed_scene(n) : test::paper_bed_scene(n);
+    const SceneConfig s = ellipsoids ? test::paper_ellipsoid_bed_scene(n): test::paper_bed_scene(n);
     test::RelaxedBed bed = test::relaxed_bed(s, 1e-4, false);
     const int one[3] = {1, 1, 1};
     const double deposit_seconds = seconds_since(t0);

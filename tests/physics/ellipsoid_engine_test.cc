@@ -1,4 +1,4 @@
-// Ellipsoids in the engine (issue 4): torque-free tumbling through Simulation::step, and the
+// Ellipsoids in the engine: torque-free tumbling through Simulation::step, and the
 // hard cases that must stay stable: a thin disc dropped on the floor settles on its face,
 // 10:1 grains meeting tip to tip and face to face, impacts at 10 m/s. No NaN anywhere
 // (Simulation::check_finite throws on one; every test also checks the solver counters).
@@ -130,7 +130,7 @@ TEST(EllipsoidHardCases, ThinDiscLandsOnItsFaceWithoutGainingEnergy) {
   expect_solver_clean(sim);
 }
 
-// The same drop with rolling resistance (issue 4, item 6; dem/contact/rolling_resistance.h,
+// The same drop with rolling resistance (dem/contact/rolling_resistance.h,
 // default mu_r = 0.05 and eta_r = 0.3): the rocking on the face is damped and the disc comes to
 // rest lying on its face, its kinetic energy below 1e-6 of the drop energy within 1 s; the
 // energy balance, with the rolling channels, stays closed.

@@ -2,7 +2,7 @@
 // docs/contact-law.md). A sphere rolling on a flat floor is slowed by the constant plastic
 // torque mu_r R* F_n; on a slope it stays put below the rolling angle atan(mu_r) and rolls
 // above it; the energy balance stays closed with the rolling channels; the 1:1:0.1 disc of
-// issue 4 comes to rest on its face.
+// docs/ellipsoids.md comes to rest on its face.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// The paper's constrained collapse (brief section 1): grains deposited behind a gate in a
+// The paper's constrained collapse (paper section 1): grains deposited behind a gate in a
 // wider box; when the gate is removed the bed collapses into the rest of the box. Checks
 // that the gate holds, then releases, and that nothing is lost or gains energy.
 #include <gtest/gtest.h>

@@ -1,10 +1,10 @@
-// A bed of the paper's ellipsoids (brief section 7, Table 3: shapes 1:1:1, 1:0.8:0.6,
+// A bed of the paper's ellipsoids (paper section 7, Table 3: shapes 1:1:1, 1:0.8:0.6,
 // 1:0.8:0.4, 1:0.6:0.4, major semi-axes 1.0-2.5 mm, random orientations) deposited and
 // relaxed to static equilibrium by FIRE:
-// - Bagi's stress is symmetric to RAI below 1e-3 % (issue 7; the paper reached 0.3 %), and
+// - Bagi's stress is symmetric to RAI below 1e-3 % (the paper reached 0.3 %), and
 //   the dynamic formulas reduce to it, with the inertia of each ellipsoid rotated to the world;
 // - the bed, held at rest for 10^6 steps, gains no energy: the kinetic energy stays below
-//   1e-9 of the potential energy (issue 4, hard cases);
+//   1e-9 of the potential energy;
 // - the contact solver never failed.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The paper's unconstrained collapse (brief section 1): a column of grains deposited in a
+// The paper's unconstrained collapse (paper section 1): a column of grains deposited in a
 // narrow box; when all four side walls are removed the column spreads freely on the floor.
 // Checks that the walls hold, that their removal leaves no contact with them, that the pile
 // spreads and slumps on every side, and that nothing is lost, sinks or gains energy.

@@ -1,4 +1,4 @@
-// Ellipsoid contact geometry (issue 4, item 3) against independent long-double references:
+// Ellipsoid contact geometry against independent long-double references:
 // closed forms (spheres, coaxial tip-to-tip and face-to-face pairs), contacts constructed with
 // a known depth and normal, and dense sampling of the sphere of normals. The full accuracy
 // table of docs/ellipsoid-contact.md is DISABLED_AccuracyTable (1e5 pairs per shape):

@@ -1,4 +1,4 @@
-// Ellipsoid grains in the particle store and in scenes (issue 4, items 1 and 5): mass and
+// Ellipsoid grains in the particle store and in scenes: mass and
 // principal inertia of a solid ellipsoid, the world inertia, mixed sphere-ellipsoid stores,
 // reordering, the shape mix of a fill and its random orientations, refusal of bad shapes.
 #include <gtest/gtest.h>

@@ -49,7 +49,7 @@ Mat3 simple_shear(double gamma) {
 
 Mat3 uniaxial_stretch(double lambda) { return Vec3(lambda, 1.0, 1.0).asDiagonal(); }
 
-// The affine maps of the brief: stretch 1.5, simple shear 1, rotations of 90 and 180 degrees
+// The affine maps of the paper: stretch 1.5, simple shear 1, rotations of 90 and 180 degrees
 // about several axes, and products of these.
 std::vector<Mat3> test_maps() {
   const Vec3 axes[] = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ(), Vec3(1, 1, 1), Vec3(1, -2, 0.5)};

@@ -1,0 +1,61 @@
+#pragma once
+// The constants of one contact evaluation, as the force loop fills them per pair or wall
+// entry, and the energy accounts a contact books into. Plain data shared by every part of
+// every contact law (dem/contact/law/).
+#include <cmath>
+
+#include "dem/core/types.h"
+
+namespace upgrain::dem {
+
+struct ContactParameters {
+  double e_star;    // effective Young's modulus (Pa)
+  double g_star;    // effective shear modulus (Pa)
+  double r_star;    // effective radius (m)
+  double m_star;    // effective mass (kg)
+  double friction;  // Coulomb coefficient
+  double zeta;      // damping ratio
+  double dt;        // time step (s)
+  // Linear laws (Hooke): the normal and tangential spring constants (N/m); unused by Hertz.
+  double k_n = 0.0;
+  double k_t = 0.0;
+};
+
+struct ContactEnergy {
+  double elastic_normal = 0.0;
+  double elastic_tangential = 0.0;
+  double dissipated_damping = 0.0;
+  double dissipated_friction = 0.0;
+  // Change of the stored tangential energy |F_t|^2 / (2 k_t) caused by k_t following the
+  // overlap while F_t is held: the incremental Mindlin spring is not a potential, and
+  // this term is what it creates (> 0) or destroys (< 0). Accounted separately so the
+  // balance error measures the integration (docs/contact-law.md, energy).
+  double tangential_stiffness_change = 0.0;
+  // Rolling resistance (contact/rolling_resistance.h): the spring's energy |M_r|^2 / (2 k_r),
+  // its plastic and viscous dissipation (increment), and the energy its stiffness change
+  // creates, as for the tangential spring.
+  double elastic_rolling = 0.0;
+  double dissipated_rolling = 0.0;
+  double rolling_stiffness_change = 0.0;
+};
+
+// An incremental spring's stored vector (a tangential force, a rolling torque) carried into
+// the current contact plane of normal n with its magnitude kept, and the energy that the
+// stiffness's change from `old_stiffness` to `stiffness` creates in it, |s|^2/2 (1/k - 1/k_old),
+// added to `stiffness_change` (docs/contact-law.md, energy). A new spring (old stiffness 0)
+// creates none.
+template <bool Energy>
+[[gnu::always_inline]] inline void carry_into_plane(Vec3& s, const Vec3& n, double old_stiffness, double stiffness,
+                                                    double& stiffness_change) {
+  const double old_norm2 = s.squaredNorm();
+  if (old_norm2 > 0.0) {
+    s -= s.dot(n) * n;
+    const double new_norm2 = s.squaredNorm();
+    if (new_norm2 > 0.0) s *= std::sqrt(old_norm2 / new_norm2);
+    if constexpr (Energy) {
+      if (old_stiffness > 0.0) stiffness_change += 0.5 * old_norm2 * (1.0 / stiffness - 1.0 / old_stiffness);
+    }
+  }
+}
+
+}  // namespace upgrain::dem
