@@ -28,7 +28,6 @@
 #include <memory>
 
 #include "bench/dense_bed_scene.h"
-#include "dem/deposition.h"
 #include "dem/engine/simulation.h"
 #include "dem/io/grid_stress_output.h"
 #include "dem/parallel/mpi_start.h"

@@ -63,8 +63,10 @@ int main(int argc, char** argv) {
       {"all effects (paper's law, energy tracked)", [](SceneConfig&, EffectSwitches&) {}},
       {"energy tracking off (Output/energy balance = false)", [](SceneConfig&, EffectSwitches&) {}},
       {"damping off (damping ratio 0)", [](SceneConfig& s, EffectSwitches&) { s.damping_ratio = 0.0; }},
-      {"pair friction off (friction coefficient 0)", [](SceneConfig& s, EffectSwitches&) { s.friction = 0.0; }},
-      {"wall friction off (wall coefficients 0)", [&](SceneConfig& s, EffectSwitches&) { no_wall_friction(s); }},
+      {"pair friction off (friction coefficient 0)",
+       [](SceneConfig& s, EffectSwitches&) { s.friction = 0.0; }},
+      {"wall friction off (wall coefficients 0)",
+       [&](SceneConfig& s, EffectSwitches&) { no_wall_friction(s); }},
       {"frictionless (both 0: no rotation work)",
        [&](SceneConfig& s, EffectSwitches&) {
          s.friction = 0.0;
@@ -79,7 +81,8 @@ int main(int argc, char** argv) {
       {"rotation held (Effects/rotation = false)",
        [](SceneConfig&, EffectSwitches& sw) { sw.rotation = EffectSwitch::off; }},
       {"gravity off (acceleration 0)", [](SceneConfig& s, EffectSwitches&) { s.gravity = 0.0; }},
-      {"rolling resistance on", [](SceneConfig&, EffectSwitches& sw) { sw.rolling_resistance = EffectSwitch::on; }},
+      {"rolling resistance on",
+       [](SceneConfig&, EffectSwitches& sw) { sw.rolling_resistance = EffectSwitch::on; }},
   };
   const double n = static_cast<double>(bed->particles.size());
   std::vector<Measured> measured(variants.size());
@@ -108,16 +111,19 @@ int main(int argc, char** argv) {
       v.contacts = 2.0 * static_cast<double>(sim.diagnostics().particle_contacts) / n;
     }
   }
-  std::printf("bench_effect_cost: %.0f particles, %ld steps x %d rounds, best round each\n\n", n, steps, rounds);
-  std::printf("| variant | F D W R E Rr | ns / particle-step | particle-steps/s | ratio to all on | bytes / particle | contacts / particle |\n");
+  std::printf("bench_effect_cost: %.0f particles, %ld steps x %d rounds, best round each\n\n", n, steps,
+              rounds);
+  std::printf(
+      "| variant | F D W R E Rr | ns / particle-step | particle-steps/s | ratio to all on | bytes / particle "
+      "| contacts / particle |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   const double ref = measured[0].best;
   for (std::size_t k = 0; k < variants.size(); ++k) {
     const Measured& v = measured[k];
     const EffectSet& e = v.set;
-    std::printf("| %s | %d %d %d %d %d %d | %.1f | %.3e | %.3f | %.0f | %.2f |\n", variants[k].name, e.friction, e.damping,
-                e.wall_friction, e.integrates_rotation(false), e.energy_tracking, e.rolling_resistance, 1e9 * v.best,
-                1.0 / v.best, v.best / ref, v.bytes, v.contacts);
+    std::printf("| %s | %d %d %d %d %d %d | %.1f | %.3e | %.3f | %.0f | %.2f |\n", variants[k].name,
+                e.friction, e.damping, e.wall_friction, e.integrates_rotation(false), e.energy_tracking,
+                e.rolling_resistance, 1e9 * v.best, 1.0 / v.best, v.best / ref, v.bytes, v.contacts);
   }
   return 0;
 }

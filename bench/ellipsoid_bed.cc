@@ -40,7 +40,6 @@
 #include <memory>
 #include <vector>
 
-
 using namespace upgrain::dem;
 
 namespace {
@@ -74,6 +73,7 @@ void for_each_array(ParticleStore& p, F&& f) {
   f(p.omega);
   f(p.force);
   f(p.torque);
+  f(p.shape);
   f(p.semi_axes);
   f(p.orientation);
   f(p.inertia_body);

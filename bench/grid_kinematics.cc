@@ -1,8 +1,8 @@
 // Cost of the grid kinematics (docs/strain.md "Cost"): per evaluation of a grid,
 // F and L per cell by best fit, by the tessellation, or both, with all measures and the
-// increment (dem::grid_strain, given the previous evaluation as in a run, so the reference
+// increment (upscale::grid_strain, given the previous evaluation as in a run, so the reference
 // tessellations of unchanged Lagrangian sets are reused), plus the objective stress rates
-// of the cells (dem::StressRateHistory). The share is that of a run that evaluates the kinematics every
+// of the cells (upscale::StressRateHistory). The share is that of a run that evaluates the kinematics every
 // 1,000 steps of the same bed:
 //   share = t_kinematics / (t_kinematics + t_1000_steps),
 // with t_1000_steps measured once on the bed (best of 3) before the benchmarks run.
@@ -25,13 +25,14 @@
 #include <vector>
 
 #include "dem/engine/simulation.h"
-#include "dem/io/run_recorder.h"
+#include "dem/io/grid_stress_output.h"
 #include "dem/parallel/mpi_start.h"
 #include "dem/scene/fill.h"
-#include "dem/strain/grid_strain.h"
-#include "dem/strain/grid_stress_rates.h"
+#include "upscale/strain/grid_strain.h"
+#include "upscale/strain/grid_stress_rates.h"
 
 using namespace upgrain::dem;
+using namespace upgrain::upscale;
 
 namespace {
 

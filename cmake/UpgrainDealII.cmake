@@ -1,6 +1,6 @@
 # Attach deal.II to one target without deal_ii_initialize_cached_variables() (which
 # empties CMAKE_CXX_FLAGS_RELEASE for every target) and without deal_ii_setup_target()
-# (plain link signature). See ../shared/brief/toolchain-notes.md, pitfalls 1 and 2.
+# (plain link signature, flags added PUBLIC).
 include(${DEAL_II_TARGET_CONFIG})
 
 function(upgrain_use_dealii target)

@@ -24,9 +24,9 @@ dem::EngineOptions engine_options(const SceneInput& in) {
   return o;
 }
 
-dem::DepositionResult run_dem(const SceneInput& in, MPI_Comm comm,
-                              const std::function<void(const dem::Progress&)>& on_progress) {
-  return dem::run_deposition(in.scene, in.control, in.output, on_progress, comm, engine_options(in));
+RunResult run_dem(const SceneInput& in, MPI_Comm comm,
+                  const std::function<void(const Progress&)>& on_progress) {
+  return run_scene(in.scene, in.control, in.output, on_progress, comm, engine_options(in));
 }
 
 void on_rank0(MPI_Comm comm, const std::function<void()>& work) { dem::run_on_root(comm, work); }

@@ -15,8 +15,8 @@ dem::EngineOptions engine_options(const SceneInput& in);
 
 // Collective over `comm`. The result is complete on rank 0 (dem/deposition.h). An error on
 // any rank is thrown on every rank.
-dem::DepositionResult run_dem(const SceneInput& in, MPI_Comm comm,
-                              const std::function<void(const dem::Progress&)>& on_progress);
+RunResult run_dem(const SceneInput& in, MPI_Comm comm,
+                  const std::function<void(const Progress&)>& on_progress);
 
 // Runs `work` on rank 0; an error there becomes the same error on every rank, so no rank
 // waits forever in a later message.

@@ -1,5 +1,5 @@
 // upgrain: the driver. It only parses the command line and the scene file, then hands
-// plain structs to the DEM engine (STYLE.md section 4).
+// plain structs to the run of the scene (coupling/run/scene_run.h) or the study.
 #include <mpi.h>
 
 #include <algorithm>
@@ -9,11 +9,11 @@
 #include <string>
 
 #include "coupling/dem_run.h"
+#include "coupling/run/scene_run.h"
 #include "coupling/scene_input.h"
 #include "coupling/strain_report.h"
 #include "coupling/study.h"
 #include "dem/core/error.h"
-#include "dem/deposition.h"
 #include "dem/parallel/mpi_start.h"
 #include "dem/stress/asymmetry.h"
 #include "dem/time_step.h"
@@ -38,14 +38,14 @@ constexpr const char* kUsage =
     "                                estimate, write nothing\n"
     "  --output DIR                  override Output/folder\n";
 
-void print_progress(const upgrain::dem::Progress& p) {
+void print_progress(const upgrain::coupling::Progress& p) {
   const double pct = 100.0 * static_cast<double>(p.step) / static_cast<double>(std::max(p.total_steps, 1L));
   std::printf("\r  %5.1f %%  step %ld/%ld  %.0f steps/s  ETA %.0f s   ", pct, p.step, p.total_steps,
               p.steps_per_second, p.eta_seconds);
   std::fflush(stdout);
 }
 
-void print_deposition(const upgrain::coupling::SceneInput& in, const upgrain::dem::DepositionResult& r) {
+void print_deposition(const upgrain::coupling::SceneInput& in, const upgrain::coupling::RunResult& r) {
   using namespace upgrain;
   std::printf("\n  done: %ld steps, %.3g s simulated in %.1f s (%.3g particle-steps/s)%s\n", r.steps,
               r.simulated_time, r.wall_seconds, r.particle_steps_per_second,
@@ -171,15 +171,15 @@ int run(int argc, char** argv) {
     return 0;
   }
   if (rank == 0) std::printf("  output folder: %s\n", in.output.folder.c_str());
-  auto progress = [rank](const dem::Progress& p) {
+  auto progress = [rank](const coupling::Progress& p) {
     if (rank == 0) print_progress(p);
   };
   try {
     if (in.study.compare_with_continuum) {
       return coupling::run_study(in, MPI_COMM_WORLD, progress,
-                                 [&](const dem::DepositionResult& r) { print_deposition(in, r); });
+                                 [&](const coupling::RunResult& r) { print_deposition(in, r); });
     }
-    const dem::DepositionResult r = coupling::run_dem(in, MPI_COMM_WORLD, progress);
+    const coupling::RunResult r = coupling::run_dem(in, MPI_COMM_WORLD, progress);
     if (rank == 0) {
       print_deposition(in, r);
       if (r.final_strain) {  // the strain on the mesh; report.md with the strain section and plots

@@ -12,21 +12,21 @@ namespace {
 // entries. A parameter two laws share is declared once.
 std::vector<ParameterSpec> with_contact_laws(std::vector<ParameterSpec> schema) {
   std::string names;
+  std::string doc = "Contact law (docs/contact-law.md).";
   std::vector<ParameterSpec> rows;
   for (const dem::LawInfo& law : dem::contact_law_table()) {
     if (!names.empty()) names += '|';
     names += law.name;
+    doc += std::string(" ") + law.name + ": " + law.description;
     for (const dem::LawParameter& p : law.parameters) {
-      const bool known = std::any_of(rows.begin(), rows.end(), [&](const ParameterSpec& r) { return r.name == p.name; });
-      if (!known) rows.push_back({"Contact", p.name, p.default_value, Kind::real, p.min, p.max, "", p.unit, p.doc});
+      const bool known =
+          std::any_of(rows.begin(), rows.end(), [&](const ParameterSpec& r) { return r.name == p.name; });
+      if (!known)
+        rows.push_back({"Contact", p.name, p.default_value, Kind::real, p.min, p.max, "", p.unit, p.doc});
     }
   }
-  rows.insert(rows.begin(), ParameterSpec{"Contact", "law", dem::contact_law_table().front().name, Kind::selection,
-                                          0, 0, names, "-",
-                                          "Contact law (docs/contact-law.md). hertz-mindlin: Hertz normal force and "
-                                          "Mindlin tangential stiffness from the grains' E and nu (the paper's "
-                                          "law). hooke: linear spring-dashpot (Cundall and Strack 1979) with "
-                                          "'normal stiffness' and 'tangential stiffness'."});
+  rows.insert(rows.begin(), ParameterSpec{"Contact", "law", dem::contact_law_table().front().name,
+                                          Kind::selection, 0, 0, names, "-", doc});
   auto last_contact = std::find_if(schema.rbegin(), schema.rend(),
                                    [](const ParameterSpec& p) { return p.section == "Contact"; });
   schema.insert(last_contact.base(), rows.begin(), rows.end());

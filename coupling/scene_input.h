@@ -4,9 +4,9 @@
 #include <iosfwd>
 #include <string>
 
+#include "coupling/run/output_options.h"
+#include "coupling/run/scene_run.h"
 #include "coupling/study_options.h"
-#include "dem/deposition.h"
-#include "dem/io/run_recorder.h"
 #include "dem/scene/effect_choice.h"
 #include "dem/scene/scene_config.h"
 
@@ -26,9 +26,10 @@ struct ParallelInput {
 struct SceneInput {
   std::string source;  // file name, or "built-in default scene"
   dem::SceneConfig scene;
-  dem::EffectSwitches effect_switches;  // the Effects section as written; validate_scene derives scene.effects
-  dem::io::OutputOptions output;
-  dem::RunControl control;
+  dem::EffectSwitches
+      effect_switches;  // the Effects section as written; validate_scene derives scene.effects
+  OutputOptions output;
+  RunControl control;
   bool overwrite = false;
   std::string stress_box = "auto";  // Stress/box as written; applied by validate_scene
   std::string collapse = "none";    // Container/collapse: none, constrained or unconstrained

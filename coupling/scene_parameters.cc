@@ -135,7 +135,9 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
 
   prm.enter_subsection("Effects");
   {
-    auto sw = [&](const char* name) { return dem::parse_effect_switch(prm.get(name), std::string("Effects/") + name); };
+    auto sw = [&](const char* name) {
+      return dem::parse_effect_switch(prm.get(name), std::string("Effects/") + name);
+    };
     dem::EffectSwitches& e = in.effect_switches;
     e.gravity = sw("gravity");
     e.friction = sw("tangential friction");
@@ -238,15 +240,16 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
 
   prm.enter_subsection("Strain");
   {
-    dem::io::GridStrainOutputOptions& st = in.output.grid_strain;
+    upscale::GridStrainOutputOptions& st = in.output.grid_strain;
     st.enabled = prm.get_bool("enabled");
     st.reference_time = prm.get_double("reference time");
-    st.kernel.set = prm.get("set") == "eulerian" ? dem::StrainSet::eulerian : dem::StrainSet::lagrangian;
+    st.kernel.set =
+        prm.get("set") == "eulerian" ? upscale::StrainSet::eulerian : upscale::StrainSet::lagrangian;
     if (const auto f = dem::stress_formula_from_name(prm.get("rate formula"))) st.rate_formula = *f;
     st.kernel.definitions = {false, false};
     for (const std::string& name : dealii::Utilities::split_string_list(prm.get("definitions"), ','))
-      st.kernel.definitions[static_cast<int>(name == "tessellation" ? dem::StrainDefinition::tessellation
-                                                                    : dem::StrainDefinition::best_fit)] =
+      st.kernel.definitions[static_cast<int>(name == "tessellation" ? upscale::StrainDefinition::tessellation
+                                                                    : upscale::StrainDefinition::best_fit)] =
           true;
   }
   prm.leave_subsection();

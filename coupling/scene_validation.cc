@@ -150,7 +150,8 @@ void validate_scene(SceneInput& in) {
       << " s (" << ts.limiting << "-limited: ";
     if (ts.rayleigh_time > 0.0)
       m << s.time_step_rule.rayleigh_fraction << " x Rayleigh time " << ts.rayleigh_time << " s, ";
-    m << s.time_step_rule.hertz_fraction << " x " << s.contact_law << " contact time " << ts.contact_time << " s";
+    m << s.time_step_rule.hertz_fraction << " x " << s.contact_law << " contact time " << ts.contact_time
+      << " s";
     if (ts.hertz_time > 0.0) m << " at " << ts.impact_speed << " m/s";
     m << "); lower the time step or set 'allow unsafe time step = true'";
     throw Error(m.str());
@@ -160,7 +161,7 @@ void validate_scene(SceneInput& in) {
     m << where << "Simulation/end time = " << s.end_time << " s is shorter than one time step";
     throw Error(m.str());
   }
-  if (const dem::io::GridStrainOutputOptions& st = in.output.grid_strain; st.enabled) {
+  if (const upscale::GridStrainOutputOptions& st = in.output.grid_strain; st.enabled) {
     if (!in.output.grid_stress.enabled())
       throw Error(where +
                   "Strain/enabled = true needs the stress grid, but Stress/formulas is empty; name at least "

@@ -25,10 +25,10 @@ std::string fmt(double v, int digits = 4) {
 }
 
 // Median, smallest and largest of the values of the cells marked valid; "-" when none.
-std::string spread(const std::vector<double>& v, const std::vector<dem::StrainReason>& reason) {
+std::string spread(const std::vector<double>& v, const std::vector<upscale::StrainReason>& reason) {
   std::vector<double> x;
   for (std::size_t c = 0; c < v.size(); ++c)
-    if (reason[c] == dem::StrainReason::valid) x.push_back(v[c]);
+    if (reason[c] == upscale::StrainReason::valid) x.push_back(v[c]);
   if (x.empty()) return "-";
   std::sort(x.begin(), x.end());
   const std::size_t n = x.size();
@@ -82,9 +82,9 @@ std::string write_strain_mesh(const std::filesystem::path& folder) {
   return "strain_mesh/strain.pvd";
 }
 
-std::string strain_section(const SceneInput& in, const dem::GridStrain& g,
+std::string strain_section(const SceneInput& in, const upscale::GridStrain& g,
                            const std::filesystem::path& folder, const std::vector<std::string>& plots) {
-  const dem::io::GridStrainOutputOptions& st = in.output.grid_strain;
+  const upscale::GridStrainOutputOptions& st = in.output.grid_strain;
   long outputs = 0;
   std::error_code ec;
   for (const auto& e : std::filesystem::directory_iterator(folder / "grid_strain", ec))
@@ -92,7 +92,7 @@ std::string strain_section(const SceneInput& in, const dem::GridStrain& g,
   std::ostringstream m;
   m << "## Strain\n\n"
     << "Finite strain per grid cell (docs/strain.md), relative to the state at t0 = " << fmt(g.reference_time)
-    << " s (step " << g.reference_step << "), " << dem::name_of(g.set) << " sets, on a " << g.grid.n[0]
+    << " s (step " << g.reference_step << "), " << upscale::name_of(g.set) << " sets, on a " << g.grid.n[0]
     << " x " << g.grid.n[1] << " x " << g.grid.n[2] << " grid; " << outputs
     << " outputs in `grid_strain/`, the last at t = " << fmt(g.time)
     << " s. The Jaumann, Green-Naghdi, Truesdell and Oldroyd rates of the " << dem::name_of(st.rate_formula)
@@ -101,14 +101,14 @@ std::string strain_section(const SceneInput& in, const dem::GridStrain& g,
     << "At the last output (median [smallest, largest] over the valid cells):\n\n"
     << "| definition | cells with a valid F | ln J | equivalent shear strain | cells with a valid L |\n"
     << "|---|---|---|---|---|\n";
-  for (int d = 0; d < dem::kStrainDefinitionCount; ++d) {
+  for (int d = 0; d < upscale::kStrainDefinitionCount; ++d) {
     if (!g.computed[d]) continue;
-    const dem::CellStrainFields& f = g.fields[d];
-    const auto valid = [](const std::vector<dem::StrainReason>& r) {
-      return std::count(r.begin(), r.end(), dem::StrainReason::valid);
+    const upscale::CellStrainFields& f = g.fields[d];
+    const auto valid = [](const std::vector<upscale::StrainReason>& r) {
+      return std::count(r.begin(), r.end(), upscale::StrainReason::valid);
     };
-    m << "| " << dem::name_of(static_cast<dem::StrainDefinition>(d)) << " | " << valid(f.f_reason) << " of "
-      << g.grid.num_cells() << " | " << spread(f.log_jacobian, f.f_reason) << " | "
+    m << "| " << upscale::name_of(static_cast<upscale::StrainDefinition>(d)) << " | " << valid(f.f_reason)
+      << " of " << g.grid.num_cells() << " | " << spread(f.log_jacobian, f.f_reason) << " | "
       << spread(f.equivalent_shear_strain, f.f_reason) << " | " << valid(f.l_reason) << " |\n";
   }
   m << "\nln J < 0 is compaction and > 0 dilation since t0; cells with fewer than 4 grains or a degenerate "
@@ -124,8 +124,8 @@ std::string strain_section(const SceneInput& in, const dem::GridStrain& g,
   return m.str();
 }
 
-void write_run_report(const std::filesystem::path& folder, const SceneInput& in,
-                      const dem::DepositionResult& r, const std::vector<std::string>& plots) {
+void write_run_report(const std::filesystem::path& folder, const SceneInput& in, const RunResult& r,
+                      const std::vector<std::string>& plots) {
   const dem::SceneConfig& s = in.scene;
   std::ostringstream m;
   m << "# Upgrain run\n\n"

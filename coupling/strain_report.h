@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "coupling/run/scene_run.h"
 #include "coupling/scene_input.h"
-#include "dem/deposition.h"
 
 namespace upgrain::coupling {
 
@@ -25,12 +25,12 @@ std::vector<std::string> plot_strain(const std::filesystem::path& folder);
 std::string write_strain_mesh(const std::filesystem::path& folder);
 
 // The section, Markdown, from "## Strain" on. `final_strain` is the last evaluation.
-std::string strain_section(const SceneInput& in, const dem::GridStrain& final_strain,
+std::string strain_section(const SceneInput& in, const upscale::GridStrain& final_strain,
                            const std::filesystem::path& folder, const std::vector<std::string>& plots);
 
 // report.md of a run without the continuum study (Study/compare with continuum = false)
 // whose strain is enabled: the scene, the run's figures and the strain section.
-void write_run_report(const std::filesystem::path& folder, const SceneInput& in,
-                      const dem::DepositionResult& r, const std::vector<std::string>& plots);
+void write_run_report(const std::filesystem::path& folder, const SceneInput& in, const RunResult& r,
+                      const std::vector<std::string>& plots);
 
 }  // namespace upgrain::coupling

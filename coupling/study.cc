@@ -92,7 +92,7 @@ std::string fmt(double v, int digits = 4) {
   return s.str();
 }
 
-void write_report(const std::filesystem::path& folder, const SceneInput& in, const dem::DepositionResult& r,
+void write_report(const std::filesystem::path& folder, const SceneInput& in, const RunResult& r,
                   const DemOutcome& d, const fem::ColumnProblem& problem, const fem::ColumnSolution& sol,
                   const DemFemComparison& c, const std::vector<std::pair<std::string, double>>& timings,
                   const std::vector<std::string>& plots, const std::vector<std::string>& strain_plots,
@@ -213,9 +213,8 @@ void write_study_json(const std::filesystem::path& folder, const SceneInput& in,
 
 }  // namespace
 
-int run_study(const SceneInput& in, MPI_Comm comm,
-              const std::function<void(const dem::Progress&)>& on_progress,
-              const std::function<void(const dem::DepositionResult&)>& on_dem_done) {
+int run_study(const SceneInput& in, MPI_Comm comm, const std::function<void(const Progress&)>& on_progress,
+              const std::function<void(const RunResult&)>& on_dem_done) {
   int rank = 0, ranks = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &ranks);
@@ -224,7 +223,7 @@ int run_study(const SceneInput& in, MPI_Comm comm,
   const auto t_all = Clock::now();
 
   // 1. DEM deposition and grid stress (rank 0).
-  dem::DepositionResult r;
+  RunResult r;
   DemOutcome d;
   auto t0 = Clock::now();
   r = run_dem(in, comm, on_progress);

@@ -14,8 +14,7 @@ namespace upgrain::coupling {
 // Collective over `comm`. The DEM runs on every rank (coupling/dem_run.h); the continuum
 // solve and the mesh output use every rank too. Returns the process exit code.
 // on_dem_done is called on rank 0 once the DEM part has finished.
-int run_study(const SceneInput& in, MPI_Comm comm,
-              const std::function<void(const dem::Progress&)>& on_progress,
-              const std::function<void(const dem::DepositionResult&)>& on_dem_done);
+int run_study(const SceneInput& in, MPI_Comm comm, const std::function<void(const Progress&)>& on_progress,
+              const std::function<void(const RunResult&)>& on_dem_done);
 
 }  // namespace upgrain::coupling

@@ -4,8 +4,8 @@
 #include <utility>
 #include <vector>
 
-#include "dem/io/grid_strain_output.h"
 #include "upscale/h5_reader.h"
+#include "upscale/strain/grid_strain_output.h"
 
 namespace upgrain::upscale {
 
@@ -21,7 +21,7 @@ void add_tensor(GridFields& g, const std::string& name, const std::vector<dem::M
 }
 }  // namespace
 
-GridFields grid_fields_from_strain(const dem::GridStrain& strain) {
+GridFields grid_fields_from_strain(const upscale::GridStrain& strain) {
   GridFields g;
   for (int d = 0; d < 3; ++d) {
     g.n[d] = strain.grid.n[d];
@@ -30,10 +30,10 @@ GridFields grid_fields_from_strain(const dem::GridStrain& strain) {
   }
   g.time = strain.time;
   g.step = strain.step;
-  for (int d = 0; d < dem::kStrainDefinitionCount; ++d) {
+  for (int d = 0; d < upscale::kStrainDefinitionCount; ++d) {
     if (!strain.computed[d]) continue;
-    const dem::CellStrainFields& f = strain.fields[d];
-    const std::string base = dem::io::field_name(static_cast<dem::StrainDefinition>(d));
+    const upscale::CellStrainFields& f = strain.fields[d];
+    const std::string base = field_name(static_cast<StrainDefinition>(d));
     g.add(base + "_ln_J", f.log_jacobian);
     g.add(base + "_J", f.jacobian);
     g.add(base + "_equivalent_shear_strain", f.equivalent_shear_strain);
@@ -41,7 +41,7 @@ GridFields grid_fields_from_strain(const dem::GridStrain& strain) {
     g.add(base + "_increment_equivalent_shear_strain", f.increment_equivalent_shear_strain);
     std::vector<double> valid(f.f_reason.size()), reason(f.f_reason.size());
     for (std::size_t c = 0; c < f.f_reason.size(); ++c) {
-      valid[c] = f.f_reason[c] == dem::StrainReason::valid ? 1.0 : 0.0;
+      valid[c] = f.f_reason[c] == upscale::StrainReason::valid ? 1.0 : 0.0;
       reason[c] = static_cast<double>(f.f_reason[c]);
     }
     g.add(base + "_F_valid", std::move(valid));
@@ -69,8 +69,8 @@ GridFields read_strain_fields(const std::filesystem::path& h5_file) {
   g.time = in.attribute("time");
   g.step = static_cast<long>(in.attribute("step"));
   const auto cells = static_cast<hsize_t>(g.num_cells());
-  for (int d = 0; d < dem::kStrainDefinitionCount; ++d) {
-    const std::string base = dem::io::field_name(static_cast<dem::StrainDefinition>(d));
+  for (int d = 0; d < upscale::kStrainDefinitionCount; ++d) {
+    const std::string base = field_name(static_cast<StrainDefinition>(d));
     const std::string group = "/" + base + "/";
     if (!in.exists("/" + base)) continue;
     for (const char* f : {"ln_J", "J", "equivalent_shear_strain", "equivalent_shear_rate",

@@ -5,8 +5,8 @@
 // No deal.II here.
 #include <filesystem>
 
-#include "dem/strain/grid_strain.h"
 #include "upscale/grid_fields.h"
+#include "upscale/strain/grid_strain.h"
 
 namespace upgrain::upscale {
 
@@ -19,9 +19,9 @@ namespace upgrain::upscale {
 // then "particles" (the size of each cell's set). Invalid cells hold zeros, as in the
 // HDF5 files: threshold on <d>_F_valid in ParaView. The Q1 projection would blend those
 // zeros into the neighbours, so the driver writes these as cell data only.
-GridFields grid_fields_from_strain(const dem::GridStrain& strain);
+GridFields grid_fields_from_strain(const upscale::GridStrain& strain);
 
-// The same fields, bit for bit, from a file written by dem::io::write_grid_strain, for the
+// The same fields, bit for bit, from a file written by upscale::write_grid_strain, for the
 // definitions present in it. Errors name the file and the missing or misshapen dataset.
 GridFields read_strain_fields(const std::filesystem::path& h5_file);
 

@@ -4,26 +4,18 @@
 #include <vector>
 
 #include "dem/neighbor/cell_grid.h"
+#include "dem/shape/grain_shapes.h"
 
 namespace upgrain::dem {
 
 namespace {
 
-// Height of grain i's top: for an ellipsoid the support of its shape along z,
-// sqrt(e_z^T M e_z) with M = R diag(a^2, b^2, c^2) R^T; for a sphere its radius.
+// Height of grain i's top, and whether point q lies in it, by its shape (dem/shape).
 double top_of(const ParticleStore& p, std::size_t i) {
-  if (!p.is_ellipsoid(i)) return p.x[i].z() + p.radius[i];
-  const Vec3 ez_body = p.orientation[i].conjugate() * Vec3::UnitZ();
-  return p.x[i].z() + ez_body.cwiseProduct(p.semi_axes[i]).norm();
+  return shapes::visit_shape(p.kind(i), [&]<class S>() { return S::top(p, i); });
 }
-
-// Whether point q lies in grain i: sum (y_k / a_k)^2 <= 1 in the body frame.
 bool contains(const ParticleStore& p, std::size_t i, const Vec3& q) {
-  const Vec3 d = q - p.x[i];
-  if (d.squaredNorm() > p.radius[i] * p.radius[i]) return false;  // outside the bounding sphere
-  if (!p.is_ellipsoid(i)) return true;
-  const Vec3 y = p.orientation[i].conjugate() * d;
-  return y.cwiseQuotient(p.semi_axes[i]).squaredNorm() <= 1.0;
+  return shapes::visit_shape(p.kind(i), [&]<class S>() { return S::contains(p, i, q); });
 }
 
 }  // namespace

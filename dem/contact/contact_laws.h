@@ -23,6 +23,7 @@ using ContactLaws = LawList<HertzMindlin, Hooke>;
 // parameters (the scene file's schema), its constants from a scene, its time-step rule.
 struct LawInfo {
   const char* name;
+  const char* description;  // one sentence, for the scene file's documentation
   std::span<const LawParameter> parameters;
   void (*constants)(const SceneConfig&, ContactMaterial&);
   LawTimeLimit (*time_limit)(const SceneTimeScales&, double rayleigh_fraction, double duration_fraction);
@@ -31,13 +32,15 @@ struct LawInfo {
 namespace law_detail {
 template <class... L>
 constexpr std::array<LawInfo, sizeof...(L)> rows(LawList<L...>) {
-  return {LawInfo{L::name, L::Normal::parameters, &L::Normal::constants, &L::Normal::time_limit}...};
+  return {LawInfo{L::name, L::Normal::description, L::Normal::parameters, &L::Normal::constants,
+                  &L::Normal::time_limit}...};
 }
 
 template <class First, class... Rest, class Make>
 auto dispatch(LawList<First, Rest...>, std::string_view name, Make& make) {
   if constexpr (sizeof...(Rest) == 0) {
-    if (name != First::name) throw Error("Contact/law = '" + std::string(name) + "' is not a known contact law");
+    if (name != First::name)
+      throw Error("Contact/law = '" + std::string(name) + "' is not a known contact law");
     return make.template operator()<First>();
   } else {
     if (name == First::name) return make.template operator()<First>();

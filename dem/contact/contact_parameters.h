@@ -45,8 +45,8 @@ struct ContactEnergy {
 // added to `stiffness_change` (docs/contact-law.md, energy). A new spring (old stiffness 0)
 // creates none.
 template <bool Energy>
-[[gnu::always_inline]] inline void carry_into_plane(Vec3& s, const Vec3& n, double old_stiffness, double stiffness,
-                                                    double& stiffness_change) {
+[[gnu::always_inline]] inline void carry_into_plane(Vec3& s, const Vec3& n, double old_stiffness,
+                                                    double stiffness, double& stiffness_change) {
   const double old_norm2 = s.squaredNorm();
   if (old_norm2 > 0.0) {
     s -= s.dot(n) * n;

@@ -6,38 +6,13 @@
 // is not computed. Equations and sign conventions: docs/contact-law.md.
 #include <cmath>
 
+#include "dem/contact/contact_kinematics.h"
 #include "dem/contact/contact_parameters.h"
 #include "dem/contact/law/hertz.h"
 #include "dem/core/contact_history.h"
 #include "dem/core/types.h"
 
 namespace upgrain::dem {
-
-struct ContactKinematics {
-  Vec3 normal;     // unit normal, from body i towards body j
-  double overlap;  // delta > 0
-  Vec3 lever_i;    // from centroid i to the contact point (spheres: (r_i - delta/2) n)
-  Vec3 lever_j;    // from centroid j to the contact point (spheres: -(r_j - delta/2) n)
-  Vec3 v_i, v_j, omega_i, omega_j;
-};
-
-// The geometry of two touching spheres (the force loops' sphere pairs): d = x_j - x_i with
-// |d|^2 = dist2 < (r_i + r_j)^2. Sets the normal (i to j), overlap and levers of `kin`, the lever
-// lengths along the normal and the effective radius r_i r_j / (r_i + r_j).
-[[gnu::always_inline]] inline void sphere_pair_kinematics(const Vec3& d, double dist2, double ri, double rj,
-                                                          ContactKinematics& kin, double& arm_i,
-                                                          double& arm_j, double& r_star) {
-  const double rsum = ri + rj;
-  const double dist = std::sqrt(dist2);
-  const double delta = rsum - dist;
-  kin.normal = d * (1.0 / dist);
-  kin.overlap = delta;
-  arm_i = ri - 0.5 * delta;
-  arm_j = rj - 0.5 * delta;
-  kin.lever_i = arm_i * kin.normal;
-  kin.lever_j = -arm_j * kin.normal;
-  r_star = ri * rj / rsum;
-}
 
 struct ContactForce {
   Vec3 on_i;         // force on body i; body j receives -on_i
@@ -77,7 +52,8 @@ template <bool Tangential, bool Damping, bool Rotation, bool Energy, class Law =
   out.on_i = -f_n * n;
   if constexpr (Tangential) {
     const Vec3 v_t = v_rel - v_n * n;
-    out.on_i += Law::Tangential::template force<Energy>(p, r.tangential_stiffness, n, v_t, f_n, spring, energy);
+    out.on_i +=
+        Law::Tangential::template force<Energy>(p, r.tangential_stiffness, n, v_t, f_n, spring, energy);
   }
   return out;
 }

@@ -647,10 +647,11 @@ bool warm_contact_after_proof(const PosedEllipsoid& e1, const PosedEllipsoid& e2
   return to_pair_contact(g, radius, out);
 }
 
-void posed_contacts_two(const PosedEllipsoid& a1, const PosedEllipsoid& a2, const Vec3& last_a,
-                        const PosedEllipsoid& b1, const PosedEllipsoid& b2, const Vec3& last_b,
-                        ContactSolverStats& stats, PairContact& out_a, PairContact& out_b, bool& touching_a,
-                        bool& touching_b) {
+void posed_contacts_two(WarmPairSolve& pair_a, WarmPairSolve& pair_b, ContactSolverStats& stats) {
+  const PosedEllipsoid &a1 = *pair_a.first, &a2 = *pair_a.second, &b1 = *pair_b.first, &b2 = *pair_b.second;
+  const Vec3 &last_a = pair_a.last_normal, &last_b = pair_b.last_normal;
+  PairContact &out_a = pair_a.out, &out_b = pair_b.out;
+  bool &touching_a = pair_a.touching, &touching_b = pair_b.touching;
   using warm::Mask;
   using warm::Pair;
   // The caller's precondition (shaped_pair_geometries() sorts the pairs so): warm pairs, each

@@ -138,16 +138,21 @@ struct PairContact {
 bool posed_contact(const PosedEllipsoid& e1, const PosedEllipsoid& e2, const Vec3* last_normal, bool radius,
                    ContactSolverStats& stats, PairContact& out);
 
+// One warm pair of posed_contacts_two(): its grains and last normal, and what the solve gives.
+struct WarmPairSolve {
+  const PosedEllipsoid* first = nullptr;
+  const PosedEllipsoid* second = nullptr;
+  Vec3 last_normal = Vec3::Zero();  // unit
+  PairContact out;
+  bool touching = false;
+};
+
 // Two warm pairs at once (the force loops' batches): as posed_contact() on each with radius
 // false, the same results bit for bit and the same counts, with both Newton solves in the two
 // lanes of a vector while both stay on the straight-line path (docs/ellipsoid-contact.md, "Two
-// pairs at a time"). `touching_a`, `touching_b`: whether each touches. Precondition: each pair
-// has an ellipsoid and its last normal is a unit vector (a warm pair); others go through
-// posed_contact().
-void posed_contacts_two(const PosedEllipsoid& a1, const PosedEllipsoid& a2, const Vec3& last_a,
-                        const PosedEllipsoid& b1, const PosedEllipsoid& b2, const Vec3& last_b,
-                        ContactSolverStats& stats, PairContact& out_a, PairContact& out_b, bool& touching_a,
-                        bool& touching_b);
+// pairs at a time"). Precondition: each pair has an ellipsoid and its last normal is a unit
+// vector (a warm pair); others go through posed_contact().
+void posed_contacts_two(WarmPairSolve& pair_a, WarmPairSolve& pair_b, ContactSolverStats& stats);
 
 // Ellipsoid-plane on a posed ellipsoid, optionally without curvatures.
 ContactGeometry posed_plane_contact(const PosedEllipsoid& e, const Plane& plane, bool curvatures);

@@ -10,7 +10,9 @@ namespace upgrain::dem::hertz {
 inline double contact_radius(double r_star, double delta) { return std::sqrt(r_star * delta); }
 
 // Hertz normal force F = 4/3 E* a delta = 4/3 E* sqrt(R*) delta^(3/2)  (Johnson 1985, eq. 4.23).
-inline double normal_force_at(double e_star, double a, double delta) { return 4.0 / 3.0 * e_star * a * delta; }
+inline double normal_force_at(double e_star, double a, double delta) {
+  return 4.0 / 3.0 * e_star * a * delta;
+}
 inline double normal_force(double e_star, double r_star, double delta) {
   return normal_force_at(e_star, contact_radius(r_star, delta), delta);
 }

@@ -24,26 +24,34 @@ inline double rolling_stiffness(double k_n, double mu_r, double r_star) {
   return 2.25 * k_n * mu_r * mu_r * r_star * r_star;
 }
 
-// Torque of the rolling resistance on body i (j receives its opposite).
-//   n: unit contact normal; omega_rel = omega_i - omega_j; r_star: rolling radius;
-//   k_n: tangent normal stiffness; f_n: normal force (after damping and clamp, as the
-//   Coulomb cap); inertia: the pair's rolling inertia I_r (for the dashpot); dt: time step.
-// `viscous` receives the dashpot part of the torque (zero while the spring is at its limit),
-// for the second half of its work (docs/integrator.md).
+// One contact as the rolling resistance sees it.
+struct RollingContact {
+  Vec3 normal;     // unit contact normal
+  Vec3 omega_rel;  // omega_i - omega_j
+  double r_star;   // rolling radius
+  double k_n;      // the law's tangent normal stiffness
+  double f_n;      // normal force after the dashpot and the clamp: the plastic limit's scale
+  double inertia;  // the pair's rolling inertia I_r (for the dashpot)
+  double dt;       // time step
+};
+
+// Torque of the rolling resistance on body i (j receives its opposite). `viscous` receives
+// the dashpot part of the torque (zero while the spring is at its limit), for the second half
+// of its work (docs/integrator.md).
 template <bool Energy>
-[[gnu::always_inline]] inline Vec3 rolling_resistance(const RollingParameters& p, const Vec3& n,
-                                                      const Vec3& omega_rel, double r_star, double k_n,
-                                                      double f_n, double inertia, double dt, RollingSpring& s,
-                                                      ContactEnergy& energy, Vec3& viscous) {
-  const double k_r = rolling_stiffness(k_n, p.friction, r_star);
+[[gnu::always_inline]] inline Vec3 rolling_resistance(const RollingParameters& p, const RollingContact& c,
+                                                      RollingSpring& s, ContactEnergy& energy,
+                                                      Vec3& viscous) {
+  const Vec3& n = c.normal;
+  const double k_r = rolling_stiffness(c.k_n, p.friction, c.r_star);
   Vec3& m = s.torque;
   carry_into_plane<Energy>(m, n, s.stiffness, k_r, energy.rolling_stiffness_change);
   // Relative rolling: the part of omega_i - omega_j perpendicular to the normal (the normal
   // part is twisting, not resisted here).
-  const Vec3 w_r = omega_rel - omega_rel.dot(n) * n;
-  m -= k_r * dt * w_r;  // dM_r = -k_r dtheta_r (Ai et al. 2011)
+  const Vec3 w_r = c.omega_rel - c.omega_rel.dot(n) * n;
+  m -= k_r * c.dt * w_r;  // dM_r = -k_r dtheta_r (Ai et al. 2011)
   s.stiffness = k_r;
-  const double limit = p.friction * r_star * f_n;  // full mobilisation (Ai et al. 2011)
+  const double limit = p.friction * c.r_star * c.f_n;  // full mobilisation (Ai et al. 2011)
   const double trial2 = m.squaredNorm();
   viscous = Vec3::Zero();
   if (trial2 > limit * limit) {
@@ -52,7 +60,7 @@ template <bool Energy>
     m *= limit / trial;  // plastic: the spring is rescaled, the dashpot is off (Ai et al., f = 0)
   } else if (p.damping_ratio > 0.0) {
     // Dashpot C_r = eta_r C_r,crit, C_r,crit = 2 sqrt(I_r k_r) (Ai et al. 2011).
-    viscous = -(2.0 * p.damping_ratio * std::sqrt(inertia * k_r)) * w_r;
+    viscous = -(2.0 * p.damping_ratio * std::sqrt(c.inertia * k_r)) * w_r;
     // The total torque stays within the plastic limit too: the dashpot is cut so that
     // |M_k + M_d| <= mu_r R* F_n. Without this, a spring just below a limit that grows with a
     // fluctuating F_n lets a dashpot torque far above the limit through while rolling fast.
@@ -60,7 +68,7 @@ template <bool Energy>
     const double total2 = total.squaredNorm();
     if (total2 > limit * limit) viscous = total * (limit / std::sqrt(total2)) - m;
     // The v(k-1/2) half of its work, as the normal damping (contact_response.h).
-    if constexpr (Energy) energy.dissipated_rolling -= 0.5 * viscous.dot(w_r) * dt;
+    if constexpr (Energy) energy.dissipated_rolling -= 0.5 * viscous.dot(w_r) * c.dt;
   }
   if constexpr (Energy) energy.elastic_rolling += 0.5 * m.squaredNorm() / k_r;
   return m + viscous;
@@ -71,10 +79,9 @@ struct RollingSpringDashpot {
   static constexpr bool needs_history = true;
   static constexpr bool needs_rotation = true;
   template <bool Energy>
-  [[gnu::always_inline]] static Vec3 torque(const RollingParameters& p, const Vec3& n, const Vec3& omega_rel,
-                                            double r_star, double k_n, double f_n, double inertia, double dt,
+  [[gnu::always_inline]] static Vec3 torque(const RollingParameters& p, const RollingContact& c,
                                             RollingSpring& s, ContactEnergy& energy, Vec3& viscous) {
-    return rolling_resistance<Energy>(p, n, omega_rel, r_star, k_n, f_n, inertia, dt, s, energy, viscous);
+    return rolling_resistance<Energy>(p, c, s, energy, viscous);
   }
 };
 

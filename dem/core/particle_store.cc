@@ -28,6 +28,7 @@ void ParticleStore::reserve(std::size_t n) {
   force.reserve(n);
   torque.reserve(n);
   if (has_shapes()) {
+    shape.reserve(n);
     semi_axes.reserve(n);
     orientation.reserve(n);
     inertia_body.reserve(n);
@@ -47,6 +48,7 @@ void ParticleStore::add_sphere(GlobalId gid, double r, double density, const Vec
   force.push_back(Vec3::Zero());
   torque.push_back(Vec3::Zero());
   if (has_shapes()) {
+    shape.push_back(ShapeKind::sphere);
     semi_axes.push_back(Vec3::Constant(r));
     orientation.push_back(Eigen::Quaterniond::Identity());
     inertia_body.push_back(Vec3::Constant(0.4 * m * r * r));
@@ -63,6 +65,7 @@ void ParticleStore::add_ellipsoid(GlobalId gid, const Vec3& ax, double density, 
   if (!has_shapes()) {
     // The first ellipsoid: the spheres so far get their shapes too.
     const std::size_t n = size();
+    shape.assign(n, ShapeKind::sphere);
     semi_axes.resize(n);
     orientation.assign(n, Eigen::Quaterniond::Identity());
     inertia_body.resize(n);
@@ -84,6 +87,7 @@ void ParticleStore::add_ellipsoid(GlobalId gid, const Vec3& ax, double density, 
   omega.push_back(ang_vel);
   force.push_back(Vec3::Zero());
   torque.push_back(Vec3::Zero());
+  shape.push_back(ShapeKind::ellipsoid);
   semi_axes.push_back(ax);
   orientation.push_back(q.normalized());
   inertia_body.push_back(j);
@@ -95,13 +99,13 @@ double ParticleStore::volume(std::size_t i) const {
 }
 
 Mat3 ParticleStore::inertia_world(std::size_t i) const {
-  if (!is_ellipsoid(i)) return Mat3::Identity() / inv_inertia[i];
+  if (!oriented(i)) return Mat3::Identity() / inv_inertia[i];
   const Mat3 r = orientation[i].toRotationMatrix();
   return r * inertia_body[i].asDiagonal() * r.transpose();
 }
 
 double ParticleStore::rotational_energy(std::size_t i, const Vec3& w) const {
-  if (!is_ellipsoid(i)) return 0.5 * w.squaredNorm() / inv_inertia[i];
+  if (!oriented(i)) return 0.5 * w.squaredNorm() / inv_inertia[i];
   const Vec3 wb = orientation[i].conjugate() * w;
   return 0.5 * wb.dot(inertia_body[i].cwiseProduct(wb));
 }
@@ -121,6 +125,8 @@ void ParticleStore::permute(const std::vector<int>& perm) {
   apply_permutation(torque, perm, s_v);
   if (has_shapes()) {
     std::vector<Eigen::Quaterniond> s_q;
+    std::vector<ShapeKind> s_k;
+    apply_permutation(shape, perm, s_k);
     apply_permutation(semi_axes, perm, s_v);
     apply_permutation(inertia_body, perm, s_v);
     apply_permutation(orientation, perm, s_q);

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "dem/core/shape_kind.h"
 #include "dem/core/types.h"
 
 namespace upgrain::dem {
@@ -24,6 +25,7 @@ struct ParticleStore {
   // sphere, so sphere scenes carry and compute nothing for them; once an ellipsoid is
   // added they hold every grain, spheres as a = b = c. For an ellipsoid, radius[i] is its
   // bounding radius a (neighbour lists, broad phase) and inv_inertia[i] is not used.
+  std::vector<ShapeKind> shape;                 // each grain's row of the shape table
   std::vector<Vec3> semi_axes;                  // a >= b >= c along the body x, y, z axes (m)
   std::vector<Eigen::Quaterniond> orientation;  // body -> world, unit
   std::vector<Vec3> inertia_body;               // principal moments of inertia (kg m^2)
@@ -40,11 +42,12 @@ struct ParticleStore {
   // Applies new[k] = old[perm[k]] to every array.
   void permute(const std::vector<int>& perm);
 
-  [[nodiscard]] bool has_shapes() const { return !semi_axes.empty(); }
-  // a >= b >= c, so a == c means a sphere.
-  [[nodiscard]] bool is_ellipsoid(std::size_t i) const {
-    return has_shapes() && semi_axes[i].x() != semi_axes[i].z();
-  }
+  [[nodiscard]] bool has_shapes() const { return !shape.empty(); }
+  [[nodiscard]] ShapeKind kind(std::size_t i) const { return has_shapes() ? shape[i] : ShapeKind::sphere; }
+  [[nodiscard]] bool is_ellipsoid(std::size_t i) const { return kind(i) == ShapeKind::ellipsoid; }
+  // Every shape but the sphere has an orientation and a diagonal inertia in its body frame
+  // (orientation, inertia_body); a sphere's rotation is a kick of omega by 1 / inv_inertia.
+  [[nodiscard]] bool oriented(std::size_t i) const { return kind(i) != ShapeKind::sphere; }
   // Smallest semi-axis: the length overlaps are measured against.
   [[nodiscard]] double min_semi_axis(std::size_t i) const {
     return has_shapes() ? semi_axes[i].z() : radius[i];

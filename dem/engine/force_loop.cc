@@ -8,10 +8,12 @@ namespace upgrain::dem {
 // (force_loop_fast.cc, force_loop_deterministic.cc).
 namespace force_loop_detail {
 extern template ForceLoops force_loops_for<Summation::fast>(const EffectSet&, bool, std::string_view);
-extern template ForceLoops force_loops_for<Summation::deterministic>(const EffectSet&, bool, std::string_view);
+extern template ForceLoops force_loops_for<Summation::deterministic>(const EffectSet&, bool,
+                                                                     std::string_view);
 }  // namespace force_loop_detail
 
-ForceLoops select_force_loops(const EffectSet& effects, bool shapes, Summation summation, std::string_view law) {
+ForceLoops select_force_loops(const EffectSet& effects, bool shapes, Summation summation,
+                              std::string_view law) {
   return summation == Summation::fast
              ? force_loop_detail::force_loops_for<Summation::fast>(effects, shapes, law)
              : force_loop_detail::force_loops_for<Summation::deterministic>(effects, shapes, law);

@@ -6,19 +6,22 @@
 // loop serves both: only where the sums start and where the energies are booked differ.
 //
 // Written once, as a template on the contact law (dem/contact/contact_laws.h), the effect
-// set (dem/contact/effects.h), on whether the scene has ellipsoids, on contact recording and
-// on the summation. select_force_loops()
+// set (dem/contact/effects.h), on whether the scene has grains other than spheres (then the
+// geometry of each pair comes from the table of dem/contact/geometry/pair_geometries.h), on
+// contact recording and on the summation. select_force_loops()
 // turns the scene's run-time choices into one instantiation, chosen once per run, so what a
 // scene switches off is not computed (docs/architecture.md).
 #include <string_view>
 #include <vector>
 
+#include <array>
+
 #include "dem/contact/contact_response.h"
 #include "dem/contact/contact_sample.h"
 #include "dem/contact/effects.h"
+#include "dem/contact/geometry/pair_geometries.h"
 #include "dem/contact/grain_poses.h"
 #include "dem/contact/rolling_resistance.h"
-#include "dem/contact/shaped_contact.h"
 #include "dem/core/contact_history.h"
 #include "dem/core/material.h"
 #include "dem/core/pair_list.h"
@@ -50,10 +53,11 @@ struct ForceOutput {
   long pair_contacts = 0;  // touching pairs (deterministic: whose first particle is owned)
   long wall_contacts = 0;
   double max_overlap_ratio = 0.0;  // max of overlap / smallest semi-axis
-  // Ellipsoid scenes, per chunk of rows (buffers reused): the class of each slot and the
-  // shaped pairs past their bounding spheres.
+  // Scenes with non-spherical grains, per chunk of rows (buffers reused): the class of each
+  // slot, and per batched geometry the pairs past their bounding spheres
+  // (dem/contact/geometry/pair_geometries.h).
   std::vector<unsigned char> slot_class;
-  std::vector<ShapedPair> shaped_pairs;
+  std::array<std::vector<ShapedPair>, kBatchedPairGeometries> shaped_pairs;
 };
 
 // Plain views of what one evaluation reads and writes.
@@ -90,6 +94,7 @@ struct ForceLoops {
 
 // `shapes`: the store holds ellipsoids; the sphere-only loops carry no shape branch at all.
 // `law`: a name of the contact-law table (Contact/law).
-ForceLoops select_force_loops(const EffectSet& effects, bool shapes, Summation summation, std::string_view law);
+ForceLoops select_force_loops(const EffectSet& effects, bool shapes, Summation summation,
+                              std::string_view law);
 
 }  // namespace upgrain::dem

@@ -17,7 +17,7 @@
 #include <cmath>
 
 #include "dem/contact/contact_laws.h"
-#include "dem/contact/ellipsoid_geometry.h"
+#include "dem/contact/geometry/pair_geometries.h"
 #include "dem/engine/force_loop.h"
 
 namespace upgrain::dem::force_loop_detail {
@@ -39,7 +39,7 @@ inline __attribute__((always_inline)) void forget_history(TangentialSpring* spri
 // smallest principal moment, so the dashpot is never over-estimated) plus m l^2 for the
 // lever l to the contact point (Ai et al. 2011, with the lever for the radius).
 inline double rolling_inertia(const ParticleStore& p, std::size_t i, const Vec3& lever) {
-  const double own = p.is_ellipsoid(i) ? p.inertia_body[i].minCoeff() : 1.0 / p.inv_inertia[i];
+  const double own = p.oriented(i) ? p.inertia_body[i].minCoeff() : 1.0 / p.inv_inertia[i];
   return own + p.mass(i) * lever.squaredNorm();
 }
 
@@ -106,7 +106,8 @@ void compute(const ForceInput& in) {
 
   // Particle-wall contacts: the wall is a rigid plane of the particles' own material, so
   // R* = r and m* = m. The contact point lies on the plane, at arm r - delta.
-  ContactParameters wp{mat.e_star_pw, mat.g_star_pw, 0.0, 0.0, 0.0, mat.damping_ratio, in.dt, mat.k_n, mat.k_t};
+  ContactParameters wp{mat.e_star_pw,     mat.g_star_pw, 0.0,     0.0,    0.0,
+                       mat.damping_ratio, in.dt,         mat.k_n, mat.k_t};
   auto forget_wall = [&](std::size_t e) {
     forget_history<kWallTangential, kRolling>(h.wall_spring.data(), h.wall_rolling.data(), e);
   };
@@ -126,17 +127,23 @@ void compute(const ForceInput& in) {
       }
       ContactKinematics kin;
       kin.normal = -wall.normal;
+      // The grain's row of the wall-geometry table (dem/contact/geometry/pair_geometries.h).
       bool shaped = false;
-      if constexpr (Shapes) shaped = p.is_ellipsoid(i);
+      if constexpr (Shapes) shaped = !kWallClosedForm[static_cast<int>(p.shape[i])];
       if (shaped) {
-        if (!shaped_wall_geometry((*in.posed)[i], wall, h.wall_r_star[e], kin)) {
+        const bool touching = with_wall_geometry(p.shape[i], [&]<class G>() {
+          if constexpr (G::closed_form)
+            return false;
+          else
+            return G::touching(*in.posed, static_cast<std::size_t>(i), wall, h.wall_r_star[e], kin);
+        });
+        if (!touching) {
           forget_wall(e);
           continue;
         }
         wp.r_star = h.wall_r_star[e];
       } else {
-        kin.overlap = ri - gap;
-        kin.lever_i = gap * kin.normal;
+        sphere_plane_kinematics(gap, ri, kin);
         wp.r_star = ri;
       }
       kin.lever_j = Vec3::Zero();
@@ -171,9 +178,11 @@ void compute(const ForceInput& in) {
       }
       if constexpr (kRolling) {
         // The wall neither turns nor moves: omega_j = 0, and the grain's own inertia.
-        const Vec3 m_r = Law::Rolling::template torque<kEnergy>(
-            rp, kin.normal, kin.omega_i, wp.r_star, cf.stiffness, cf.normal, rolling_inertia(p, i, kin.lever_i),
-            wp.dt, h.wall_rolling[e], sink, rolling_viscous);
+        const RollingContact rc{kin.normal,   kin.omega_i, wp.r_star,
+                                cf.stiffness, cf.normal,   rolling_inertia(p, i, kin.lever_i),
+                                wp.dt};
+        const Vec3 m_r =
+            Law::Rolling::template torque<kEnergy>(rp, rc, h.wall_rolling[e], sink, rolling_viscous);
         p.torque[i] += m_r;
         if constexpr (kRollingWork) out.rolling_damping_torque[i] += rolling_viscous;
       }
@@ -187,7 +196,8 @@ void compute(const ForceInput& in) {
   };
 
   // Particle pairs.
-  ContactParameters cp{mat.e_star_pp, mat.g_star_pp, 0.0, 0.0, mat.friction_pp, mat.damping_ratio, in.dt, mat.k_n, mat.k_t};
+  ContactParameters cp{mat.e_star_pp,     mat.g_star_pp, 0.0,     0.0,    mat.friction_pp,
+                       mat.damping_ratio, in.dt,         mat.k_n, mat.k_t};
   auto forget = [&](int k) {
     forget_history<kTangential, kRolling>(h.pair_spring.data(), h.pair_rolling.data(),
                                           static_cast<std::size_t>(k));
@@ -205,15 +215,15 @@ void compute(const ForceInput& in) {
     Vec3* const force = p.force.data();
     Vec3* const torque = p.torque.data();
     const std::size_t rows = pl.num_rows();
-    // Ellipsoid scenes go by chunks of rows: first every slot of the chunk is classified
-    // (bounding spheres apart, a pair with an ellipsoid, or two spheres) and the shaped pairs
-    // are solved, two at a time (shaped_pair_geometries: the same bits as one at a time); then
-    // the forces follow in the slots' order, as for spheres.
-    enum : unsigned char { kFar, kShaped, kSpheres };
+    // Scenes with non-spherical grains go by chunks of rows: first every slot of the chunk is
+    // classified by the pair-geometry table (bounding spheres apart, two spheres, or the batch of
+    // its geometry) and each batch is solved (the support-function pairs two at a time: the same
+    // bits as one at a time); then the forces follow in the slots' order, as for spheres.
     constexpr std::size_t kChunkRows = 16;
+    constexpr int kBatches = kBatchedPairGeometries;
     for (std::size_t r0 = 0; r0 < rows; r0 = Shapes ? std::min(rows, r0 + kChunkRows) : rows) {
       const std::size_t r1 = Shapes ? std::min(rows, r0 + kChunkRows) : rows;
-      std::size_t shaped_next = 0;
+      std::array<std::size_t, kBatches> batch_next{};
       // The chunk's slot classes, from its first slot (a raw pointer: the stores into it, of
       // bytes, might otherwise alias every vector the loop reads).
       unsigned char* slot_class = nullptr;
@@ -221,33 +231,40 @@ void compute(const ForceInput& in) {
       if constexpr (Shapes) {
         out.slot_class.resize(static_cast<std::size_t>(start[r1] - first_slot));
         slot_class = out.slot_class.data();
-        out.shaped_pairs.clear();
+        for (std::vector<ShapedPair>& b : out.shaped_pairs) b.clear();
+        const ShapeKind* const kind = p.shape.data();
         for (std::size_t r = r0; r < r1; ++r) {
           const int i = pl.row_particle[r];
-          const bool ellipsoid_i = p.is_ellipsoid(i);
+          const auto& class_of = kPairClass[static_cast<int>(kind[i])];
           for (int k = start[r]; k < start[r + 1]; ++k) {
             const int j = nbr[k];
             const double rsum = p.radius[i] + p.radius[j];
             unsigned char& c = slot_class[k - first_slot];
             if ((p.x[j] - p.x[i]).squaredNorm() >= rsum * rsum) {
-              c = kFar;
+              c = kApartClass;
               forget(k);
               if (!h.pair_memory[k].empty()) h.pair_memory[k] = ShapedContactMemory{};
-            } else if (ellipsoid_i || p.is_ellipsoid(j)) {
-              c = kShaped;
-              ShapedPair sp;
-              sp.i = static_cast<std::size_t>(i);
-              sp.j = static_cast<std::size_t>(j);
-              sp.memory = &h.pair_memory[k];
-              out.shaped_pairs.push_back(sp);
             } else {
-              c = kSpheres;
+              c = class_of[static_cast<int>(kind[j])];
+              if (c != kSpherePairClass) {
+                ShapedPair sp;
+                sp.i = static_cast<std::size_t>(i);
+                sp.j = static_cast<std::size_t>(j);
+                sp.memory = &h.pair_memory[k];
+                out.shaped_pairs[kBatches == 1 ? 0 : c - kFirstBatchClass].push_back(sp);
+              }
             }
           }
         }
-        if (!out.shaped_pairs.empty()) shaped_pair_geometries(*in.posed, out.shaped_pairs, *in.solver_stats);
+        [&]<class... G>(std::tuple<G...>*) {
+          int g = 0;
+          ((out.shaped_pairs[g].empty() ? void() : G::solve(*in.posed, out.shaped_pairs[g], *in.solver_stats),
+            ++g),
+           ...);
+        }(static_cast<BatchedPairGeometries*>(nullptr));
       }
-      const ShapedPair* const shaped_pairs = out.shaped_pairs.data();
+      std::array<const ShapedPair*, kBatches> batch_data;
+      for (int g = 0; g < kBatches; ++g) batch_data[g] = out.shaped_pairs[g].data();
       for (std::size_t r = r0; r < r1; ++r) {
         const int i = pl.row_particle[r];
         const Vec3 xi = x[i];
@@ -270,13 +287,15 @@ void compute(const ForceInput& in) {
           ContactKinematics kin;
           double arm_i = 0.0, arm_j = 0.0;  // sphere pairs: lever lengths along the normal
           bool shaped = false;
+          int batch = 0;  // the geometry whose batch holds the pair
           if constexpr (Shapes) {
             const unsigned char c = slot_class[k - first_slot];
-            if (c == kFar) continue;
-            shaped = c == kShaped;
+            if (c == kApartClass) continue;
+            shaped = c != kSpherePairClass;
+            if constexpr (kBatches > 1) batch = c - kFirstBatchClass;
           }
           if (shaped) {
-            const ShapedPair& sp = shaped_pairs[shaped_next++];
+            const ShapedPair& sp = batch_data[batch][batch_next[batch]++];
             if (!sp.touching) {
               forget(k);
               continue;
@@ -292,7 +311,10 @@ void compute(const ForceInput& in) {
                 continue;
               }
             }
-            sphere_pair_kinematics(d, dist2, ri, radius[j], kin, arm_i, arm_j, cp.r_star);
+            const SpherePairArms arms = sphere_pair_kinematics(d, dist2, ri, radius[j], kin);
+            arm_i = arms.arm_i;
+            arm_j = arms.arm_j;
+            cp.r_star = arms.r_star;
           }
           kin.v_i = v[i];
           kin.v_j = v[j];
@@ -330,9 +352,12 @@ void compute(const ForceInput& in) {
           if constexpr (kRolling) {
             const double inertia_i = rolling_inertia(p, i, kin.lever_i);
             const double inertia_j = rolling_inertia(p, j, kin.lever_j);
-            const Vec3 m_r = Law::Rolling::template torque<kEnergy>(
-                rp, kin.normal, kin.omega_i - kin.omega_j, cp.r_star, cf.stiffness, cf.normal,
-                inertia_i * inertia_j / (inertia_i + inertia_j), cp.dt, h.pair_rolling[k], sink, rolling_viscous);
+            const RollingContact rc{kin.normal, kin.omega_i - kin.omega_j,
+                                    cp.r_star,  cf.stiffness,
+                                    cf.normal,  inertia_i * inertia_j / (inertia_i + inertia_j),
+                                    cp.dt};
+            const Vec3 m_r =
+                Law::Rolling::template torque<kEnergy>(rp, rc, h.pair_rolling[k], sink, rolling_viscous);
             ti += m_r;
             torque[j] -= m_r;
             if constexpr (kRollingWork) {
@@ -394,7 +419,8 @@ ForceLoops force_loops_for(const EffectSet& e, bool shapes, std::string_view law
         compiled.rotation = Shapes ? E::rotation_requested : E::rotation;
         compiled.energy_tracking = E::energy;
         compiled.rolling_resistance = E::rolling;
-        return ForceLoops{&compute<Law, E, Shapes, false, S>, &compute<Law, E, Shapes, true, S>, compiled, Law::name};
+        return ForceLoops{&compute<Law, E, Shapes, false, S>, &compute<Law, E, Shapes, true, S>, compiled,
+                          Law::name};
       };
       return e.rolling_resistance ? with_rolling_effects(e, pick) : with_effects(e, pick);
     };

@@ -1,5 +1,6 @@
 #include "dem/io/grid_stress_output.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
@@ -19,6 +20,29 @@ constexpr const char* kSignConvention =
 constexpr const char* kVolume = "V = grid cell volume; grains belong to the cell of their centroid";
 
 }  // namespace
+
+RegularGrid stress_grid(const GridStressOptions& options, const ParticleStore& p, const BoxContainer& box) {
+  RegularGrid g;
+  for (int d = 0; d < 3; ++d) g.n[d] = options.cells[d];
+  if (options.fixed_box) {
+    g.lo = options.lo;
+    g.hi = options.hi;
+    return g;
+  }
+  double top = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) top = std::max(top, p.x[i].z() + p.radius[i]);
+  g.lo = Vec3::Zero();
+  g.hi = Vec3(box.lx, box.ly, top > 0.0 ? top : box.height);
+  // The unconstrained collapse spreads past the footprint once the side walls are gone:
+  // the grid then spans the grains' horizontal extent as well.
+  if (box.opens_side_walls())
+    for (std::size_t i = 0; i < p.size(); ++i)
+      for (int d = 0; d < 2; ++d) {
+        g.lo[d] = std::min(g.lo[d], p.x[i][d] - p.radius[i]);
+        g.hi[d] = std::max(g.hi[d], p.x[i][d] + p.radius[i]);
+      }
+  return g;
+}
 
 std::string field_name(StressFormula f) {
   std::string s(name_of(f));

@@ -8,10 +8,28 @@
 #include <string>
 #include <vector>
 
+#include "dem/boundary/container.h"
 #include "dem/io/csv_series.h"
 #include "dem/stress/grid_stress.h"
 
 namespace upgrain::dem::io {
+
+// Which grid stress a run writes (docs/stress.md). No formulas: none.
+struct GridStressOptions {
+  std::vector<StressFormula> formulas;
+  int cells[3] = {3, 3, 4};
+  // The grid's box; when not set: the container's footprint, from the floor to the top of
+  // the highest grain at each evaluation (the grid follows the assembly as it settles).
+  bool fixed_box = false;
+  Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();
+  double interval = 0.0;  // s of simulated time between evaluations; 0 = at each snapshot
+
+  [[nodiscard]] bool enabled() const { return !formulas.empty(); }
+};
+
+// The grid of one evaluation: the fixed box, or the container footprint up to the top of
+// the highest grain (for the unconstrained collapse, widened to the grains' extent).
+RegularGrid stress_grid(const GridStressOptions& options, const ParticleStore& p, const BoxContainer& box);
 
 struct GridStressEntry {
   std::string file;  // relative to the output folder

@@ -20,32 +20,9 @@ constexpr const char* kSeriesHeader =
     "particle_contacts,wall_contacts,max_overlap_ratio,neighbor_builds\n";
 }
 
-RegularGrid stress_grid(const GridStressOptions& options, const ParticleStore& p, const BoxContainer& box) {
-  RegularGrid g;
-  for (int d = 0; d < 3; ++d) g.n[d] = options.cells[d];
-  if (options.fixed_box) {
-    g.lo = options.lo;
-    g.hi = options.hi;
-    return g;
-  }
-  double top = 0.0;
-  for (std::size_t i = 0; i < p.size(); ++i) top = std::max(top, p.x[i].z() + p.radius[i]);
-  g.lo = Vec3::Zero();
-  g.hi = Vec3(box.lx, box.ly, top > 0.0 ? top : box.height);
-  // The unconstrained collapse spreads past the footprint once the side walls are gone:
-  // the grid then spans the grains' horizontal extent as well.
-  if (box.opens_side_walls())
-    for (std::size_t i = 0; i < p.size(); ++i)
-      for (int d = 0; d < 2; ++d) {
-        g.lo[d] = std::min(g.lo[d], p.x[i][d] - p.radius[i]);
-        g.hi[d] = std::max(g.hi[d], p.x[i][d] + p.radius[i]);
-      }
-  return g;
-}
-
-RunRecorder::RunRecorder(OutputOptions options)
-    : options_(std::move(options)), series_(options_.folder / "time_series.csv", kSeriesHeader) {
-  create_folder(options_.folder / "snapshots");
+RunRecorder::RunRecorder(std::filesystem::path folder)
+    : folder_(std::move(folder)), series_(folder_ / "time_series.csv", kSeriesHeader) {
+  create_folder(folder_ / "snapshots");
 }
 
 void RunRecorder::record_series(double time, long step, const EnergyBalance& e, double balance_error,
@@ -65,7 +42,7 @@ void RunRecorder::write_snapshot(const ParticleStore& p, const std::vector<Plane
   char name[64];
   std::snprintf(name, sizeof name, "particles_%09ld.h5", step);
   const std::filesystem::path rel = std::filesystem::path("snapshots") / name;
-  io::write_snapshot(options_.folder / rel, p, walls, wall_forces, time, step);
+  io::write_snapshot(folder_ / rel, p, walls, wall_forces, time, step);
   snapshots_.push_back({rel.string(), time, step, static_cast<long>(p.size()), p.has_shapes()});
   flush();
 }
@@ -74,7 +51,7 @@ void RunRecorder::flush() {
   std::string text;
   for (; rows_written_ < rows_.size(); ++rows_written_) text += rows_[rows_written_];
   series_.append(text);
-  write_xdmf(options_.folder / "particles.xdmf", snapshots_);
+  write_xdmf(folder_ / "particles.xdmf", snapshots_);
 }
 
 void RunRecorder::write_summary(const std::map<std::string, std::string>& entries) const {
@@ -85,7 +62,7 @@ void RunRecorder::write_summary(const std::map<std::string, std::string>& entrie
     j << "  \"" << key << "\": " << value << (++k < entries.size() ? ",\n" : "\n");
   }
   j << "}\n";
-  write_text_atomically(options_.folder / "summary.json", j.str());
+  write_text_atomically(folder_ / "summary.json", j.str());
 }
 
 }  // namespace upgrain::dem::io

@@ -174,13 +174,13 @@ void second_half_two(ParticleStore& p, std::size_t a, std::size_t b, double half
   p.omega[b] = Vec3(omega[0][1], omega[1][1], omega[2][1]);
 }
 
-// Ellipsoids in twos, spheres (and a last odd ellipsoid) one at a time: the pairing changes no
-// bit of any grain.
+// Oriented grains (ellipsoids) in twos, spheres (and a last odd ellipsoid) one at a time: the pairing changes
+// no bit of any grain.
 template <class One, class Two>
 void for_grains(ParticleStore& p, std::size_t n, double half, One one, Two two) {
   std::size_t waiting = n;  // an ellipsoid waiting for a partner
   for (std::size_t i = 0; i < n; ++i) {
-    if (!p.is_ellipsoid(i)) {
+    if (!p.oriented(i)) {
       p.omega[i] += half * p.inv_inertia[i] * p.torque[i];
       continue;
     }

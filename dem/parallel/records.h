@@ -26,6 +26,7 @@ struct StateRecord {
 // sphere runs send nothing more.
 struct ShapeRecord {
   double semi_axes[3], orientation[4], inertia_body[3];  // orientation as x, y, z, w
+  ShapeKind kind;
 };
 
 // A ghost's orientation refresh, next to its MotionRecord (ellipsoid scenes).
@@ -89,6 +90,7 @@ inline Eigen::Quaterniond get_quaternion(const double* in) {
 // The shape of particle i of a store that has shapes, and back.
 inline ShapeRecord pack_shape(const ParticleStore& p, std::size_t i) {
   ShapeRecord r{};
+  r.kind = p.shape[i];
   put(r.semi_axes, p.semi_axes[i]);
   put(r.orientation, p.orientation[i]);
   put(r.inertia_body, p.inertia_body[i]);
@@ -96,6 +98,7 @@ inline ShapeRecord pack_shape(const ParticleStore& p, std::size_t i) {
 }
 
 inline void append_shape(ParticleStore& p, const ShapeRecord& r) {
+  p.shape.push_back(r.kind);
   p.semi_axes.push_back(get(r.semi_axes));
   p.orientation.push_back(get_quaternion(r.orientation));
   p.inertia_body.push_back(get(r.inertia_body));
@@ -112,7 +115,8 @@ inline void truncate_store(ParticleStore& p, std::size_t n) {
   p.omega.resize(n);
   p.force.resize(n);
   p.torque.resize(n);
-  if (!p.semi_axes.empty()) {
+  if (p.has_shapes()) {
+    p.shape.resize(n);
     p.semi_axes.resize(n);
     p.orientation.resize(n);
     p.inertia_body.resize(n);
@@ -130,7 +134,8 @@ inline void copy_particle(ParticleStore& p, std::size_t from, std::size_t to) {
   p.omega[to] = p.omega[from];
   p.force[to] = p.force[from];
   p.torque[to] = p.torque[from];
-  if (!p.semi_axes.empty()) {
+  if (p.has_shapes()) {
+    p.shape[to] = p.shape[from];
     p.semi_axes[to] = p.semi_axes[from];
     p.orientation[to] = p.orientation[from];
     p.inertia_body[to] = p.inertia_body[from];

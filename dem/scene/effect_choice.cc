@@ -72,18 +72,19 @@ ChosenEffects choose_effects(const SceneConfig& s, const EffectSwitches& sw, con
                       mu});
 
   const bool zeta = s.damping_ratio > 0.0;
-  set.damping = add({"damping", sw.damping, zeta,
-                     zeta ? "Contact/damping ratio = " + number(s.damping_ratio)
-                          : "Contact/damping ratio = 0: no dashpot",
-                     zeta});
+  set.damping = add(
+      {"damping", sw.damping, zeta,
+       zeta ? "Contact/damping ratio = " + number(s.damping_ratio) : "Contact/damping ratio = 0: no dashpot",
+       zeta});
 
   const double* wf = s.container.friction;
   const double wall_mu = *std::max_element(wf, wf + 5);
   const bool walls = wall_mu > 0.0;
-  set.wall_friction = add({"wall friction", sw.wall_friction, walls,
-                           walls ? "a container wall has friction (largest coefficient " + number(wall_mu) + ")"
-                                 : "every container wall is frictionless: no wall history",
-                           walls});
+  set.wall_friction =
+      add({"wall friction", sw.wall_friction, walls,
+           walls ? "a container wall has friction (largest coefficient " + number(wall_mu) + ")"
+                 : "every container wall is frictionless: no wall history",
+           walls});
 
   // Rolling resistance is not part of the paper's law: only on when asked for.
   const bool rolling_on = sw.rolling_resistance == EffectSwitch::on;
@@ -100,17 +101,17 @@ ChosenEffects choose_effects(const SceneConfig& s, const EffectSwitches& sw, con
   // contradiction, so it is never refused.
   set.rotation = add({"rotation", sw.rotation, torques, why_rotation, false});
 
-  set.energy_tracking =
-      add({"energy tracking", sw.energy_tracking, needs.energy_balance,
-           needs.energy_balance ? "Output/energy balance = true"
-                                : "Output/energy balance = false: no elastic energy or dissipation per contact",
-           needs.energy_balance});
+  set.energy_tracking = add(
+      {"energy tracking", sw.energy_tracking, needs.energy_balance,
+       needs.energy_balance ? "Output/energy balance = true"
+                            : "Output/energy balance = false: no elastic energy or dissipation per contact",
+       needs.energy_balance});
 
   if (rolling_on && !set.rotation)
     throw Error("Effects/rolling resistance needs Effects/rotation = true (it acts on the spins)");
-  set.rolling_resistance = add({"rolling resistance", sw.rolling_resistance, false,
-                                "not part of the paper's law: on only when set (Effects/rolling resistance = true)",
-                                false});
+  set.rolling_resistance =
+      add({"rolling resistance", sw.rolling_resistance, false,
+           "not part of the paper's law: on only when set (Effects/rolling resistance = true)", false});
   return out;
 }
 
@@ -138,7 +139,8 @@ std::string effects_json(const std::vector<EffectChoice>& choices) {
   for (std::size_t k = 0; k < choices.size(); ++k) {
     const EffectChoice& c = choices[k];
     if (k > 0) j += ", ";
-    j += quoted(c.entry) + ": {\"on\": " + (c.on ? "true" : "false") + ", \"reason\": " + quoted(c.reason) + "}";
+    j += quoted(c.entry) + ": {\"on\": " + (c.on ? "true" : "false") + ", \"reason\": " + quoted(c.reason) +
+         "}";
   }
   return j + "}";
 }

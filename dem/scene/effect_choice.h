@@ -49,7 +49,8 @@ struct ChosenEffects {
 // The effect set of `scene` (its friction, damping, gravity, container and shapes; its
 // own `effects` member is not read). Throws upgrain::Error when an explicit `false`
 // contradicts a parameter that needs the effect, or rolling resistance lacks rotation.
-ChosenEffects choose_effects(const SceneConfig& scene, const EffectSwitches& switches, const EffectNeeds& needs);
+ChosenEffects choose_effects(const SceneConfig& scene, const EffectSwitches& switches,
+                             const EffectNeeds& needs);
 
 // A set given directly (by a program, not derived from a scene file), as choices.
 std::vector<EffectChoice> describe_effects(const EffectSet& set);

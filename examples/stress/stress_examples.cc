@@ -38,7 +38,7 @@ int symmetry(const std::filesystem::path& out, const std::vector<long>& counts, 
               "settled bagi", "bagi RAI%", "weber RAI%", "drescher", "mod. nicot", "bagi szz", "weber szz");
   for (long n : counts) {
     const auto t0 = std::chrono::steady_clock::now();
-    const SceneConfig s = ellipsoids ? test::paper_ellipsoid_bed_scene(n): test::paper_bed_scene(n);
+    const SceneConfig s = ellipsoids ? test::paper_ellipsoid_bed_scene(n) : test::paper_bed_scene(n);
     test::RelaxedBed bed = test::relaxed_bed(s, 1e-4, false);
     const int one[3] = {1, 1, 1};
     const double deposit_seconds = seconds_since(t0);

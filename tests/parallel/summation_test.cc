@@ -12,14 +12,17 @@
 #include <cstdio>
 #include <limits>
 
+#include "coupling/run/scene_run.h"
 #include "dem/analysis/bed_state.h"
-#include "dem/deposition.h"
 #include "dem/engine/simulation.h"
 #include "helpers.h"
 #include "tests/common/relaxed_bed.h"
 
 using namespace upgrain;
 using namespace upgrain::dem;
+using upgrain::coupling::run_scene;
+using upgrain::coupling::RunControl;
+using upgrain::coupling::RunResult;
 
 namespace {
 
@@ -199,7 +202,7 @@ struct BedInvariants {
 BedInvariants settle(Simulation& sim, const SceneConfig& s) {
   RunControl control;
   control.rest_ratio = 1e-6;
-  const DepositionResult r = run_deposition(sim, s, control, std::nullopt);
+  const RunResult r = run_scene(sim, control, std::nullopt);
   BedInvariants b;
   if (sim.is_root()) {
     b.height = r.bed.surface_height;

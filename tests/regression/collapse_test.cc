@@ -5,11 +5,14 @@
 
 #include <algorithm>
 
-#include "dem/deposition.h"
+#include "coupling/run/scene_run.h"
 #include "dem/scene/fill.h"
 #include "dem/time_step.h"
 
 using namespace upgrain::dem;
+using upgrain::coupling::run_scene;
+using upgrain::coupling::RunControl;
+using upgrain::coupling::RunResult;
 
 namespace {
 SceneConfig collapse_scene() {
@@ -65,16 +68,16 @@ TEST(ConstrainedCollapse, TheGateHoldsTheBedThenReleasesIt) {
   std::printf("collapse: top %.4f -> %.4f m, front at x = %.4f m (gate at %.3f m)\n", top_before, top(),
               max_x(sim), s.container.gate_x);
 
-  // Whole run through run_deposition: the gate opens at its time.
+  // Whole run through run_scene: the gate opens at its time.
   RunControl control;
   control.rest_ratio = 1e-5;
-  const DepositionResult r = run_deposition(s, control, std::nullopt);
+  const RunResult r = run_scene(s, control, std::nullopt);
   EXPECT_TRUE(r.stopped_at_rest);
   EXPECT_GT(r.simulated_time, s.container.gate_open_time);
   EXPECT_EQ(r.bed.particles_outside, 0);
   EXPECT_LT(std::abs(r.energy_balance_error), 0.02);
-  std::printf("run_deposition: %ld steps, %.3f s, balance %.2e, KE/released %.2e\n", r.steps,
-              r.simulated_time, r.energy_balance_error, r.kinetic_to_released);
+  std::printf("run_scene: %ld steps, %.3f s, balance %.2e, KE/released %.2e\n", r.steps, r.simulated_time,
+              r.energy_balance_error, r.kinetic_to_released);
 }
 
 // The same scene with the paper's ellipsoids (four shapes, a = 1.0-2.5 mm): the gate holds

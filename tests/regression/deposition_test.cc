@@ -3,10 +3,13 @@
 // random frictional packing.
 #include <gtest/gtest.h>
 
-#include "dem/deposition.h"
+#include "coupling/run/scene_run.h"
 #include "dem/time_step.h"
 
 using namespace upgrain::dem;
+using upgrain::coupling::run_scene;
+using upgrain::coupling::RunControl;
+using upgrain::coupling::RunResult;
 
 namespace {
 SceneConfig deposition_scene() {
@@ -30,7 +33,7 @@ TEST(Deposition, ThousandSpheresSettleIntoAStableBed) {
   ASSERT_LE(s.time_step, estimate_time_step(s).safe_step);
   RunControl control;
   control.rest_ratio = 1e-7;
-  const DepositionResult r = run_deposition(s, control, std::nullopt);
+  const RunResult r = run_scene(s, control, std::nullopt);
   std::printf(
       "steps %ld, KE/released %.3e, balance error %.3e, solid fraction %.4f, surface %.4f m, "
       "contacts/particle %.2f, %.3g particle-steps/s\n",

@@ -8,12 +8,15 @@
 #include <cmath>
 #include <cstdio>
 
+#include "coupling/run/scene_run.h"
 #include "dem/boundary/wall_release.h"
-#include "dem/deposition.h"
 #include "dem/scene/fill.h"
 #include "dem/time_step.h"
 
 using namespace upgrain::dem;
+using upgrain::coupling::run_scene;
+using upgrain::coupling::RunControl;
+using upgrain::coupling::RunResult;
 
 namespace {
 SceneConfig unconstrained_scene() {
@@ -148,7 +151,7 @@ TEST(UnconstrainedCollapse, RunDepositionOpensTheWallsAtTheirTimeAndBalancesEner
   // A loose ratio: the column reaches it long before the walls open, and again just after
   // (it has not started to move), so the run must wait past the release to apply it.
   control.rest_ratio = 0.05;
-  const DepositionResult r = run_deposition(s, control, std::nullopt);
+  const RunResult r = run_scene(s, control, std::nullopt);
   const double settle = 0.1 * (s.end_time - s.container.side_walls_open_time);
   EXPECT_GT(r.simulated_time, s.container.side_walls_open_time + settle);
   EXPECT_GT(r.bed.particles_outside, 0) << "grains spread past the former walls";
@@ -158,8 +161,8 @@ TEST(UnconstrainedCollapse, RunDepositionOpensTheWallsAtTheirTimeAndBalancesEner
   for (std::size_t w = 0; w < r.wall_forces.size(); ++w)
     if (r.wall_names[w] != "floor") sides += r.wall_forces[w].norm();
   EXPECT_EQ(sides, 0.0);
-  std::printf("run_deposition: %ld steps, %.3f s, balance %.2e, KE/released %.2e\n", r.steps,
-              r.simulated_time, r.energy_balance_error, r.kinetic_to_released);
+  std::printf("run_scene: %ld steps, %.3f s, balance %.2e, KE/released %.2e\n", r.steps, r.simulated_time,
+              r.energy_balance_error, r.kinetic_to_released);
 }
 
 // The extent of ellipsoids along each axis: a grain reaches x_d +- h(e_d), its support value

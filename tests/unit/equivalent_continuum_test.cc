@@ -1,5 +1,5 @@
 // The equivalent-continuum (Delaunay) deformation and velocity gradients
-// (dem/strain/equivalent_continuum.h): affine maps of a random packing recovered to
+// (upscale/strain/equivalent_continuum.h): affine maps of a random packing recovered to
 // round-off, at the origin and 2 m away; the tessellated volume of a set that contains
 // the corners of a cube is the cube; rigid rotation gives D = 0 and W = the spin; a
 // non-affine field gives the volume average of the piecewise-linear gradient; degenerate
@@ -11,10 +11,11 @@
 #include <random>
 #include <vector>
 
-#include "dem/strain/deformation_fit.h"
-#include "dem/strain/equivalent_continuum.h"
+#include "upscale/strain/deformation_fit.h"
+#include "upscale/strain/equivalent_continuum.h"
 
 using namespace upgrain::dem;
+using namespace upgrain::upscale;
 
 namespace {
 

@@ -9,8 +9,8 @@
 #include <limits>
 #include <random>
 
+#include "dem/contact/geometry/support_function_pair.h"
 #include "dem/contact/grain_poses.h"
-#include "dem/contact/shaped_contact.h"
 #include "tests/unit/ellipsoid_cases.h"
 #include "tests/unit/ellipsoid_reference.h"
 
@@ -222,8 +222,13 @@ TEST(ForceLoopGeometry, TwoPairsAtOnceAreBitwiseOnePairAtATime) {
     for (int pair = 0; pair < 2; ++pair)
       alone_touching[pair] =
           posed_contact(poses[pair][0], poses[pair][1], &previous[pair], false, alone_stats, alone[pair]);
-    posed_contacts_two(poses[0][0], poses[0][1], previous[0], poses[1][0], poses[1][1], previous[1],
-                       two_stats, two[0], two[1], two_touching[0], two_touching[1]);
+    WarmPairSolve lanes[2] = {{&poses[0][0], &poses[0][1], previous[0], {}, false},
+                              {&poses[1][0], &poses[1][1], previous[1], {}, false}};
+    posed_contacts_two(lanes[0], lanes[1], two_stats);
+    for (int pair = 0; pair < 2; ++pair) {
+      two[pair] = lanes[pair].out;
+      two_touching[pair] = lanes[pair].touching;
+    }
     for (int pair = 0; pair < 2; ++pair) {
       SCOPED_TRACE("trial " + std::to_string(trial) + " pair " + std::to_string(pair));
       ASSERT_EQ(two_touching[pair], alone_touching[pair]);

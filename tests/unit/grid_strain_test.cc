@@ -1,4 +1,4 @@
-// Finite strain per grid cell (dem/strain/grid_strain.h): an affine motion of a random
+// Finite strain per grid cell (upscale/strain/grid_strain.h): an affine motion of a random
 // packing over a grid is recovered in every valid cell by both definitions, for Lagrangian
 // and Eulerian sets; sparse, flat and inverted cells are reported with their reason and no
 // NaN; a rigid rotation of the whole packing gives E = e = 0, D = 0, W = the spin, R = Q;
@@ -13,11 +13,12 @@
 #include <vector>
 
 #include "dem/core/error.h"
-#include "dem/strain/deformation_fit.h"
-#include "dem/strain/grid_strain.h"
-#include "dem/strain/strain_measures.h"
+#include "upscale/strain/deformation_fit.h"
+#include "upscale/strain/grid_strain.h"
+#include "upscale/strain/strain_measures.h"
 
 using namespace upgrain::dem;
+using namespace upgrain::upscale;
 
 namespace {
 

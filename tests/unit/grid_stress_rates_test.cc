@@ -1,4 +1,4 @@
-// Objective stress rates per grid cell over outputs (dem/strain/grid_stress_rates.h),
+// Objective stress rates per grid cell over outputs (upscale/strain/grid_stress_rates.h),
 // against exact answers:
 //   - a packing spinning rigidly with a cell stress co-rotating with it, sigma = Q sigma0 Q^T:
 //     all four rates vanish up to the backward difference's error, which falls at first
@@ -17,11 +17,12 @@
 #include <vector>
 
 #include "dem/core/error.h"
-#include "dem/strain/grid_strain.h"
-#include "dem/strain/grid_stress_rates.h"
-#include "dem/strain/strain_measures.h"
+#include "upscale/strain/grid_strain.h"
+#include "upscale/strain/grid_stress_rates.h"
+#include "upscale/strain/strain_measures.h"
 
 using namespace upgrain::dem;
+using namespace upgrain::upscale;
 
 namespace {
 

@@ -1,4 +1,4 @@
-// Kinematics of a grid cell (dem/strain/, docs/strain.md) against exact answers: best-fit F
+// Kinematics of a grid cell (upscale/strain/, docs/strain.md) against exact answers: best-fit F
 // and L of affine motions of a random packing, near the origin and 2 m from it; the strain
 // measures and the polar decomposition against closed forms (simple shear, stretches, rigid
 // rotations); objective stress rates of stresses that are only carried along, with the order
@@ -14,11 +14,12 @@
 #include <string>
 #include <vector>
 
-#include "dem/strain/deformation_fit.h"
-#include "dem/strain/objective_rates.h"
-#include "dem/strain/strain_measures.h"
+#include "upscale/strain/deformation_fit.h"
+#include "upscale/strain/objective_rates.h"
+#include "upscale/strain/strain_measures.h"
 
 using namespace upgrain::dem;
+using namespace upgrain::upscale;
 
 namespace {
 

@@ -15,10 +15,10 @@
 #include <sstream>
 
 #include "dem/core/error.h"
-#include "dem/io/grid_strain_output.h"
-#include "dem/strain/grid_strain.h"
-#include "dem/strain/strain_measures.h"
 #include "upscale/grid_mesh.h"
+#include "upscale/strain/grid_strain.h"
+#include "upscale/strain/grid_strain_output.h"
+#include "upscale/strain/strain_measures.h"
 #include "upscale/strain_fields.h"
 
 using namespace upgrain;
@@ -27,7 +27,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // 3 x 2 x 2 cells; 30 random points per cell except cell 4 (2 points: too few).
-dem::GridStrain sheared_packing(const dem::Mat3& f) {
+upscale::GridStrain sheared_packing(const dem::Mat3& f) {
   dem::RegularGrid grid;
   grid.lo = dem::Vec3(0.2, -0.1, 0.0);
   grid.hi = grid.lo + dem::Vec3(0.06, 0.04, 0.04);
@@ -46,8 +46,8 @@ dem::GridStrain sheared_packing(const dem::Mat3& f) {
       x.push_back(f * x0.back());
       v.push_back(dem::Vec3::Zero());
     }
-  const dem::StrainReference ref = dem::make_strain_reference(id, x0, grid, 0.0, 0);
-  return dem::grid_strain(ref, grid, {id, x, v}, 0.5, 500, {});
+  const upscale::StrainReference ref = upscale::make_strain_reference(id, x0, grid, 0.0, 0);
+  return upscale::grid_strain(ref, grid, {id, x, v}, 0.5, 500, {});
 }
 
 }  // namespace
@@ -55,18 +55,18 @@ dem::GridStrain sheared_packing(const dem::Mat3& f) {
 TEST(StrainFields, AffineMotionGivesItsMeasuresAndInvalidCellsAreZero) {
   dem::Mat3 f;
   f << 1.2, 0.4, 0.0, 0.0, 0.9, 0.1, 0.0, 0.0, 0.8;
-  const dem::GridStrain strain = sheared_packing(f);
+  const upscale::GridStrain strain = sheared_packing(f);
   const upscale::GridFields g = upscale::grid_fields_from_strain(strain);
   EXPECT_EQ(g.num_cells(), 12);
   EXPECT_EQ(g.step, 500);
-  const dem::StrainMeasures exact = dem::strain_measures(f);
+  const upscale::StrainMeasures exact = upscale::strain_measures(f);
   ASSERT_TRUE(exact.valid);
   for (const char* d : {"best_fit", "tessellation"}) {
     const std::string b = d;
     for (int c = 0; c < 12; ++c) {
       if (c == 4) {
         EXPECT_EQ(g[b + "_F_valid"][c], 0.0);
-        EXPECT_EQ(g[b + "_F_reason"][c], static_cast<double>(dem::StrainReason::too_few_particles));
+        EXPECT_EQ(g[b + "_F_reason"][c], static_cast<double>(upscale::StrainReason::too_few_particles));
         EXPECT_EQ(g[b + "_ln_J"][c], 0.0);
         EXPECT_EQ(g[b + "_hencky_xx"][c], 0.0);
         continue;
@@ -111,13 +111,13 @@ TEST(StrainFields, WrittenThroughTheMeshAsCellDataReadBackExactly) {
 TEST(StrainFields, ReadFromTheWrittenFileBitForBit) {
   dem::Mat3 f;
   f << 0.9, 0.3, 0.1, -0.2, 1.1, 0.0, 0.05, 0.0, 1.3;
-  const dem::GridStrain strain = sheared_packing(f);
+  const upscale::GridStrain strain = sheared_packing(f);
   const upscale::GridFields memory = upscale::grid_fields_from_strain(strain);
   int pid = static_cast<int>(::getpid()), rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   const fs::path file = fs::temp_directory_path() /
                         ("upgrain_strain_file_" + std::to_string(pid) + "_" + std::to_string(rank) + ".h5");
-  dem::io::write_grid_strain(file, strain);
+  upscale::write_grid_strain(file, strain);
   const upscale::GridFields read = upscale::read_strain_fields(file);
   EXPECT_EQ(read.names, memory.names);
   EXPECT_EQ(read.values, memory.values);  // exact

@@ -19,8 +19,9 @@ struct CoulombSpring {
   // The tangential force on i for the tangential relative velocity v_t, with the normal
   // force f_n as the Coulomb cap; updates the stored spring.
   template <bool Energy>
-  [[gnu::always_inline]] static Vec3 force(const ContactParameters& p, double k_t, const Vec3& n, const Vec3& v_t,
-                                           double f_n, TangentialSpring& spring, ContactEnergy& energy) {
+  [[gnu::always_inline]] static Vec3 force(const ContactParameters& p, double k_t, const Vec3& n,
+                                           const Vec3& v_t, double f_n, TangentialSpring& spring,
+                                           ContactEnergy& energy) {
     Vec3& f_t = spring.force;
     carry_into_plane<Energy>(f_t, n, spring.stiffness, k_t, energy.tangential_stiffness_change);
     f_t -= k_t * p.dt * v_t;  // incremental: dF_t = -k_t du_t

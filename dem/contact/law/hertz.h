@@ -21,6 +21,8 @@ namespace upgrain::dem {
 
 struct HertzNormal {
   static constexpr const char* name = "hertz-mindlin";
+  static constexpr const char* description =
+      "Hertz normal force and Mindlin tangential stiffness from the grains' E and nu (the paper's law).";
   static constexpr bool needs_history = false;
   static constexpr bool needs_rotation = false;
   // Its coefficients are the grains' E and nu (Particles section): none of its own.
@@ -41,14 +43,16 @@ struct HertzNormal {
 
   // dt <= Rayleigh fraction T_R of the thinnest grain and <= Hertz fraction t_H of the
   // stiffest, lightest contact at the impact speed (docs/contact-law.md, time step).
-  static LawTimeLimit time_limit(const SceneTimeScales& s, double rayleigh_fraction, double duration_fraction) {
+  static LawTimeLimit time_limit(const SceneTimeScales& s, double rayleigh_fraction,
+                                 double duration_fraction) {
     const Material& m = s.material;
     LawTimeLimit t;
     // Rayleigh time T_R = pi r sqrt(rho/G) / (0.1631 nu + 0.8766) (Li et al. 2005; Thornton 2015).
     t.rayleigh_time = std::numbers::pi * s.thinnest * s.r_min * std::sqrt(m.density / m.shear_modulus()) /
                       (0.1631 * m.poisson_ratio + 0.8766);
     const double e_star = effective_youngs_modulus(m, m);  // particle-wall: the same material
-    const double t_pp = hertz::contact_duration(e_star, 0.5 * s.flattest * s.r_min, 0.5 * s.lightest, s.impact_speed);
+    const double t_pp =
+        hertz::contact_duration(e_star, 0.5 * s.flattest * s.r_min, 0.5 * s.lightest, s.impact_speed);
     const double t_pw = hertz::contact_duration(e_star, s.flattest * s.r_min, s.lightest, s.impact_speed);
     t.contact_time = std::min(t_pp, t_pw);
     const double by_rayleigh = rayleigh_fraction * t.rayleigh_time;

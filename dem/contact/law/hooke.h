@@ -23,6 +23,8 @@ namespace upgrain::dem {
 
 struct HookeNormal {
   static constexpr const char* name = "hooke";
+  static constexpr const char* description =
+      "linear spring-dashpot (Cundall and Strack 1979) with 'normal stiffness' and 'tangential stiffness'.";
   static constexpr bool needs_history = false;
   static constexpr bool needs_rotation = false;
   static constexpr std::array<LawParameter, 2> parameters{{

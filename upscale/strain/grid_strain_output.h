@@ -12,10 +12,28 @@
 
 #include "dem/core/box.h"
 #include "dem/io/csv_series.h"
-#include "dem/strain/grid_strain.h"
-#include "dem/strain/grid_stress_rates.h"
+#include "upscale/strain/grid_strain.h"
+#include "upscale/strain/grid_stress_rates.h"
 
-namespace upgrain::dem::io {
+namespace upgrain::upscale {
+
+using dem::Box;
+using dem::GlobalId;
+using dem::RegularGrid;
+using dem::io::CsvSeries;
+
+// Which grid strain a run writes (docs/strain.md). Evaluated with the grid stress, on its
+// grid (Stress/grid cells and box), so it needs the grid stress enabled.
+struct GridStrainOutputOptions {
+  bool enabled = false;
+  // t0 (s): the reference state is the initial state when 0, otherwise the first grid-stress
+  // evaluation at or after t0. No strain is written before it.
+  double reference_time = 0.0;
+  GridStrainOptions kernel;  // set (Lagrangian or Eulerian) and definitions
+  // The grid-stress formula whose cell series gives the objective stress rates written with
+  // the strain (grid_stress_rates.h); it must be among the formulas written.
+  dem::StressFormula rate_formula = dem::StressFormula::bagi;
+};
 
 struct GridStrainEntry {
   std::string file;  // relative to the output folder
@@ -32,7 +50,7 @@ class GridStrainRecorder {
   explicit GridStrainRecorder(std::filesystem::path folder);
 
   // `rates` (optional): the objective stress rates of the same output, written beside the
-  // strain (dem/strain/grid_stress_rates.h). Without them the CSV's rate columns are zero
+  // strain (upscale/strain/grid_stress_rates.h). Without them the CSV's rate columns are zero
   // with reason code no_history.
   void record(const GridStrain& strain, const GridStressRates* rates = nullptr);
   [[nodiscard]] const std::vector<GridStrainEntry>& entries() const { return entries_; }
@@ -90,4 +108,4 @@ void write_compute_grid_strain(const std::filesystem::path& path, const GridStra
 // "best fit" -> "best_fit": the name used for groups, columns and fields.
 std::string field_name(StrainDefinition d);
 
-}  // namespace upgrain::dem::io
+}  // namespace upgrain::upscale

@@ -21,7 +21,10 @@
 
 #include "dem/core/types.h"
 
-namespace upgrain::dem {
+namespace upgrain::upscale {
+
+using dem::Mat3;
+using dem::Vec3;
 
 // Fewer than 4 points cannot determine a 3-D affine map (12 unknowns, 3 equations each,
 // and 4 affinely independent points are the minimum).
@@ -67,4 +70,4 @@ inline AffineFit fit_velocity_gradient(std::span<const Vec3> positions, std::spa
   return fit_affine_map(positions, velocities);
 }
 
-}  // namespace upgrain::dem
+}  // namespace upgrain::upscale

@@ -24,7 +24,9 @@
 
 #include "dem/core/types.h"
 
-namespace upgrain::dem {
+namespace upgrain::upscale {
+
+using dem::Mat3;
 
 // Pointwise kernels: sigma_dot, sigma and the kinematic tensor at one instant.
 inline Mat3 jaumann_rate(const Mat3& sigma_dot, const Mat3& sigma, const Mat3& w) {
@@ -64,4 +66,4 @@ struct ObjectiveRates {
 ObjectiveRates objective_rates(std::span<const double> times, std::span<const Mat3> sigma,
                                std::span<const Mat3> velocity_gradient, std::span<const Mat3> rotation);
 
-}  // namespace upgrain::dem
+}  // namespace upgrain::upscale

@@ -20,7 +20,10 @@
 
 #include "dem/core/types.h"
 
-namespace upgrain::dem {
+namespace upgrain::upscale {
+
+using dem::Mat3;
+using dem::Vec3;
 
 struct TessellationGradient {
   bool valid = false;
@@ -75,4 +78,4 @@ inline TessellationGradient equivalent_continuum_velocity_gradient(std::span<con
   return equivalent_continuum_deformation(positions, velocities);
 }
 
-}  // namespace upgrain::dem
+}  // namespace upgrain::upscale

@@ -1,12 +1,16 @@
 #pragma once
-// The geometry of ellipsoid contacts as the force loop uses it (dem/engine/force_loop.h):
-// pairs with at least one ellipsoid and ellipsoids against walls (docs/ellipsoids.md).
+// The geometry of pairs with at least one ellipsoid (sphere-ellipsoid and ellipsoid-ellipsoid,
+// a sphere posed as an ellipsoid of equal axes) by the support-function solver, as the force
+// loop uses it (dem/engine/force_loop.h, docs/ellipsoids.md): in batches, before the force
+// pass, two pairs at a time where it can.
+#include <cstddef>
 #include <vector>
 
-#include "dem/contact/contact_response.h"
+#include "dem/contact/contact_kinematics.h"
 #include "dem/contact/ellipsoid_geometry.h"
+#include "dem/contact/geometry/shaped_pair.h"
 #include "dem/contact/grain_poses.h"
-#include "dem/core/plane_wall.h"
+#include "dem/core/contact_history.h"
 
 namespace upgrain::dem {
 
@@ -34,54 +38,32 @@ inline bool still_apart(const GrainPoses& poses, std::size_t i, std::size_t j, S
   return false;
 }
 
-// The pair's memory after posed_contact() gave `c` (touching or not), and its kinematics.
-inline bool finish_pair(const GrainPoses& poses, std::size_t i, std::size_t j, bool touching,
-                        const PairContact& c, ShapedContactMemory& memory, ContactKinematics& kin,
-                        double& r_star) {
+// The pair's memory after posed_contact() gave `c` (touching or not), and its geometry.
+inline void finish_pair(const GrainPoses& poses, const PairContact& c, bool touching, ShapedPair& s) {
+  ShapedContactMemory& memory = *s.memory;
   const bool first_touch = memory.r_star == 0.0;
   // The normal of the proof or the solver: the pair's next warm start.
   memory.normal = c.normal;
+  s.touching = touching;
   if (!touching) {
     memory.r_star = 0.0;
     // -depth is the proven gap (f's round-off is below 1e-14 of the pair's size; the margin is
     // ten times that).
-    memory.gap_budget = -c.depth - 1e-13 * (poses[i].major + poses[j].major);
-    return false;
+    memory.gap_budget = -c.depth - 1e-13 * (poses[s.i].major + poses[s.j].major);
+    return;
   }
   memory.gap_budget = 0.0;
-  kin.normal = c.normal;
-  kin.overlap = c.depth;
-  kin.lever_i = c.lever1;
-  kin.lever_j = c.lever2;
+  s.normal = c.normal;
+  s.overlap = c.depth;
+  s.lever_i = c.lever1;
+  s.lever_j = c.lever2;
   // Elliptic Hertz through the Gaussian-curvature radius (Johnson 1985, eq. 4.25), taken at
   // first touch and held while the contact lasts: the normal force is then the gradient of
   // the Hertz potential (8/15) E* sqrt(R*) delta^(5/2), since d(delta) is the normal at the
   // contact point (envelope theorem), and the contact law is conservative.
   if (first_touch) memory.r_star = c.gaussian_radius;
-  r_star = memory.r_star;
-  return true;
+  s.r_star = memory.r_star;
 }
-
-// One pair of a batch, and its geometry.
-struct ShapedPair {
-  std::size_t i = 0, j = 0;
-  ShapedContactMemory* memory = nullptr;
-  bool touching = false;
-  // When touching: the geometry part of its ContactKinematics, and the held Hertz radius.
-  Vec3 normal = Vec3::Zero();
-  double overlap = 0.0;
-  Vec3 lever_i = Vec3::Zero(), lever_j = Vec3::Zero();
-  double r_star = 0.0;
-
-  // Its geometry into a contact's kinematics, and its Hertz radius.
-  void kinematics(ContactKinematics& kin, double& radius) const {
-    kin.normal = normal;
-    kin.overlap = overlap;
-    kin.lever_i = lever_i;
-    kin.lever_j = lever_j;
-    radius = r_star;
-  }
-};
 
 // The geometry of every pair of `pairs` (after the bounding spheres): the separation budget,
 // then posed_contact(), two pairs at once (posed_contacts_two: the same results bit for bit and
@@ -89,21 +71,13 @@ struct ShapedPair {
 void shaped_pair_geometries(const GrainPoses& poses, std::vector<ShapedPair>& pairs,
                             ContactSolverStats& stats);
 
-// An ellipsoid against a plane wall, closed form: its lowest point along -normal
-// (docs/ellipsoid-contact.md). Returns false when apart (then r_held = 0). Sets the overlap
-// and lever of `kin` (the caller sets kin.normal = -wall.normal) and the Hertz radius, held
-// from first touch in r_held, as for pairs.
-[[gnu::always_inline]] inline bool shaped_wall_geometry(const PosedEllipsoid& posed, const PlaneWall& wall,
-                                                        double& r_held, ContactKinematics& kin) {
-  const ContactGeometry g = posed_plane_contact(posed, Plane{wall.point, wall.normal}, r_held == 0.0);
-  if (!g.touching) {
-    r_held = 0.0;
-    return false;
+// The support-function rows of the pair-geometry table (pair_geometries.h).
+struct SupportFunctionPair {
+  static constexpr bool closed_form = false;
+  static constexpr const char* name = "support function (sphere-ellipsoid, ellipsoid-ellipsoid)";
+  static void solve(const GrainPoses& poses, std::vector<ShapedPair>& pairs, ContactSolverStats& stats) {
+    shaped_pair_geometries(poses, pairs, stats);
   }
-  kin.overlap = g.depth;
-  kin.lever_i = g.lever1;
-  if (r_held == 0.0) r_held = gaussian_curvature_radius(g);
-  return true;
-}
+};
 
 }  // namespace upgrain::dem

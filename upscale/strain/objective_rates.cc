@@ -1,10 +1,10 @@
-#include "dem/strain/objective_rates.h"
+#include "upscale/strain/objective_rates.h"
 
 #include <cmath>
 
-#include "dem/strain/strain_measures.h"
+#include "upscale/strain/strain_measures.h"
 
-namespace upgrain::dem {
+namespace upgrain::upscale {
 
 std::vector<Mat3> time_derivative(std::span<const double> t, std::span<const Mat3> f) {
   const std::size_t n = f.size();
@@ -81,4 +81,4 @@ ObjectiveRates objective_rates(std::span<const double> times, std::span<const Ma
   return out;
 }
 
-}  // namespace upgrain::dem
+}  // namespace upgrain::upscale

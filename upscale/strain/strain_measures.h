@@ -16,7 +16,10 @@
 
 #include "dem/core/types.h"
 
-namespace upgrain::dem {
+namespace upgrain::upscale {
+
+using dem::Mat3;
+using dem::Vec3;
 
 // F is refused as degenerate when its smallest principal stretch is below this fraction of
 // the largest: the cell has been flattened to round-off, and ln U would be dominated by noise.
@@ -84,4 +87,4 @@ inline Mat3 cross_matrix(const Vec3& w) {
   return m;
 }
 
-}  // namespace upgrain::dem
+}  // namespace upgrain::upscale

@@ -1,4 +1,4 @@
-#include "dem/io/grid_strain_output.h"
+#include "upscale/strain/grid_strain_output.h"
 
 #include <cstdint>
 #include <cstdio>
@@ -10,7 +10,14 @@
 #include "dem/io/grid_xdmf.h"
 #include "dem/io/hdf5_util.h"
 
-namespace upgrain::dem::io {
+namespace upgrain::upscale {
+
+namespace hdf5 = dem::io::hdf5;
+using dem::io::AtomicFile;
+using dem::io::create_folder;
+using dem::io::GridXdmfStep;
+using dem::io::write_grid_xdmf;
+using dem::io::write_text_atomically;
 
 namespace {
 
@@ -164,7 +171,7 @@ void write_grid_strain(const std::filesystem::path& path, const GridStrain& stra
     write_definitions(file, strain, rates);
     if (rates) {
       Handle g(create_group(file, "rates"), H5Gclose, "create group rates");
-      write_attribute(g, "formula", field_name(rates->formula));
+      write_attribute(g, "formula", dem::io::field_name(rates->formula));
       write_attribute(g, "outputs_used", static_cast<double>(rates->outputs_used));
       write_attribute(g, "order", static_cast<double>(rates->order()));
       write_attribute(g, "difference", difference_name(rates->outputs_used));
@@ -334,4 +341,4 @@ void ComputeGridStrainRecorder::record(const GridStrain& strain, const std::vect
   csv_.append(rows);
 }
 
-}  // namespace upgrain::dem::io
+}  // namespace upgrain::upscale

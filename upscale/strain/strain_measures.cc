@@ -1,11 +1,11 @@
-#include "dem/strain/strain_measures.h"
+#include "upscale/strain/strain_measures.h"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 #include <cmath>
 #include <cstdio>
 
-namespace upgrain::dem {
+namespace upgrain::upscale {
 
 namespace {
 
@@ -152,4 +152,4 @@ double equivalent_shear_rate(const Mat3& l) {
   return std::sqrt(2.0 * d.squaredNorm());
 }
 
-}  // namespace upgrain::dem
+}  // namespace upgrain::upscale

@@ -1,21 +1,6 @@
-#include "dem/contact/shaped_contact.h"
+#include "dem/contact/geometry/support_function_pair.h"
 
 namespace upgrain::dem {
-
-namespace {
-
-// finish_pair() into a ShapedPair.
-void finish(const GrainPoses& poses, ShapedPair& s, bool touching, const PairContact& c) {
-  ContactKinematics kin;
-  s.touching = finish_pair(poses, s.i, s.j, touching, c, *s.memory, kin, s.r_star);
-  if (!s.touching) return;
-  s.normal = kin.normal;
-  s.overlap = kin.overlap;
-  s.lever_i = kin.lever_i;
-  s.lever_j = kin.lever_j;
-}
-
-}  // namespace
 
 void shaped_pair_geometries(const GrainPoses& poses, std::vector<ShapedPair>& pairs,
                             ContactSolverStats& stats) {
@@ -27,7 +12,7 @@ void shaped_pair_geometries(const GrainPoses& poses, std::vector<ShapedPair>& pa
     const ShapedContactMemory& m = *s.memory;
     const bool touching = posed_contact(
         poses[s.i], poses[s.j], m.normal != Vec3::Zero() ? &m.normal : nullptr, m.r_star == 0.0, stats, c);
-    finish(poses, s, touching, c);
+    finish_pair(poses, c, touching, s);
   };
   for (ShapedPair& s : pairs) {
     if (still_apart(poses, s.i, s.j, *s.memory, stats)) {
@@ -45,12 +30,11 @@ void shaped_pair_geometries(const GrainPoses& poses, std::vector<ShapedPair>& pa
     }
     ShapedPair& a = *waiting;
     waiting = nullptr;
-    PairContact ca, cb;
-    bool ta = false, tb = false;
-    posed_contacts_two(poses[a.i], poses[a.j], a.memory->normal, poses[s.i], poses[s.j], s.memory->normal,
-                       stats, ca, cb, ta, tb);
-    finish(poses, a, ta, ca);
-    finish(poses, s, tb, cb);
+    WarmPairSolve wa{&poses[a.i], &poses[a.j], a.memory->normal, {}, false};
+    WarmPairSolve ws{&poses[s.i], &poses[s.j], s.memory->normal, {}, false};
+    posed_contacts_two(wa, ws, stats);
+    finish_pair(poses, wa.out, wa.touching, a);
+    finish_pair(poses, ws.out, ws.touching, s);
   }
   if (waiting) alone(*waiting);
 }

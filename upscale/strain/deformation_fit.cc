@@ -1,11 +1,11 @@
-#include "dem/strain/deformation_fit.h"
+#include "upscale/strain/deformation_fit.h"
 
 #include <Eigen/QR>
 #include <Eigen/SVD>
 #include <cmath>
 #include <cstdio>
 
-namespace upgrain::dem {
+namespace upgrain::upscale {
 
 namespace {
 
@@ -79,4 +79,4 @@ AffineFit fit_affine_map(std::span<const Vec3> a, std::span<const Vec3> b) {
   return fit;
 }
 
-}  // namespace upgrain::dem
+}  // namespace upgrain::upscale

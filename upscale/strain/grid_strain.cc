@@ -1,4 +1,4 @@
-#include "dem/strain/grid_strain.h"
+#include "upscale/strain/grid_strain.h"
 
 #include <algorithm>
 #include <numeric>
@@ -6,11 +6,11 @@
 #include <utility>
 
 #include "dem/core/error.h"
-#include "dem/strain/deformation_fit.h"
-#include "dem/strain/equivalent_continuum.h"
-#include "dem/strain/strain_measures.h"
+#include "upscale/strain/deformation_fit.h"
+#include "upscale/strain/equivalent_continuum.h"
+#include "upscale/strain/strain_measures.h"
 
-namespace upgrain::dem {
+namespace upgrain::upscale {
 
 std::string_view name_of(StrainSet s) { return s == StrainSet::lagrangian ? "lagrangian" : "eulerian"; }
 
@@ -335,4 +335,4 @@ GridStrain partition_strain(const StrainReference& reference, std::span<const in
   return g;
 }
 
-}  // namespace upgrain::dem
+}  // namespace upgrain::upscale

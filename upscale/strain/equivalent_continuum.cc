@@ -1,4 +1,4 @@
-#include "dem/strain/equivalent_continuum.h"
+#include "upscale/strain/equivalent_continuum.h"
 
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -11,9 +11,9 @@
 #include <utility>
 #include <vector>
 
-#include "dem/strain/deformation_fit.h"
+#include "upscale/strain/deformation_fit.h"
 
-namespace upgrain::dem {
+namespace upgrain::upscale {
 
 namespace {
 
@@ -151,4 +151,4 @@ TessellationGradient equivalent_continuum_deformation(std::span<const Vec3> refe
   return gradient_over_tetrahedra(delaunay_tetrahedra(reference), reference, current);
 }
 
-}  // namespace upgrain::dem
+}  // namespace upgrain::upscale

@@ -27,10 +27,14 @@
 #include <vector>
 
 #include "dem/core/types.h"
-#include "dem/strain/grid_strain.h"
 #include "dem/stress/stress_formula.h"
+#include "upscale/strain/grid_strain.h"
 
-namespace upgrain::dem {
+namespace upgrain::upscale {
+
+using dem::GridStress;
+using dem::Mat3;
+using dem::StressFormula;
 
 // One definition's rates (the definition gives L and R), one entry per cell.
 struct CellStressRates {
@@ -84,4 +88,4 @@ class StressRateHistory {
   std::deque<Output> outputs_;
 };
 
-}  // namespace upgrain::dem
+}  // namespace upgrain::upscale

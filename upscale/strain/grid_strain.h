@@ -23,10 +23,15 @@
 #include <vector>
 
 #include "dem/core/types.h"
-#include "dem/strain/equivalent_continuum.h"
 #include "dem/stress/grid_stress.h"
+#include "upscale/strain/equivalent_continuum.h"
 
-namespace upgrain::dem {
+namespace upgrain::upscale {
+
+using dem::GlobalId;
+using dem::Mat3;
+using dem::RegularGrid;
+using dem::Vec3;
 
 enum class StrainSet { lagrangian, eulerian };
 std::string_view name_of(StrainSet s);  // "lagrangian", "eulerian"
@@ -156,4 +161,4 @@ GridStrain partition_strain(const StrainReference& reference, std::span<const in
                             const ParticleKinematics& now, double time, long step,
                             const GridStrainOptions& options, const GridStrain* previous = nullptr);
 
-}  // namespace upgrain::dem
+}  // namespace upgrain::upscale

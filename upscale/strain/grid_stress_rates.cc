@@ -1,12 +1,12 @@
-#include "dem/strain/grid_stress_rates.h"
+#include "upscale/strain/grid_stress_rates.h"
 
 #include <sstream>
 
 #include "dem/core/error.h"
-#include "dem/strain/objective_rates.h"
-#include "dem/strain/strain_measures.h"
+#include "upscale/strain/objective_rates.h"
+#include "upscale/strain/strain_measures.h"
 
-namespace upgrain::dem {
+namespace upgrain::upscale {
 
 void CellStressRates::resize(int cells) {
   const auto n = static_cast<std::size_t>(cells);
@@ -92,4 +92,4 @@ GridStressRates StressRateHistory::push(std::span<const Mat3> stress, const Grid
   return out;
 }
 
-}  // namespace upgrain::dem
+}  // namespace upgrain::upscale

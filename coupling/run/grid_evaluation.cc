@@ -1,0 +1,81 @@
+#include "coupling/run/grid_evaluation.h"
+
+#include <utility>
+
+namespace upgrain::coupling {
+
+GridEvaluation::GridEvaluation(dem::Simulation& sim, const OutputOptions& output)
+    : output_(output), strain_on_(output.grid_strain.enabled) {
+  sim.on_root([&] { stress_out_.emplace(output_.folder, output_.grid_stress.formulas); });
+  if (!strain_on_) return;
+  sim.on_root([&] { strain_out_.emplace(output_.folder); });
+  rate_history_.emplace(output_.grid_strain.rate_formula);
+  if (output_.grid_strain.reference_time <= 0.0) evaluate_strain(sim, grid_now(sim), nullptr);
+}
+
+dem::RegularGrid GridEvaluation::grid_now(dem::Simulation& sim) const {
+  dem::RegularGrid g;
+  const dem::ParticleStore& all = sim.whole_state();
+  if (sim.is_root()) g = dem::io::stress_grid(output_.grid_stress, all, sim.scene().container);
+  MPI_Bcast(g.n, 3, MPI_INT, 0, sim.comm());
+  MPI_Bcast(g.lo.data(), 3, MPI_DOUBLE, 0, sim.comm());
+  MPI_Bcast(g.hi.data(), 3, MPI_DOUBLE, 0, sim.comm());
+  return g;
+}
+
+void GridEvaluation::evaluate(dem::Simulation& sim) {
+  final_grid_ = grid_now(sim);
+  final_stress_ = sim.grid_stress(final_grid_);
+  sim.on_root([&] { stress_out_->record(final_grid_, *final_stress_, sim.time(), sim.step_count()); });
+  const dem::ComputeGridStress blocks = sim.compute_grid_stress();
+  sim.on_root([&] {
+    if (!compute_grid_out_) compute_grid_out_.emplace(output_.folder, output_.grid_stress.formulas);
+    compute_grid_out_->record(blocks, sim.time(), sim.step_count());
+  });
+  if (strain_on_) evaluate_strain(sim, final_grid_, &*final_stress_);
+}
+
+void GridEvaluation::evaluate_block_strain(dem::Simulation& sim, const dem::ParticleStore& p,
+                                           const std::vector<int>& owner) {
+  const std::vector<dem::Box> blocks = sim.compute_grid_blocks();
+  const int count = static_cast<int>(blocks.size());
+  if (!block_reference_) {
+    block_reference_ = upscale::make_strain_reference(p.id, p.x, owner, count, sim.time(), sim.step_count());
+    reference_blocks_ = blocks;
+  }
+  upscale::GridStrain b = upscale::partition_strain(*block_reference_, owner, {p.id, p.x, p.v}, sim.time(),
+                                                    sim.step_count(), output_.grid_strain.kernel,
+                                                    last_block_strain_ ? &*last_block_strain_ : nullptr);
+  if (!block_strain_out_) block_strain_out_.emplace(output_.folder);
+  if (output_.grid_strain.kernel.set == upscale::StrainSet::lagrangian)
+    block_strain_out_->record(b, reference_blocks_, block_reference_->id, block_reference_->cell);
+  else
+    block_strain_out_->record(b, blocks, p.id, owner);
+  last_block_strain_ = std::move(b);
+}
+
+void GridEvaluation::evaluate_strain(dem::Simulation& sim, const dem::RegularGrid& grid,
+                                     const dem::GridStress* stress) {
+  const double t0 = output_.grid_strain.reference_time;
+  if (!strain_reference_ && t0 > 0.0 && sim.time() < t0 - 0.5 * sim.time_step()) return;
+  const dem::ParticleStore& p = sim.whole_state();
+  const std::vector<int> owner = sim.gather_owners_sorted_by_id();  // collective
+  sim.on_root([&] {
+    evaluate_block_strain(sim, p, owner);
+    if (!strain_reference_)
+      strain_reference_ = upscale::make_strain_reference(p.id, p.x, grid, sim.time(), sim.step_count());
+    upscale::GridStrain g =
+        upscale::grid_strain(*strain_reference_, grid, {p.id, p.x, p.v}, sim.time(), sim.step_count(),
+                             output_.grid_strain.kernel, final_strain_ ? &*final_strain_ : nullptr);
+    if (stress) {
+      const upscale::GridStressRates rates =
+          rate_history_->push((*stress)[output_.grid_strain.rate_formula], g);
+      strain_out_->record(g, &rates);
+    } else {
+      strain_out_->record(g);
+    }
+    final_strain_ = std::move(g);
+  });
+}
+
+}  // namespace upgrain::coupling

@@ -1,0 +1,27 @@
+#pragma once
+// What a run writes into its output folder and how often (docs/output.md): the snapshots and
+// time series of the DEM (dem/io/run_recorder.h), the grid stress (dem/io/grid_stress_output.h)
+// and the grid strain of the upscaling layer (upscale/strain/grid_strain_output.h).
+#include <filesystem>
+#include <vector>
+
+#include "dem/io/grid_stress_output.h"
+#include "dem/scene/effect_choice.h"
+#include "upscale/strain/grid_strain_output.h"
+
+namespace upgrain::coupling {
+
+struct OutputOptions {
+  std::filesystem::path folder = "upgrain-output";
+  double snapshot_interval = 0.05;  // s of simulated time; 0 = only first and last
+  double series_interval = 0.005;   // s of simulated time between time-series rows
+  dem::io::GridStressOptions grid_stress;
+  upscale::GridStrainOutputOptions grid_strain;
+  // Output/energy balance: elastic energy and dissipation in the time series and summary
+  // (without it, the scene's effects leave energy tracking out, dem/scene/effect_choice.h).
+  bool energy_balance = true;
+  // The effect set and its reasons, for summary.json; empty: the scene's set as given.
+  std::vector<dem::EffectChoice> effect_choices;
+};
+
+}  // namespace upgrain::coupling

@@ -1,0 +1,37 @@
+#include "coupling/run/run_files.h"
+
+namespace upgrain::coupling {
+
+RunFiles::RunFiles(dem::Simulation& sim, const std::optional<OutputOptions>& output) : output_(output) {
+  if (output_) sim.on_root([&] { recorder_.emplace(output_->folder); });
+}
+
+void RunFiles::record_series(dem::Simulation& sim) {
+  if (!output_) return;
+  const dem::EnergyBalance e = sim.energy();
+  const dem::StepDiagnostics d = sim.diagnostics();
+  sim.on_root([&] {
+    recorder_->record_series(sim.time(), sim.step_count(), e, dem::balance_error(sim.initial_energy(), e), d);
+  });
+}
+
+void RunFiles::write_snapshot(dem::Simulation& sim) {
+  if (!output_) return;
+  sim.check_finite();
+  const std::vector<dem::Vec3> forces = sim.wall_forces();
+  const dem::ParticleStore& all = sim.whole_state();
+  sim.on_root([&] { recorder_->write_snapshot(all, sim.walls(), forces, sim.time(), sim.step_count()); });
+}
+
+void RunFiles::write_summary(const dem::Simulation& sim, const RunResult& r) {
+  if (!output_) return;
+  sim.on_root([&] {
+    recorder_->flush();
+    recorder_->write_summary(summary_entries(sim, r,
+                                             output_->effect_choices.empty()
+                                                 ? dem::describe_effects(sim.scene().effects)
+                                                 : output_->effect_choices));
+  });
+}
+
+}  // namespace upgrain::coupling

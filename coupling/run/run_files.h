@@ -1,0 +1,31 @@
+#pragma once
+// The DEM's own files of a run, written by rank 0 (dem/io/run_recorder.h): a time-series row
+// and a snapshot of the whole state on demand, and summary.json at the end. Without output
+// options, nothing is written and the calls do nothing. Collective over the engine's ranks.
+#include <optional>
+
+#include "coupling/run/output_options.h"
+#include "coupling/run/run_result.h"
+#include "dem/engine/simulation.h"
+#include "dem/io/run_recorder.h"
+
+namespace upgrain::coupling {
+
+class RunFiles {
+ public:
+  RunFiles(dem::Simulation& sim, const std::optional<OutputOptions>& output);
+
+  [[nodiscard]] bool enabled() const { return output_.has_value(); }
+  // A row of time_series.csv: energies, balance error, contacts.
+  void record_series(dem::Simulation& sim);
+  // snapshots/particles_<step>.h5 of the checked whole state, with the wall forces.
+  void write_snapshot(dem::Simulation& sim);
+  // The last rows and summary.json.
+  void write_summary(const dem::Simulation& sim, const RunResult& r);
+
+ private:
+  const std::optional<OutputOptions>& output_;
+  std::optional<dem::io::RunRecorder> recorder_;  // rank 0
+};
+
+}  // namespace upgrain::coupling

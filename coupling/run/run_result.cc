@@ -1,0 +1,84 @@
+#include "coupling/run/run_result.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace upgrain::coupling {
+
+namespace {
+std::string num(double v) {
+  if (!std::isfinite(v)) return "null";
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+// A JSON string (the names written here need no escapes).
+std::string quoted(std::string s) {
+  s.insert(s.begin(), '"');
+  s.push_back('"');
+  return s;
+}
+}  // namespace
+
+void measure_final_state(dem::Simulation& sim, double wall_seconds, RunResult& r) {
+  sim.check_finite();
+  r.wall_seconds = wall_seconds;
+  r.steps = sim.step_count();
+  r.simulated_time = sim.time();
+  r.particle_steps_per_second = static_cast<double>(r.steps) * static_cast<double>(sim.particle_count()) /
+                                std::max(r.wall_seconds, 1e-9);
+  r.energy = sim.energy();
+  r.energy_balance_error = dem::balance_error(sim.initial_energy(), r.energy);
+  r.potential_released = sim.initial_energy().potential - r.energy.potential;
+  r.kinetic_to_released = dem::kinetic_to_released(sim.initial_energy(), r.energy);
+  r.diagnostics = sim.diagnostics();
+  r.load = sim.load();
+  r.wall_forces = sim.wall_forces();
+  for (const dem::PlaneWall& w : sim.walls()) r.wall_names.push_back(w.name);
+  const dem::ParticleStore& all = sim.whole_state();
+  sim.on_root([&] {
+    r.bed = dem::measure_bed(all, sim.scene().container);
+    for (std::size_t i = 0; i < all.size(); ++i) r.total_mass += all.mass(i);
+  });
+}
+
+std::map<std::string, std::string> summary_entries(const dem::Simulation& sim, const RunResult& r,
+                                                   const std::vector<dem::EffectChoice>& effects) {
+  const auto n = static_cast<double>(sim.particle_count());
+  return {
+      {"particles", num(n)},
+      {"mpi_ranks", num(sim.ranks())},
+      {"summation", quoted(dem::to_string(sim.summation()))},
+      {"effects", dem::effects_json(effects)},
+      {"load_rebalances", num(static_cast<double>(r.load.rebalances))},
+      {"load_owned_imbalance", num(r.load.owned_imbalance)},
+      {"load_compute_imbalance", num(r.load.compute_imbalance)},
+      {"load_communication_share", num(r.load.communication_share)},
+      {"steps", num(static_cast<double>(r.steps))},
+      {"simulated_time_s", num(r.simulated_time)},
+      {"wall_time_s", num(r.wall_seconds)},
+      {"particle_steps_per_second", num(r.particle_steps_per_second)},
+      {"stopped_at_rest", r.stopped_at_rest ? "true" : "false"},
+      {"kinetic_energy_J", num(r.energy.kinetic())},
+      {"potential_energy_released_J", num(r.potential_released)},
+      {"kinetic_to_released", num(r.kinetic_to_released)},
+      {"energy_balance_error", num(r.energy_balance_error)},
+      {"dissipated_damping_J", num(r.energy.dissipated_damping)},
+      {"dissipated_friction_J", num(r.energy.dissipated_friction)},
+      {"tangential_stiffness_change_J", num(r.energy.tangential_stiffness_change)},
+      {"contacts_per_particle", num(2.0 * static_cast<double>(r.diagnostics.particle_contacts) / n)},
+      {"wall_contacts", num(static_cast<double>(r.diagnostics.wall_contacts))},
+      {"max_overlap_ratio", num(r.diagnostics.max_overlap_ratio)},
+      {"bed_surface_height_m", num(r.bed.surface_height)},
+      {"bed_solid_fraction", num(r.bed.solid_fraction)},
+      {"particles_outside_container", num(static_cast<double>(r.bed.particles_outside))},
+      {"relaxed", r.relaxation ? "true" : "false"},
+      {"relaxation_steps", num(r.relaxation ? static_cast<double>(r.relaxation->steps) : 0.0)},
+      {"relaxation_force_residual", num(r.relaxation ? r.relaxation->max_force_residual : 0.0)},
+      {"relaxation_torque_residual", num(r.relaxation ? r.relaxation->max_torque_residual : 0.0)},
+  };
+}
+
+}  // namespace upgrain::coupling

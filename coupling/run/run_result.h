@@ -1,0 +1,54 @@
+#pragma once
+// What a run leaves besides its files: the figures of summary.json (docs/output.md), the
+// measures of the bed, and the last grid evaluation, for the studies that go on from it.
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "coupling/run/output_options.h"
+#include "dem/analysis/bed_state.h"
+#include "dem/engine/diagnostics.h"
+#include "dem/engine/energy.h"
+#include "dem/engine/relaxation.h"
+#include "dem/engine/simulation.h"
+#include "dem/stress/grid_stress.h"
+#include "upscale/strain/grid_strain.h"
+
+namespace upgrain::coupling {
+
+struct RunResult {
+  long steps = 0;
+  double simulated_time = 0.0;
+  double wall_seconds = 0.0;
+  double particle_steps_per_second = 0.0;
+  dem::EnergyBalance energy;
+  double energy_balance_error = 0.0;
+  double kinetic_to_released = 0.0;  // kinetic energy / potential energy released
+  double potential_released = 0.0;   // J, since the start
+  dem::StepDiagnostics diagnostics;
+  dem::BedState bed;
+  bool stopped_at_rest = false;
+  std::optional<dem::RelaxationResult> relaxation;  // when relax_at_end
+  std::vector<dem::Vec3> wall_forces;               // final force of the grains on each wall (N)
+  std::vector<std::string> wall_names;
+  double total_mass = 0.0;  // kg
+  // The last grid-stress evaluation, when the output asked for one (for in-memory use).
+  std::optional<dem::GridStress> final_stress;
+  dem::RegularGrid final_grid;
+  // The last grid-strain evaluation, when the output asked for one (rank 0).
+  std::optional<upscale::GridStrain> final_strain;
+  dem::EngineLoad load;  // how the ranks shared the work (one rank: the defaults)
+};
+
+// The figures of the engine's final state into `r` (collective; the bed and the mass on rank
+// 0): steps, time, energies, diagnostics, load, wall forces, bed. `wall_seconds` is the run's.
+void measure_final_state(dem::Simulation& sim, double wall_seconds, RunResult& r);
+
+// summary.json's entries: the run's figures, the ranks and summation, and the effect set with
+// the reason for each entry. JSON has no NaN: a figure not computed (the energy channels
+// without energy tracking) is null.
+std::map<std::string, std::string> summary_entries(const dem::Simulation& sim, const RunResult& r,
+                                                   const std::vector<dem::EffectChoice>& effects);
+
+}  // namespace upgrain::coupling

@@ -1,0 +1,50 @@
+#pragma once
+// The run of a scene, whatever it is (a deposition, a collapse, a settled bed carried on):
+// fill the container, step to the end time or until the bed is at rest, remove walls at their
+// time, write the time series, snapshots and grid evaluations on schedule, relax at the end
+// if asked, and summarise (docs/output.md, docs/scenes.md). Used by the driver, the studies
+// and the regression tests; collective over the engine's ranks.
+#include <mpi.h>
+
+#include <functional>
+#include <optional>
+
+#include "coupling/run/output_options.h"
+#include "coupling/run/run_result.h"
+#include "dem/engine/relaxation.h"
+#include "dem/engine/simulation.h"
+
+namespace upgrain::coupling {
+
+struct RunControl {
+  // Stop early once kinetic energy < rest_ratio * (potential energy released), checked at
+  // each time-series row after the first tenth of the run; 0 disables.
+  double rest_ratio = 0.0;
+  // After the run, relax the bed to static equilibrium by FIRE (dem/engine/relaxation.h) and
+  // write the final snapshot and grid stress of the relaxed state.
+  bool relax_at_end = false;
+  dem::RelaxationOptions relaxation;
+};
+
+struct Progress {
+  long step;
+  long total_steps;
+  double steps_per_second;
+  double eta_seconds;
+};
+using ProgressReport = std::function<void(const Progress&)>;
+
+// From the scene's fill (made on rank 0), collective over `comm`: every rank keeps the grains
+// of its block. The output is written by rank 0 and holds the same bytes on any rank count
+// with deterministic summation (docs/parallel.md, "Runs from the driver"); the result is
+// complete on rank 0 only (bed, mass, strain and progress reports are rank 0's; the other
+// fields are the same on every rank).
+RunResult run_scene(const dem::SceneConfig& scene, const RunControl& control,
+                    const std::optional<OutputOptions>& output, const ProgressReport& on_progress = {},
+                    MPI_Comm comm = MPI_COMM_SELF, const dem::EngineOptions& options = {});
+
+// The same on an engine already made (collective over its ranks).
+RunResult run_scene(dem::Simulation& engine, const RunControl& control,
+                    const std::optional<OutputOptions>& output, const ProgressReport& on_progress = {});
+
+}  // namespace upgrain::coupling

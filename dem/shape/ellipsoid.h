@@ -1,0 +1,31 @@
+#pragma once
+// The three-axis ellipsoid: semi-axes a >= b >= c along its body axes, an orientation, and the
+// principal moments of a solid ellipsoid (docs/ellipsoids.md). Its contacts:
+// dem/contact/geometry/pair_geometries.h.
+#include <cstddef>
+
+#include "dem/core/particle_store.h"
+
+namespace upgrain::dem::shapes {
+
+struct Ellipsoid {
+  static constexpr ShapeKind kind = ShapeKind::ellipsoid;
+  static constexpr const char* name = "ellipsoid";
+
+  // The height of the grain's highest point: its support along z, sqrt(e_z^T M e_z) with
+  // M = R diag(a^2, b^2, c^2) R^T.
+  static double top(const ParticleStore& p, std::size_t i) {
+    const Vec3 ez_body = p.orientation[i].conjugate() * Vec3::UnitZ();
+    return p.x[i].z() + ez_body.cwiseProduct(p.semi_axes[i]).norm();
+  }
+  // Whether point q lies in the grain: sum (y_k / a_k)^2 <= 1 in the body frame, after the
+  // bounding sphere.
+  static bool contains(const ParticleStore& p, std::size_t i, const Vec3& q) {
+    const Vec3 d = q - p.x[i];
+    if (d.squaredNorm() > p.radius[i] * p.radius[i]) return false;
+    const Vec3 y = p.orientation[i].conjugate() * d;
+    return y.cwiseQuotient(p.semi_axes[i]).squaredNorm() <= 1.0;
+  }
+};
+
+}  // namespace upgrain::dem::shapes

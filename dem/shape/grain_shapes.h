@@ -1,0 +1,51 @@
+#pragma once
+// The shape table: one row per grain shape, in the order of ShapeKind. What a shape's contacts
+// are with each other shape and with a wall is the table of dem/contact/geometry/
+// pair_geometries.h. Adding a shape: docs/architecture.md, "How to add a shape".
+#include <cstddef>
+#include <type_traits>
+#include <utility>
+
+#include "dem/core/shape_kind.h"
+#include "dem/shape/ellipsoid.h"
+#include "dem/shape/sphere.h"
+
+namespace upgrain::dem::shapes {
+
+template <class... S>
+struct ShapeList {
+  static constexpr std::size_t size = sizeof...(S);
+};
+
+using GrainShapes = ShapeList<Sphere, Ellipsoid>;
+
+namespace detail {
+template <class... S>
+constexpr bool rows_in_kind_order(ShapeList<S...>) {
+  int k = 0;
+  return ((static_cast<int>(S::kind) == k++) && ...);
+}
+}  // namespace detail
+static_assert(detail::rows_in_kind_order(GrainShapes{}) && GrainShapes::size == kShapeKinds,
+              "one row per ShapeKind, in its order");
+
+// Calls f.template operator()<S>() for the shape S of kind k among `list`, and returns its result.
+template <class F, class... S>
+decltype(auto) visit_shape(ShapeKind k, F&& f, ShapeList<S...> /*list*/) {
+  using R = decltype(f.template operator()<Sphere>());
+  if constexpr (std::is_void_v<R>) {
+    ((S::kind == k ? (f.template operator()<S>(), true) : false) || ...);
+  } else {
+    R r{};
+    ((S::kind == k ? (r = f.template operator()<S>(), true) : false) || ...);
+    return r;
+  }
+}
+
+// The same over the shape table.
+template <class F>
+decltype(auto) visit_shape(ShapeKind k, F&& f) {
+  return visit_shape(k, std::forward<F>(f), GrainShapes{});
+}
+
+}  // namespace upgrain::dem::shapes
