@@ -99,13 +99,13 @@ void BM_GridKinematics(benchmark::State& state) {
   StressRateHistory history(StressFormula::bagi);
   // As in a run: each evaluation gets the previous one (F_prev for the increment, and the
   // reference tessellations kept while a cell's set is the same).
-  std::optional<GridStrain> previous = grid_strain(ref, grid, {p.id, p.x, p.v}, 0.5, 0, options);
+  std::optional<GridStrain> previous = grid_strain(ref, grid, {p.id, p.x, p.v}, {0.5, 0}, options);
   double t = 1.0;
   double seconds = 0.0;
   long evaluations = 0;
   for (auto _ : state) {
     const auto t0 = std::chrono::steady_clock::now();
-    GridStrain g = grid_strain(ref, grid, {p.id, p.x, p.v}, t, 0, options, &*previous);
+    GridStrain g = grid_strain(ref, grid, {p.id, p.x, p.v}, {t, 0}, options, &*previous);
     const GridStressRates rates = history.push(stress, g);
     benchmark::DoNotOptimize(rates.fields[0].jaumann.data());
     previous = std::move(g);

@@ -43,9 +43,9 @@ void GridEvaluation::evaluate_block_strain(dem::Simulation& sim, const dem::Part
     block_reference_ = upscale::make_strain_reference(p.id, p.x, owner, count, sim.time(), sim.step_count());
     reference_blocks_ = blocks;
   }
-  upscale::GridStrain b = upscale::partition_strain(*block_reference_, owner, {p.id, p.x, p.v}, sim.time(),
-                                                    sim.step_count(), output_.grid_strain.kernel,
-                                                    last_block_strain_ ? &*last_block_strain_ : nullptr);
+  upscale::GridStrain b = upscale::partition_strain(
+      *block_reference_, owner, {p.id, p.x, p.v}, {sim.time(), sim.step_count()}, output_.grid_strain.kernel,
+      last_block_strain_ ? &*last_block_strain_ : nullptr);
   if (!block_strain_out_) block_strain_out_.emplace(output_.folder);
   if (output_.grid_strain.kernel.set == upscale::StrainSet::lagrangian)
     block_strain_out_->record(b, reference_blocks_, block_reference_->id, block_reference_->cell);
@@ -65,7 +65,7 @@ void GridEvaluation::evaluate_strain(dem::Simulation& sim, const dem::RegularGri
     if (!strain_reference_)
       strain_reference_ = upscale::make_strain_reference(p.id, p.x, grid, sim.time(), sim.step_count());
     upscale::GridStrain g =
-        upscale::grid_strain(*strain_reference_, grid, {p.id, p.x, p.v}, sim.time(), sim.step_count(),
+        upscale::grid_strain(*strain_reference_, grid, {p.id, p.x, p.v}, {sim.time(), sim.step_count()},
                              output_.grid_strain.kernel, final_strain_ ? &*final_strain_ : nullptr);
     if (stress) {
       const upscale::GridStressRates rates =

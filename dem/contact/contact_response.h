@@ -53,7 +53,7 @@ template <bool Tangential, bool Damping, bool Rotation, bool Energy, class Law =
   if constexpr (Tangential) {
     const Vec3 v_t = v_rel - v_n * n;
     out.on_i +=
-        Law::Tangential::template force<Energy>(p, r.tangential_stiffness, n, v_t, f_n, spring, energy);
+        Law::Tangential::template force<Energy>(p, {n, v_t, r.tangential_stiffness, f_n}, spring, energy);
   }
   return out;
 }

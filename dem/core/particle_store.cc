@@ -55,8 +55,9 @@ void ParticleStore::add_sphere(GlobalId gid, double r, double density, const Vec
   }
 }
 
-void ParticleStore::add_ellipsoid(GlobalId gid, const Vec3& ax, double density, const Vec3& pos,
-                                  const Eigen::Quaterniond& q, const Vec3& vel, const Vec3& ang_vel) {
+void ParticleStore::add_ellipsoid(GlobalId gid, const EllipsoidBody& body, const GrainMotion& motion) {
+  const Vec3& ax = body.semi_axes;
+  const double density = body.density;
   if (!(ax.z() > 0.0 && ax.y() >= ax.z() && ax.x() >= ax.y()) || !ax.allFinite()) {
     std::ostringstream m;
     m << "particle " << gid << ": semi-axes must satisfy a >= b >= c > 0, got " << ax.transpose();
@@ -82,14 +83,14 @@ void ParticleStore::add_ellipsoid(GlobalId gid, const Vec3& ax, double density, 
   radius.push_back(a);
   inv_mass.push_back(1.0 / m);
   inv_inertia.push_back(3.0 / j.sum());
-  x.push_back(pos);
-  v.push_back(vel);
-  omega.push_back(ang_vel);
+  x.push_back(motion.x);
+  v.push_back(motion.v);
+  omega.push_back(motion.omega);
   force.push_back(Vec3::Zero());
   torque.push_back(Vec3::Zero());
   shape.push_back(ShapeKind::ellipsoid);
   semi_axes.push_back(ax);
-  orientation.push_back(q.normalized());
+  orientation.push_back(body.orientation.normalized());
   inertia_body.push_back(j);
 }
 

@@ -10,6 +10,21 @@
 
 namespace upgrain::dem {
 
+// A three-axis ellipsoid's body: semi-axes a >= b >= c along its body x, y, z axes (m), its
+// uniform density (kg/m^3) and its orientation (body -> world).
+struct EllipsoidBody {
+  Vec3 semi_axes;
+  double density;
+  Eigen::Quaterniond orientation;
+};
+
+// Where a grain is and how it moves: centroid, velocity, angular velocity (world frame).
+struct GrainMotion {
+  Vec3 x;
+  Vec3 v;
+  Vec3 omega;
+};
+
 struct ParticleStore {
   std::vector<GlobalId> id;
   std::vector<double> radius;
@@ -37,8 +52,7 @@ struct ParticleStore {
   void add_sphere(GlobalId gid, double r, double density, const Vec3& pos, const Vec3& vel,
                   const Vec3& ang_vel);
   // A three-axis ellipsoid, semi-axes a >= b >= c (checked), uniform density.
-  void add_ellipsoid(GlobalId gid, const Vec3& semi_axes, double density, const Vec3& pos,
-                     const Eigen::Quaterniond& orientation, const Vec3& vel, const Vec3& ang_vel);
+  void add_ellipsoid(GlobalId gid, const EllipsoidBody& body, const GrainMotion& motion);
   // Applies new[k] = old[perm[k]] to every array.
   void permute(const std::vector<int>& perm);
 

@@ -65,9 +65,9 @@ void write_grid_stress(const std::filesystem::path& path, const RegularGrid& gri
     write_attribute(file, "volume", kVolume);
     {
       Handle g(create_group(file, "grid"), H5Gclose, "create group grid");
-      write_dataset(g, "lo", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, grid.lo.data(), 3, 1);
-      write_dataset(g, "hi", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, grid.hi.data(), 3, 1);
-      write_dataset(g, "n", H5T_NATIVE_INT, H5T_STD_I32LE, grid.n, 3, 1);
+      write_dataset(g, "lo", grid.lo.data(), 3, 1);
+      write_dataset(g, "hi", grid.hi.data(), 3, 1);
+      write_dataset(g, "n", grid.n, 3, 1);
       write_attribute(g, "cell_volume", stress.cell_volume);
     }
     {
@@ -79,10 +79,8 @@ void write_grid_stress(const std::filesystem::path& path, const RegularGrid& gri
                     {"internal_contacts", &stress.internal_contacts},
                     {"external_contacts", &stress.external_contacts},
                     {"wall_contacts", &stress.wall_contacts}};
-      for (const auto& c : counts)
-        write_dataset(g, c.name, H5T_NATIVE_LONG, H5T_STD_I64LE, c.data->data(), cells, 1);
-      write_dataset(g, "solid_fraction", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, stress.solid_fraction.data(),
-                    cells, 1);
+      for (const auto& c : counts) write_dataset(g, c.name, c.data->data(), cells, 1);
+      write_dataset(g, "solid_fraction", stress.solid_fraction.data(), cells, 1);
     }
     Handle sg(create_group(file, "stress"), H5Gclose, "create group stress");
     for (StressFormula f : formulas) {
@@ -94,9 +92,9 @@ void write_grid_stress(const std::filesystem::path& path, const RegularGrid& gri
         rai[c] = relative_asymmetry_index(s);
         szz[c] = s(2, 2);
       }
-      write_dataset(g, "tensor", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, tensor.data(), cells, 9);
-      write_dataset(g, "rai", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, rai.data(), cells, 1);
-      write_dataset(g, "sigma_zz", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, szz.data(), cells, 1);
+      write_dataset(g, "tensor", tensor.data(), cells, 9);
+      write_dataset(g, "rai", rai.data(), cells, 1);
+      write_dataset(g, "sigma_zz", szz.data(), cells, 1);
     }
   }
   target.commit();

@@ -51,8 +51,8 @@ void write_snapshot(const std::filesystem::path& path, const ParticleStore& p,
       ids[k] = p.id[order[k]];
       radius[k] = p.radius[order[k]];
     }
-    write_dataset(parts, "id", H5T_NATIVE_INT64, H5T_STD_I64LE, ids.data(), n, 1);
-    write_dataset(parts, "radius", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, radius.data(), n, 1);
+    write_dataset(parts, "id", ids.data(), n, 1);
+    write_dataset(parts, "radius", radius.data(), n, 1);
     const struct {
       const char* name;
       const std::vector<Vec3>* data;
@@ -60,11 +60,11 @@ void write_snapshot(const std::filesystem::path& path, const ParticleStore& p,
         {"position", &p.x}, {"velocity", &p.v}, {"angular_velocity", &p.omega}, {"force", &p.force}};
     for (const auto& f : vectors) {
       const std::vector<double> flat = flatten(*f.data, order);
-      write_dataset(parts, f.name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, flat.data(), n, 3);
+      write_dataset(parts, f.name, flat.data(), n, 3);
     }
     if (p.has_shapes()) {
       const std::vector<double> axes = flatten(p.semi_axes, order);
-      write_dataset(parts, "semi_axes", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, axes.data(), n, 3);
+      write_dataset(parts, "semi_axes", axes.data(), n, 3);
       std::vector<double> quat(4 * n), tensor(9 * n);
       for (std::size_t k = 0; k < n; ++k) {
         const Eigen::Quaterniond& q = p.orientation[order[k]];
@@ -77,8 +77,8 @@ void write_snapshot(const std::filesystem::path& path, const ParticleStore& p,
         for (int a = 0; a < 3; ++a)
           for (int b = 0; b < 3; ++b) tensor[9 * k + 3 * a + b] = t(a, b);
       }
-      write_dataset(parts, "orientation", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, quat.data(), n, 4);
-      write_dataset(parts, "shape_tensor", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, tensor.data(), n, 9);
+      write_dataset(parts, "orientation", quat.data(), n, 4);
+      write_dataset(parts, "shape_tensor", tensor.data(), n, 9);
     }
 
     Handle wg(hdf5::create_group(file, "walls"), H5Gclose, "create group walls");
@@ -95,10 +95,10 @@ void write_snapshot(const std::filesystem::path& path, const ParticleStore& p,
       names += (w ? "," : "") + walls[w].name;
     }
     write_attribute(wg, "names", names);
-    write_dataset(wg, "point", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, point.data(), nw, 3);
-    write_dataset(wg, "normal", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, normal.data(), nw, 3);
-    write_dataset(wg, "friction", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, friction.data(), nw, 1);
-    write_dataset(wg, "force", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, force.data(), nw, 3);
+    write_dataset(wg, "point", point.data(), nw, 3);
+    write_dataset(wg, "normal", normal.data(), nw, 3);
+    write_dataset(wg, "friction", friction.data(), nw, 1);
+    write_dataset(wg, "force", force.data(), nw, 3);
   }
   target.commit();
 }

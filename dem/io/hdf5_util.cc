@@ -20,14 +20,13 @@ hid_t untimed(hid_t property_class) {
 }
 }  // namespace
 
-void write_dataset(hid_t group, const char* name, hid_t mem_type, hid_t file_type, const void* data,
-                   hsize_t rows, hsize_t cols) {
-  const hsize_t dims[2] = {rows, cols};
-  Handle space(H5Screate_simple(cols == 1 ? 1 : 2, dims, nullptr), H5Sclose, "create a dataspace");
+void write_dataset(hid_t group, const char* name, const void* data, const DatasetLayout& layout) {
+  const hsize_t dims[2] = {layout.rows, layout.cols};
+  Handle space(H5Screate_simple(layout.cols == 1 ? 1 : 2, dims, nullptr), H5Sclose, "create a dataspace");
   Handle properties(untimed(H5P_DATASET_CREATE), H5Pclose, "create a property list");
-  Handle set(H5Dcreate2(group, name, file_type, space, H5P_DEFAULT, properties, H5P_DEFAULT), H5Dclose,
+  Handle set(H5Dcreate2(group, name, layout.file_type, space, H5P_DEFAULT, properties, H5P_DEFAULT), H5Dclose,
              std::string("create dataset ") + name);
-  if (rows > 0 && H5Dwrite(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
+  if (layout.rows > 0 && H5Dwrite(set, layout.memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
     throw Error(std::string("HDF5: cannot write dataset ") + name);
 }
 

@@ -3,6 +3,7 @@
 // writers. Errors become upgrain::Error naming what could not be done.
 #include <hdf5.h>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -22,9 +23,40 @@ class Handle {
   herr_t (*close_)(hid_t);
 };
 
-// A rows x cols data set (1-D when cols == 1).
-void write_dataset(hid_t group, const char* name, hid_t mem_type, hid_t file_type, const void* data,
-                   hsize_t rows, hsize_t cols);
+// The memory type and the (little-endian) file type of an element type written.
+template <class T>
+struct ElementType;
+template <>
+struct ElementType<double> {
+  static hid_t memory() { return H5T_NATIVE_DOUBLE; }
+  static hid_t file() { return H5T_IEEE_F64LE; }
+};
+template <>
+struct ElementType<std::int32_t> {
+  static hid_t memory() { return H5T_NATIVE_INT32; }
+  static hid_t file() { return H5T_STD_I32LE; }
+};
+template <>
+struct ElementType<std::int64_t> {
+  static hid_t memory() { return H5T_NATIVE_INT64; }
+  static hid_t file() { return H5T_STD_I64LE; }
+};
+
+// What a data set holds: its element types and its rows x cols shape (1-D when cols == 1).
+struct DatasetLayout {
+  hid_t memory_type;
+  hid_t file_type;
+  hsize_t rows;
+  hsize_t cols;
+};
+void write_dataset(hid_t group, const char* name, const void* data, const DatasetLayout& layout);
+
+// A rows x cols data set of T (1-D when cols == 1).
+template <class T>
+void write_dataset(hid_t group, const char* name, const T* data, hsize_t rows, hsize_t cols = 1) {
+  write_dataset(group, name, static_cast<const void*>(data),
+                DatasetLayout{ElementType<T>::memory(), ElementType<T>::file(), rows, cols});
+}
 void write_attribute(hid_t obj, const char* name, double value);
 void write_attribute(hid_t obj, const char* name, const std::string& value);
 // A 1-D attribute of fixed-length strings (each padded to the longest).

@@ -100,8 +100,8 @@ ParticleStore fill_container(const SceneConfig& s) {
       p.add_sphere(k, radii[k], density, x, velocity(), Vec3::Zero());
       if (!ellipsoids) return;
     } else {
-      p.add_ellipsoid(k, shape.semi_axes(radii[k]), density, x, random_orientation(shape_rng), velocity(),
-                      Vec3::Zero());
+      const Eigen::Quaterniond q = random_orientation(shape_rng);
+      p.add_ellipsoid(k, {shape.semi_axes(radii[k]), density, q}, {x, velocity(), Vec3::Zero()});
       return;
     }
     // A sphere in a mixed scene draws an orientation too, so the stream does not depend on

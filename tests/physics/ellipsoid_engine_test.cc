@@ -61,8 +61,8 @@ TEST(EllipsoidEngine, TorqueFreeTumblingKeepsMomentumAndEnergy) {
   SceneConfig s = test::bare_scene(1.0);
   s.effects.rotation = true;
   ParticleStore p;
-  p.add_ellipsoid(0, Vec3(3e-3, 2e-3, 1e-3), 2650, Vec3(0.1, -0.2, 0.3), tilt(0.3, Vec3(1, 2, 3)),
-                  Vec3::Zero(), Vec3::Zero());
+  p.add_ellipsoid(0, {Vec3(3e-3, 2e-3, 1e-3), 2650, tilt(0.3, Vec3(1, 2, 3))},
+                  {Vec3(0.1, -0.2, 0.3), Vec3::Zero(), Vec3::Zero()});
   // w mostly along the body's intermediate (y) axis, with a small perturbation.
   p.omega[0] = p.orientation[0] * Vec3(0.01, 10.0, 0.01);
   const Vec3 l0 = p.inertia_world(0) * p.omega[0];
@@ -100,8 +100,8 @@ TEST(EllipsoidHardCases, ThinDiscLandsOnItsFaceWithoutGainingEnergy) {
   s.container.lx = s.container.ly = 0.1;
   s.time_step = safe_step(s, a, {1.0, 0.1, 1.0}, 0.5);
   ParticleStore p;
-  p.add_ellipsoid(0, Vec3(a, a, c), 2650, Vec3(0.05, 0.05, a + 2e-3), tilt(0.7, Vec3(1, 0.3, 0)),
-                  Vec3::Zero(), Vec3::Zero());
+  p.add_ellipsoid(0, {Vec3(a, a, c), 2650, tilt(0.7, Vec3(1, 0.3, 0))},
+                  {Vec3(0.05, 0.05, a + 2e-3), Vec3::Zero(), Vec3::Zero()});
   std::vector<PlaneWall> floor = {{"floor", Vec3::Zero(), Vec3::UnitZ(), 0.5}};
   Simulation sim(s, p, floor);
   const double weight = sim.particles().mass(0) * 9.81;
@@ -142,8 +142,8 @@ TEST(EllipsoidHardCases, ThinDiscWithRollingResistanceComesToRestOnItsFace) {
   s.container.lx = s.container.ly = 0.1;
   s.time_step = safe_step(s, a, {1.0, 0.1, 1.0}, 0.5);
   ParticleStore p;
-  p.add_ellipsoid(0, Vec3(a, a, c), 2650, Vec3(0.05, 0.05, a + 2e-3), tilt(0.7, Vec3(1, 0.3, 0)),
-                  Vec3::Zero(), Vec3::Zero());
+  p.add_ellipsoid(0, {Vec3(a, a, c), 2650, tilt(0.7, Vec3(1, 0.3, 0))},
+                  {Vec3(0.05, 0.05, a + 2e-3), Vec3::Zero(), Vec3::Zero()});
   std::vector<PlaneWall> floor = {{"floor", Vec3::Zero(), Vec3::UnitZ(), 0.5}};
   Simulation sim(s, p, floor);
   const double weight = sim.particles().mass(0) * 9.81;
@@ -197,8 +197,8 @@ TEST(EllipsoidHardCases, TenToOneGrainsTipToTipAndFaceToFace) {
     // 1.5 m from the origin.
     const Eigen::Quaterniond q = tilt(0.4, Vec3(1, -2, 0.5));
     const Vec3 dir = q * k.direction, origin(1.2, 0.9, 0.1);
-    p.add_ellipsoid(0, k.axes, 2650, origin - (reach + 1e-5) * dir, q, v * dir, Vec3::Zero());
-    p.add_ellipsoid(1, k.axes, 2650, origin + (reach + 1e-5) * dir, q, -v * dir, Vec3::Zero());
+    p.add_ellipsoid(0, {k.axes, 2650, q}, {origin - (reach + 1e-5) * dir, v * dir, Vec3::Zero()});
+    p.add_ellipsoid(1, {k.axes, 2650, q}, {origin + (reach + 1e-5) * dir, -v * dir, Vec3::Zero()});
     const Vec3 l0 = angular_momentum(p);
     const double e0 = kinetic_energy(p);
     Simulation sim(s, p, std::vector<PlaneWall>{});
@@ -231,11 +231,11 @@ TEST(EllipsoidHardCases, OffCentreTenToOneImpactKeepsMomenta) {
   const double v = 1.0;
   s.time_step = 0.5 * safe_step(s, 5e-3, {1.0, 0.1, 1.0}, 2 * v);
   ParticleStore p;
-  p.add_ellipsoid(0, disc, 2650, Vec3(0, 0, 0), tilt(0.2, Vec3(1, 1, 0)), Vec3::Zero(), Vec3(0, 0, 20));
+  p.add_ellipsoid(0, {disc, 2650, tilt(0.2, Vec3(1, 1, 0))}, {Vec3(0, 0, 0), Vec3::Zero(), Vec3(0, 0, 20)});
   // The needle points down (its x axis along -z), 3 mm off the disc's axis, slightly tilted.
   const Eigen::Quaterniond down = tilt(0.15, Vec3(1, 0, 0)) * tilt(std::numbers::pi / 2, Vec3(0, 1, 0));
-  p.add_ellipsoid(1, needle, 2650, Vec3(3e-3, 0.5e-3, 0.5e-3 + 5e-3 + 1e-3), down, Vec3(0, 0, -v),
-                  Vec3(3, 0, 0));
+  p.add_ellipsoid(1, {needle, 2650, down},
+                  {Vec3(3e-3, 0.5e-3, 0.5e-3 + 5e-3 + 1e-3), Vec3(0, 0, -v), Vec3(3, 0, 0)});
   const Vec3 l0 = angular_momentum(p);
   const Vec3 momentum0 = p.mass(0) * p.v[0] + p.mass(1) * p.v[1];
   const double e0 = kinetic_energy(p);
@@ -274,12 +274,12 @@ TEST(EllipsoidHardCases, ImpactAtTenMetresPerSecondStaysStable) {
     std::vector<PlaneWall> walls;
     const Eigen::Quaterniond q0 = tilt(1.1, Vec3(0.3, -1, 0.7));
     if (pair == 0) {
-      p.add_ellipsoid(0, axes, 2650, Vec3(0, 0, axes.x() + 1e-4), q0, Vec3(0, 0, -10), Vec3::Zero());
+      p.add_ellipsoid(0, {axes, 2650, q0}, {Vec3(0, 0, axes.x() + 1e-4), Vec3(0, 0, -10), Vec3::Zero()});
       walls.push_back({"floor", Vec3::Zero(), Vec3::UnitZ(), 0.5});
     } else {
-      p.add_ellipsoid(0, axes, 2650, Vec3(-2.6e-3, 0, 0), q0, Vec3(5, 0, 0), Vec3::Zero());
-      p.add_ellipsoid(1, axes, 2650, Vec3(2.6e-3, 0.5e-3, 0), tilt(2.0, Vec3(1, 1, 1)), Vec3(-5, 0, 0),
-                      Vec3::Zero());
+      p.add_ellipsoid(0, {axes, 2650, q0}, {Vec3(-2.6e-3, 0, 0), Vec3(5, 0, 0), Vec3::Zero()});
+      p.add_ellipsoid(1, {axes, 2650, tilt(2.0, Vec3(1, 1, 1))},
+                      {Vec3(2.6e-3, 0.5e-3, 0), Vec3(-5, 0, 0), Vec3::Zero()});
     }
     const double e0 = kinetic_energy(p);
     Simulation sim(s, p, walls);

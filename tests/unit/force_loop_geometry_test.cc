@@ -24,8 +24,8 @@ using namespace ellipsoid_cases;
 // A two-grain store holding a pair (ids 1 and 2), to pose it as the force loop does.
 ParticleStore store_of(const Ellipsoid& e1, const Ellipsoid& e2) {
   ParticleStore p;
-  p.add_ellipsoid(1, e1.semi_axes, 2650.0, e1.centre, e1.orientation, Vec3::Zero(), Vec3::Zero());
-  p.add_ellipsoid(2, e2.semi_axes, 2650.0, e2.centre, e2.orientation, Vec3::Zero(), Vec3::Zero());
+  p.add_ellipsoid(1, {e1.semi_axes, 2650.0, e1.orientation}, {e1.centre, Vec3::Zero(), Vec3::Zero()});
+  p.add_ellipsoid(2, {e2.semi_axes, 2650.0, e2.orientation}, {e2.centre, Vec3::Zero(), Vec3::Zero()});
   return p;
 }
 

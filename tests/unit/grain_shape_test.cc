@@ -19,7 +19,7 @@ TEST(EllipsoidGrain, MassInertiaAndRotationalEnergy) {
   ParticleStore p;
   const Vec3 ax(3e-3, 2e-3, 1e-3);
   const Eigen::Quaterniond q(Eigen::AngleAxisd(1.1, Vec3(0.2, 1, -0.4).normalized()));
-  p.add_ellipsoid(7, ax, 2000, Vec3(1, 2, 3), q, Vec3::Zero(), Vec3(4, -5, 6));
+  p.add_ellipsoid(7, {ax, 2000, q}, {Vec3(1, 2, 3), Vec3::Zero(), Vec3(4, -5, 6)});
   const double m = 2000 * 4.0 / 3.0 * std::numbers::pi * 6e-9;
   EXPECT_NEAR(p.mass(0), m, 1e-15 * m);
   EXPECT_DOUBLE_EQ(p.radius[0], 3e-3);  // bounding radius
@@ -43,8 +43,8 @@ TEST(EllipsoidGrain, MixedStoresAndReorderingKeepShapes) {
   ParticleStore p;
   p.add_sphere(0, 2e-3, 2650, Vec3::Zero(), Vec3::Zero(), Vec3::Zero());
   EXPECT_FALSE(p.has_shapes());
-  p.add_ellipsoid(1, Vec3(3e-3, 2e-3, 1e-3), 2650, Vec3::Ones(), Eigen::Quaterniond::Identity(), Vec3::Zero(),
-                  Vec3::Zero());
+  p.add_ellipsoid(1, {Vec3(3e-3, 2e-3, 1e-3), 2650, Eigen::Quaterniond::Identity()},
+                  {Vec3::Ones(), Vec3::Zero(), Vec3::Zero()});
   p.add_sphere(2, 1e-3, 2650, Vec3::Zero(), Vec3::Zero(), Vec3::Zero());
   ASSERT_TRUE(p.has_shapes());
   ASSERT_EQ(p.semi_axes.size(), 3u);
@@ -64,8 +64,8 @@ TEST(EllipsoidGrain, MixedStoresAndReorderingKeepShapes) {
 TEST(EllipsoidGrain, RefusesSemiAxesOutOfOrder) {
   ParticleStore p;
   try {
-    p.add_ellipsoid(42, Vec3(1e-3, 2e-3, 1e-3), 2650, Vec3::Zero(), Eigen::Quaterniond::Identity(),
-                    Vec3::Zero(), Vec3::Zero());
+    p.add_ellipsoid(42, {Vec3(1e-3, 2e-3, 1e-3), 2650, Eigen::Quaterniond::Identity()},
+                    {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
     FAIL() << "accepted b > a";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("particle 42"), std::string::npos) << e.what();
@@ -132,8 +132,8 @@ TEST(GrainShapes, BedSolidFractionAndSurfaceUseTheEllipsoids) {
   for (int i = 0; i < 12; ++i)
     for (int j = 0; j < 12; ++j)
       for (int k = 0; k < 12; ++k)
-        p.add_ellipsoid(id++, ax, 2650, Vec3((i + 0.5) * h, (j + 0.5) * h, (k + 0.5) * h), upright,
-                        Vec3::Zero(), Vec3::Zero());
+        p.add_ellipsoid(id++, {ax, 2650, upright},
+                        {Vec3((i + 0.5) * h, (j + 0.5) * h, (k + 0.5) * h), Vec3::Zero(), Vec3::Zero()});
   BoxContainer box;
   box.lx = box.ly = 12 * h;
   const BedState bed = measure_bed(p, box);

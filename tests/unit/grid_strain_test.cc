@@ -123,7 +123,7 @@ TEST(GridStrain, AffineMotionOfARandomPackingIsRecoveredInEveryValidCellBothWays
       }
       now.hi += Vec3::Constant(1e-9);
     }
-    const GridStrain g = grid_strain(ref, now, s.view(), 1.5, 200, o);
+    const GridStrain g = grid_strain(ref, now, s.view(), {1.5, 200}, o);
     EXPECT_EQ(g.set, set);
     EXPECT_EQ(g.reference_time, 0.5);
     EXPECT_EQ(g.untracked, 0);
@@ -180,7 +180,7 @@ TEST(GridStrain, RigidRotationOfTheWholePackingHasNoStrainAndTheSpin) {
   const double pi = std::numbers::pi;
   for (const Mat3& q : {rotation(Vec3::UnitZ(), pi / 2), rotation(Vec3(1, 1, 1), pi), rotation(w, 1.0)}) {
     const State s = move(p, q, Vec3(-0.4, 0.2, 0.3), cross_matrix(w), Vec3(0.1, 0.2, -0.3), 5);
-    const GridStrain g = grid_strain(ref, p.grid, s.view(), 1.0, 10, {});
+    const GridStrain g = grid_strain(ref, p.grid, s.view(), {1.0, 10}, {});
     ASSERT_TRUE(all_finite(g));
     for (StrainDefinition d : kBoth) {
       const CellStrainFields& r = g[d];
@@ -214,8 +214,8 @@ TEST(GridStrain, IncrementFromThePreviousEvaluationComposes) {
   const Mat3 g2 = shear * rotation(Vec3(1, 0, 0), -0.3);
   const State s1 = move(p, f1, Vec3(0.1, 0, 0), Mat3::Zero(), Vec3::Zero(), 1);
   const State s2 = move(p, g2 * f1, Vec3(0, 0.1, 0), Mat3::Zero(), Vec3::Zero(), 2);
-  const GridStrain e1 = grid_strain(ref, p.grid, s1.view(), 1.0, 1, {});
-  const GridStrain e2 = grid_strain(ref, p.grid, s2.view(), 2.0, 2, {}, &e1);
+  const GridStrain e1 = grid_strain(ref, p.grid, s1.view(), {1.0, 1}, {});
+  const GridStrain e2 = grid_strain(ref, p.grid, s2.view(), {2.0, 2}, {}, &e1);
   ASSERT_TRUE(all_finite(e2));
   for (StrainDefinition d : kBoth) {
     for (int c = 0; c < p.grid.num_cells(); ++c) {
@@ -235,7 +235,7 @@ TEST(GridStrain, InvertedMissingAndNonFiniteAreReportedNotNaN) {
   const StrainReference ref = make_strain_reference(p.id, p.x, p.grid, 0.0, 0);
   // A reflection: every populated cell has J = -1.
   State s = move(p, Vec3(-1.0, 1.0, 1.0).asDiagonal(), Vec3::Zero(), Mat3::Zero(), Vec3::Zero(), 1);
-  GridStrain g = grid_strain(ref, p.grid, s.view(), 1.0, 1, {});
+  GridStrain g = grid_strain(ref, p.grid, s.view(), {1.0, 1}, {});
   ASSERT_TRUE(all_finite(g));
   for (StrainDefinition d : kBoth)
     for (int c = 0; c < p.grid.num_cells(); ++c)
@@ -257,7 +257,7 @@ TEST(GridStrain, InvertedMissingAndNonFiniteAreReportedNotNaN) {
       s.v.erase(s.v.begin() + static_cast<long>(i));
       break;
     }
-  g = grid_strain(ref, p.grid, s.view(), 1.0, 1, {});
+  g = grid_strain(ref, p.grid, s.view(), {1.0, 1}, {});
   ASSERT_TRUE(all_finite(g));
   EXPECT_EQ(g.untracked, 1);
   const int last = p.grid.num_cells() - 1;
@@ -286,10 +286,10 @@ TEST(GridStrain, ReferenceTessellationIsReusedWhileTheSetIsTheSame) {
   GridStrainOptions o;
   o.definitions = {false, true};
   const int tess = static_cast<int>(StrainDefinition::tessellation);
-  const GridStrain g1 = grid_strain(ref, p.grid, wobble(1e-3, 1).view(), 1.0, 1, o);
+  const GridStrain g1 = grid_strain(ref, p.grid, wobble(1e-3, 1).view(), {1.0, 1}, o);
   const State s2 = wobble(2e-3, 2);
-  const GridStrain g2 = grid_strain(ref, p.grid, s2.view(), 2.0, 2, o, &g1);
-  const GridStrain fresh = grid_strain(ref, p.grid, s2.view(), 2.0, 2, o);
+  const GridStrain g2 = grid_strain(ref, p.grid, s2.view(), {2.0, 2}, o, &g1);
+  const GridStrain fresh = grid_strain(ref, p.grid, s2.view(), {2.0, 2}, o);
   int reused = 0, differs = 0;
   for (int c = 0; c < p.grid.num_cells(); ++c) {
     if (g1.particles[c] < kMinFitPoints) {
@@ -317,8 +317,8 @@ TEST(GridStrain, ReferenceTessellationIsReusedWhileTheSetIsTheSame) {
   s3.id.erase(s3.id.begin() + static_cast<long>(lost));
   s3.x.erase(s3.x.begin() + static_cast<long>(lost));
   s3.v.erase(s3.v.begin() + static_cast<long>(lost));
-  const GridStrain g3 = grid_strain(ref, p.grid, s3.view(), 3.0, 3, o, &g2);
-  const GridStrain fresh3 = grid_strain(ref, p.grid, s3.view(), 3.0, 3, o);
+  const GridStrain g3 = grid_strain(ref, p.grid, s3.view(), {3.0, 3}, o, &g2);
+  const GridStrain fresh3 = grid_strain(ref, p.grid, s3.view(), {3.0, 3}, o);
   EXPECT_EQ(g3.untracked, 1);
   for (int c = 0; c < p.grid.num_cells(); ++c) {
     if (g3.particles[c] < kMinFitPoints) continue;
@@ -331,7 +331,7 @@ TEST(GridStrain, ReferenceTessellationIsReusedWhileTheSetIsTheSame) {
   }
   // Another reference: nothing is reused.
   const StrainReference other = make_strain_reference(p.id, p.x, p.grid, 0.5, 50);
-  const GridStrain g4 = grid_strain(other, p.grid, s2.view(), 4.0, 4, o, &g2);
+  const GridStrain g4 = grid_strain(other, p.grid, s2.view(), {4.0, 4}, o, &g2);
   for (int c = 0; c < p.grid.num_cells(); ++c) {
     if (g4.reference_tessellations[c]) {
       EXPECT_NE(g4.reference_tessellations[c].get(), g2.reference_tessellations[c].get()) << c;
@@ -357,8 +357,8 @@ TEST(GridStrain, PartitionByBlocksIsTheSameComputation) {
   for (std::size_t k = 0; k < p.x.size(); ++k) cell[k] = p.grid.cell_of(p.x[k]);
   const StrainReference by_grid = make_strain_reference(p.id, p.x, p.grid, 0.0, 0);
   const StrainReference by_cells = make_strain_reference(p.id, p.x, cell, p.grid.num_cells(), 0.0, 0);
-  const GridStrain a = grid_strain(by_grid, p.grid, s.view(), 1.0, 10, {});
-  const GridStrain b = partition_strain(by_cells, {}, s.view(), 1.0, 10, {});
+  const GridStrain a = grid_strain(by_grid, p.grid, s.view(), {1.0, 10}, {});
+  const GridStrain b = partition_strain(by_cells, {}, s.view(), {1.0, 10}, {});
   for (StrainDefinition d : kBoth)
     for (int c = 0; c < p.grid.num_cells(); ++c) {
       EXPECT_EQ(a[d].deformation_gradient[c], b[d].deformation_gradient[c]);
@@ -378,7 +378,7 @@ TEST(GridStrain, PartitionByBlocksIsTheSameComputation) {
   for (StrainSet set : {StrainSet::lagrangian, StrainSet::eulerian}) {
     GridStrainOptions o;
     o.set = set;
-    const GridStrain g = partition_strain(blocks, block_now, s.view(), 1.0, 10, o);
+    const GridStrain g = partition_strain(blocks, block_now, s.view(), {1.0, 10}, o);
     ASSERT_EQ(g.particles.size(), 2u);
     EXPECT_EQ(g.particles[0] + g.particles[1], static_cast<long>(p.id.size()));
     if (set == StrainSet::eulerian) {
@@ -395,5 +395,5 @@ TEST(GridStrain, PartitionByBlocksIsTheSameComputation) {
   EXPECT_THROW(make_strain_reference(p.id, p.x, bad, 2, 0.0, 0), upgrain::Error);
   GridStrainOptions eulerian;
   eulerian.set = StrainSet::eulerian;
-  EXPECT_THROW(partition_strain(blocks, bad, s.view(), 1.0, 10, eulerian), upgrain::Error);
+  EXPECT_THROW(partition_strain(blocks, bad, s.view(), {1.0, 10}, eulerian), upgrain::Error);
 }

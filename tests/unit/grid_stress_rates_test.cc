@@ -94,7 +94,7 @@ Spin spinning_packing(double h) {
       x.push_back(centre + q * (X - centre));
       v.push_back(omega.cross(x.back() - centre));
     }
-    GridStrain g = grid_strain(ref, p.grid, {p.id, x, v}, t, k, {}, previous ? &*previous : nullptr);
+    GridStrain g = grid_strain(ref, p.grid, {p.id, x, v}, {t, k}, {}, previous ? &*previous : nullptr);
     const std::vector<Mat3> stress(static_cast<std::size_t>(p.grid.num_cells()),
                                    q * stress0() * q.transpose());
     const GridStressRates r = history.push(stress, g);
@@ -168,7 +168,7 @@ TEST(GridStressRates, StressQuadraticInTimeAtRestGivesItsExactDerivative) {
   const double times[] = {0.0, 0.1, 0.25, 0.31};  // uneven outputs
   StressRateHistory history(StressFormula::weber);
   for (int k = 0; k < 4; ++k) {
-    const GridStrain g = grid_strain(ref, p.grid, {p.id, p.x, v}, times[k], k, {});
+    const GridStrain g = grid_strain(ref, p.grid, {p.id, p.x, v}, {times[k], k}, {});
     const std::vector<Mat3> stress(static_cast<std::size_t>(p.grid.num_cells()), sigma(times[k]));
     const GridStressRates r = history.push(stress, g);
     EXPECT_EQ(r.formula, StressFormula::weber);
@@ -194,12 +194,12 @@ TEST(GridStressRates, MismatchedGridsAndTimesAreRefused) {
   const StrainReference ref = make_strain_reference(p.id, p.x, p.grid, 0.0, 0);
   const std::vector<Vec3> v(p.x.size(), Vec3::Zero());
   StressRateHistory history(StressFormula::bagi);
-  const GridStrain g = grid_strain(ref, p.grid, {p.id, p.x, v}, 0.1, 1, {});
+  const GridStrain g = grid_strain(ref, p.grid, {p.id, p.x, v}, {0.1, 1}, {});
   EXPECT_THROW((void)history.push(std::vector<Mat3>(3, Mat3::Zero()), g), upgrain::Error);
   (void)history.push(std::vector<Mat3>(4, Mat3::Zero()), g);
   EXPECT_THROW((void)history.push(std::vector<Mat3>(4, Mat3::Zero()), g), upgrain::Error);  // same time
   // A NaN stress is reported, not propagated.
-  const GridStrain later = grid_strain(ref, p.grid, {p.id, p.x, v}, 0.2, 2, {});
+  const GridStrain later = grid_strain(ref, p.grid, {p.id, p.x, v}, {0.2, 2}, {});
   std::vector<Mat3> bad(4, Mat3::Zero());
   bad[0](1, 2) = std::nan("");
   const GridStressRates r = history.push(bad, later);

@@ -122,8 +122,8 @@ TEST(GrainRotation, TwoAtATimeIsBitwiseOneAtATime) {
   const double spins[] = {3.0, 200.0, 11.0, 2e5, -150.0, 0.5};
   for (int k = 0; k < 6; ++k) {
     const Eigen::Quaterniond q(Eigen::AngleAxisd(0.3 + k, Vec3(1.0, 0.5 * k, -0.2).normalized()));
-    all.add_ellipsoid(k + 1, Vec3(1.0, 0.8 - 0.05 * k, 0.5) * 1e-3, 2650.0, Vec3(0.01 * k, 0, 0), q,
-                      Vec3::Zero(), Vec3(spins[k], 0.3 * spins[k], -0.5 * spins[k]));
+    all.add_ellipsoid(k + 1, {Vec3(1.0, 0.8 - 0.05 * k, 0.5) * 1e-3, 2650.0, q},
+                      {Vec3(0.01 * k, 0, 0), Vec3::Zero(), Vec3(spins[k], 0.3 * spins[k], -0.5 * spins[k])});
     all.torque.back() = Vec3(1e-6 * (k + 1), -2e-6, 3e-6 * k);
   }
   const double dt = 1e-5, half = 0.5 * dt;
@@ -136,8 +136,8 @@ TEST(GrainRotation, TwoAtATimeIsBitwiseOneAtATime) {
     for (std::size_t i = 0; i < together.size(); ++i) {
       ParticleStore alone;
       const std::size_t k = static_cast<std::size_t>(together.id[i] - 1);
-      alone.add_ellipsoid(all.id[k], all.semi_axes[k], 2650.0, all.x[k], all.orientation[k], Vec3::Zero(),
-                          all.omega[k]);
+      alone.add_ellipsoid(all.id[k], {all.semi_axes[k], 2650.0, all.orientation[k]},
+                          {all.x[k], Vec3::Zero(), all.omega[k]});
       alone.torque[0] = all.torque[k];
       rotation_first_half(alone, 1, half, dt);
       rotation_second_half(alone, 1, half);

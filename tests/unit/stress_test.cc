@@ -249,7 +249,7 @@ TEST(GridStress, LoneSpinningEllipsoidGivesTheRigidBodyResult) {
   const Vec3 axes(3e-3, 2e-3, 1e-3);
   const Eigen::Quaterniond q(Eigen::AngleAxisd(0.7, Vec3(1, -2, 0.5).normalized()));
   const Vec3 w_body(30.0, -20.0, 100.0);  // not about a principal axis: w_dot != 0
-  p.add_ellipsoid(0, axes, 2650, Vec3(1.7, -0.4, 2.0), q, Vec3(0.1, 0, 0), q * w_body);
+  p.add_ellipsoid(0, {axes, 2650, q}, {Vec3(1.7, -0.4, 2.0), Vec3(0.1, 0, 0), q * w_body});
   Simulation sim(s, p, std::vector<PlaneWall>{});
   sim.request_contacts();
   sim.step();

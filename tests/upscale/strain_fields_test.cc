@@ -47,7 +47,7 @@ upscale::GridStrain sheared_packing(const dem::Mat3& f) {
       v.push_back(dem::Vec3::Zero());
     }
   const upscale::StrainReference ref = upscale::make_strain_reference(id, x0, grid, 0.0, 0);
-  return upscale::grid_strain(ref, grid, {id, x, v}, 0.5, 500, {});
+  return upscale::grid_strain(ref, grid, {id, x, v}, {0.5, 500}, {});
 }
 
 }  // namespace

@@ -134,11 +134,18 @@ Gradient gradient(StrainDefinition d, std::span<const Vec3> a, std::span<const V
   return g;
 }
 
-// One cell, one definition: X the reference positions, x and v the current state of the set;
+// One cell's set: X the reference positions, x and v the current state, matched by id;
 // `tetrahedra` the tessellation of X when known.
-void evaluate_cell(CellStrainFields& out, int c, StrainDefinition d, std::span<const Vec3> X,
-                   std::span<const Vec3> x, std::span<const Vec3> v, const CellStrainFields* previous,
-                   const DelaunayTetrahedra* tetrahedra) {
+struct CellSet {
+  std::span<const Vec3> X, x, v;
+  const DelaunayTetrahedra* tetrahedra = nullptr;
+};
+
+// One cell c, one definition.
+void evaluate_cell(CellStrainFields& out, int c, StrainDefinition d, const CellSet& set,
+                   const CellStrainFields* previous) {
+  const std::span<const Vec3> X = set.X, x = set.x, v = set.v;
+  const DelaunayTetrahedra* tetrahedra = set.tetrahedra;
   const Gradient f = gradient(d, X, x, tetrahedra);
   out.f_reason[c] = f.reason;
   if (f.reason == StrainReason::valid) {
@@ -211,7 +218,7 @@ void evaluate_cell(CellStrainFields& out, int c, StrainDefinition d, std::span<c
 }  // namespace
 
 GridStrain grid_strain(const StrainReference& reference, const RegularGrid& current_grid,
-                       const ParticleKinematics& now, double time, long step,
+                       const ParticleKinematics& now, const StateInstant& when,
                        const GridStrainOptions& options, const GridStrain* previous) {
   if (now.id.size() != now.x.size() || now.id.size() != now.v.size())
     throw Error("grid strain: the current state's ids, positions and velocities differ in length");
@@ -221,13 +228,13 @@ GridStrain grid_strain(const StrainReference& reference, const RegularGrid& curr
                 " cells, the reference " + std::to_string(reference.cells));
   std::vector<int> current_cell(lagrangian ? 0 : now.x.size());
   for (std::size_t k = 0; k < current_cell.size(); ++k) current_cell[k] = current_grid.cell_of(now.x[k]);
-  GridStrain g = partition_strain(reference, current_cell, now, time, step, options, previous);
+  GridStrain g = partition_strain(reference, current_cell, now, when, options, previous);
   g.grid = lagrangian ? reference.grid : current_grid;
   return g;
 }
 
 GridStrain partition_strain(const StrainReference& reference, std::span<const int> current_cell,
-                            const ParticleKinematics& now, double time, long step,
+                            const ParticleKinematics& now, const StateInstant& when,
                             const GridStrainOptions& options, const GridStrain* previous) {
   if (now.id.size() != now.x.size() || now.id.size() != now.v.size())
     throw Error("strain: the current state's ids, positions and velocities differ in length");
@@ -239,8 +246,8 @@ GridStrain partition_strain(const StrainReference& reference, std::span<const in
   g.set = options.set;
   g.reference_time = reference.time;
   g.reference_step = reference.step;
-  g.time = time;
-  g.step = step;
+  g.time = when.time;
+  g.step = when.step;
   const int cells = reference.cells;
   if (previous && static_cast<int>(previous->particles.size()) != cells) previous = nullptr;
 
@@ -328,8 +335,9 @@ GridStrain partition_strain(const StrainReference& reference, std::span<const in
     for (int d = 0; d < kStrainDefinitionCount; ++d) {
       if (!g.computed[d]) continue;
       const CellStrainFields* prev = previous && previous->computed[d] ? &previous->fields[d] : nullptr;
-      evaluate_cell(g.fields[d], c, static_cast<StrainDefinition>(d), all_X.subspan(b, n),
-                    all_x.subspan(b, n), all_v.subspan(b, n), prev, d == tessellation ? tetrahedra : nullptr);
+      const CellSet cell_set{all_X.subspan(b, n), all_x.subspan(b, n), all_v.subspan(b, n),
+                             d == tessellation ? tetrahedra : nullptr};
+      evaluate_cell(g.fields[d], c, static_cast<StrainDefinition>(d), cell_set, prev);
     }
   }
   return g;

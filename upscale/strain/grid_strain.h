@@ -81,6 +81,12 @@ struct ParticleKinematics {
   std::span<const Vec3> v;
 };
 
+// When the current state is: its simulated time (s) and step.
+struct StateInstant {
+  double time = 0.0;
+  long step = 0;
+};
+
 struct GridStrainOptions {
   StrainSet set = StrainSet::lagrangian;
   std::array<bool, kStrainDefinitionCount> definitions = {true, true};  // [StrainDefinition]
@@ -150,7 +156,7 @@ struct GridStrain {
 // count) gives F_prev for the increment; without it F_prev = 1, so F_inc = F. Its reference
 // tessellations are reused for the cells whose set has not changed.
 GridStrain grid_strain(const StrainReference& reference, const RegularGrid& current_grid,
-                       const ParticleKinematics& now, double time, long step,
+                       const ParticleKinematics& now, const StateInstant& when,
                        const GridStrainOptions& options, const GridStrain* previous = nullptr);
 
 // The same over any partition into reference.cells sets: Lagrangian sets from reference.cell,
@@ -158,7 +164,7 @@ GridStrain grid_strain(const StrainReference& reference, const RegularGrid& curr
 // reference.cells: the current partition has the reference's number of sets). The result's
 // grid is left empty. grid_strain() is this with the cells of a RegularGrid.
 GridStrain partition_strain(const StrainReference& reference, std::span<const int> current_cell,
-                            const ParticleKinematics& now, double time, long step,
+                            const ParticleKinematics& now, const StateInstant& when,
                             const GridStrainOptions& options, const GridStrain* previous = nullptr);
 
 }  // namespace upgrain::upscale

@@ -29,11 +29,11 @@ void write_tensors(hid_t g, const char* name, const std::vector<Mat3>& t) {
   std::vector<double> flat(9 * t.size());
   for (std::size_t c = 0; c < t.size(); ++c)
     for (int e = 0; e < 9; ++e) flat[9 * c + e] = t[c](e / 3, e % 3);
-  hdf5::write_dataset(g, name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, flat.data(), t.size(), 9);
+  hdf5::write_dataset(g, name, flat.data(), t.size(), 9);
 }
 
 void write_scalars(hid_t g, const char* name, const std::vector<double>& s) {
-  hdf5::write_dataset(g, name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, s.data(), s.size(), 1);
+  hdf5::write_dataset(g, name, s.data(), s.size(), 1);
 }
 
 void write_reasons(hid_t g, const std::string& prefix, const std::vector<StrainReason>& r) {
@@ -42,10 +42,8 @@ void write_reasons(hid_t g, const std::string& prefix, const std::vector<StrainR
     code[c] = static_cast<std::int32_t>(r[c]);
     valid[c] = r[c] == StrainReason::valid ? 1 : 0;
   }
-  hdf5::write_dataset(g, (prefix + "_valid").c_str(), H5T_NATIVE_INT32, H5T_STD_I32LE, valid.data(), r.size(),
-                      1);
-  hdf5::write_dataset(g, (prefix + "_reason").c_str(), H5T_NATIVE_INT32, H5T_STD_I32LE, code.data(), r.size(),
-                      1);
+  hdf5::write_dataset(g, (prefix + "_valid").c_str(), valid.data(), r.size(), 1);
+  hdf5::write_dataset(g, (prefix + "_reason").c_str(), code.data(), r.size(), 1);
 }
 
 // How sigma_dot was taken at an output that used n outputs (grid_stress_rates.h).
@@ -160,13 +158,13 @@ void write_grid_strain(const std::filesystem::path& path, const GridStrain& stra
     write_strain_attributes(file, strain);
     {
       Handle g(create_group(file, "grid"), H5Gclose, "create group grid");
-      write_dataset(g, "lo", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, grid.lo.data(), 3, 1);
-      write_dataset(g, "hi", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, grid.hi.data(), 3, 1);
-      write_dataset(g, "n", H5T_NATIVE_INT, H5T_STD_I32LE, grid.n, 3, 1);
+      write_dataset(g, "lo", grid.lo.data(), 3, 1);
+      write_dataset(g, "hi", grid.hi.data(), 3, 1);
+      write_dataset(g, "n", grid.n, 3, 1);
     }
     {
       Handle g(create_group(file, "cells"), H5Gclose, "create group cells");
-      write_dataset(g, "particles", H5T_NATIVE_LONG, H5T_STD_I64LE, strain.particles.data(), cells, 1);
+      write_dataset(g, "particles", strain.particles.data(), cells, 1);
     }
     write_definitions(file, strain, rates);
     if (rates) {
@@ -282,14 +280,14 @@ void write_compute_grid_strain(const std::filesystem::path& path, const GridStra
     write_strain_attributes(file, strain);
     {
       Handle g(create_group(file, "blocks"), H5Gclose, "create group blocks");
-      write_dataset(g, "lo", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, lo.data(), n, 3);
-      write_dataset(g, "hi", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, hi.data(), n, 3);
-      write_dataset(g, "particles", H5T_NATIVE_LONG, H5T_STD_I64LE, strain.particles.data(), n, 1);
+      write_dataset(g, "lo", lo.data(), n, 3);
+      write_dataset(g, "hi", hi.data(), n, 3);
+      write_dataset(g, "particles", strain.particles.data(), n, 1);
     }
     {
       Handle g(create_group(file, "sets"), H5Gclose, "create group sets");
-      write_dataset(g, "id", H5T_NATIVE_INT64, H5T_STD_I64LE, ids.data(), ids.size(), 1);
-      write_dataset(g, "block", H5T_NATIVE_INT32, H5T_STD_I32LE, block.data(), block.size(), 1);
+      write_dataset(g, "id", ids.data(), ids.size(), 1);
+      write_dataset(g, "block", block.data(), block.size(), 1);
     }
     write_definitions(file, strain, nullptr);
   }

@@ -12,16 +12,26 @@
 
 namespace upgrain::dem {
 
+// One contact as the tangential part sees it.
+struct TangentialMotion {
+  const Vec3& normal;  // unit contact normal, from i towards j
+  const Vec3& v_t;     // tangential velocity of i relative to j at the contact point
+  double k_t;          // tangential stiffness (NormalResponse::tangential_stiffness)
+  double f_n;          // normal force after the dashpot: the scale of the Coulomb cap
+};
+
 struct CoulombSpring {
   static constexpr bool needs_history = true;
   static constexpr bool needs_rotation = true;  // its force is off the centres: a torque
 
-  // The tangential force on i for the tangential relative velocity v_t, with the normal
-  // force f_n as the Coulomb cap; updates the stored spring.
+  // The tangential force on i for the contact's tangential motion, with its normal force as
+  // the Coulomb cap; updates the stored spring.
   template <bool Energy>
-  [[gnu::always_inline]] static Vec3 force(const ContactParameters& p, double k_t, const Vec3& n,
-                                           const Vec3& v_t, double f_n, TangentialSpring& spring,
-                                           ContactEnergy& energy) {
+  [[gnu::always_inline]] static Vec3 force(const ContactParameters& p, const TangentialMotion& m,
+                                           TangentialSpring& spring, ContactEnergy& energy) {
+    const Vec3& n = m.normal;
+    const Vec3& v_t = m.v_t;
+    const double k_t = m.k_t, f_n = m.f_n;
     Vec3& f_t = spring.force;
     carry_into_plane<Energy>(f_t, n, spring.stiffness, k_t, energy.tangential_stiffness_change);
     f_t -= k_t * p.dt * v_t;  // incremental: dF_t = -k_t du_t
