@@ -7,16 +7,16 @@
 
 #include "dem/core/error.h"
 #include "dem/io/grid_stress_output.h"
+#include "dem/io/hdf5_reader.h"
 #include "dem/io/hdf5_util.h"
 #include "dem/stress/asymmetry.h"
-#include "upscale/h5_reader.h"
 
 namespace upgrain::upscale {
 
 namespace {
 
-using detail::QuietHdf5;
-using detail::Reader;
+using dem::io::hdf5::QuietHdf5;
+using dem::io::hdf5::Reader;
 
 constexpr const char* kComponents[9] = {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"};
 constexpr const char* kCounts[4] = {"particles", "internal_contacts", "external_contacts", "wall_contacts"};

@@ -4,7 +4,7 @@
 #include <utility>
 #include <vector>
 
-#include "upscale/h5_reader.h"
+#include "dem/io/hdf5_reader.h"
 #include "upscale/strain/grid_strain_output.h"
 
 namespace upgrain::upscale {
@@ -54,8 +54,8 @@ GridFields grid_fields_from_strain(const upscale::GridStrain& strain) {
 }
 
 GridFields read_strain_fields(const std::filesystem::path& h5_file) {
-  detail::QuietHdf5 quiet;
-  detail::Reader in(h5_file, "grid-strain file");
+  dem::io::hdf5::QuietHdf5 quiet;
+  dem::io::hdf5::Reader in(h5_file, "grid-strain file");
   GridFields g;
   const auto n = in.read<int>("/grid/n", H5T_NATIVE_INT, 3);
   const auto lo = in.read<double>("/grid/lo", H5T_NATIVE_DOUBLE, 3);

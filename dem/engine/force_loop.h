@@ -37,18 +37,17 @@ struct ForceOutput {
   // and, for ellipsoids, its torque; with rolling resistance, the viscous rolling torque. For
   // the second half of their work (docs/integrator.md).
   std::vector<Vec3> damping_force, damping_torque, rolling_damping_torque;
-  // Deterministic summation with energy tracking: each local particle's elastic energies, of
-  // its wall contacts and of the pairs it is first (lower id) in, so that every pair counts
-  // once over the ranks and the sum can run in global-id order.
-  std::vector<double> elastic_normal, elastic_tangential, elastic_rolling;
+  // Deterministic summation with energy tracking: each local particle's share of the step's
+  // energies, elastic and dissipated, of its wall contacts and of the pairs it is first (lower
+  // id) in, so that every pair counts once over the ranks and the sums do not depend on them.
+  std::vector<ContactEnergy> particle_energy;
   // Fast: the force of the particles on each wall. Deterministic: the force on the particle of
   // each wall entry (zero when apart), summed per wall in global-id order for the output.
   std::vector<Vec3> wall_force;
   // Recording loops: every contact evaluated (a = the slot's first particle or the particle
   // at a wall, b = the partner or -(w + 1); the force on a, the contact point).
   std::vector<ContactSample> contacts;
-  // Fast: the energies of every contact (elastic and dissipated). Deterministic: the
-  // dissipation of the wall contacts and of the pairs whose first particle is owned.
+  // Fast: the energies of every contact (elastic and dissipated), this rank's sums.
   ContactEnergy energy;
   long pair_contacts = 0;  // touching pairs (deterministic: whose first particle is owned)
   long wall_contacts = 0;

@@ -10,9 +10,8 @@
 //  - deterministic: rows and partners in global-id order, walls first; a row's sum starts
 //    from the particle's force so far, so each particle adds walls by index, then partners
 //    by increasing global id. A pair across two ranks is evaluated on both, in the same
-//    orientation, and each keeps the share of its own particle. Elastic energies go to the
-//    pair's first particle (each pair once over the ranks), dissipation to the rank that owns
-//    it.
+//    orientation, and each keeps the share of its own particle. A contact's energies, elastic
+//    and dissipated, go to the pair's first particle (each pair once over the ranks).
 #include <algorithm>
 #include <cmath>
 
@@ -43,19 +42,17 @@ inline double rolling_inertia(const ParticleStore& p, std::size_t i, const Vec3&
   return own + p.mass(i) * lever.squaredNorm();
 }
 
-// A contact's energy booked on its particle's elastic accounts (deterministic summation) and
-// the rank's dissipation.
-inline void book_elastic(const ContactEnergy& ce, double& normal, double& tangential, double& rolling) {
-  normal += ce.elastic_normal;
-  tangential += ce.elastic_tangential;
-  rolling += ce.elastic_rolling;
-}
-inline void book_dissipation(const ContactEnergy& ce, ContactEnergy& rank) {
-  rank.dissipated_damping += ce.dissipated_damping;
-  rank.dissipated_friction += ce.dissipated_friction;
-  rank.tangential_stiffness_change += ce.tangential_stiffness_change;
-  rank.dissipated_rolling += ce.dissipated_rolling;
-  rank.rolling_stiffness_change += ce.rolling_stiffness_change;
+// A contact's energy: every account of one contact added to another's (a particle's share of the
+// step, deterministic summation; the rank's running sums, fast).
+inline void book(const ContactEnergy& ce, ContactEnergy& to) {
+  to.elastic_normal += ce.elastic_normal;
+  to.elastic_tangential += ce.elastic_tangential;
+  to.elastic_rolling += ce.elastic_rolling;
+  to.dissipated_damping += ce.dissipated_damping;
+  to.dissipated_friction += ce.dissipated_friction;
+  to.tangential_stiffness_change += ce.tangential_stiffness_change;
+  to.dissipated_rolling += ce.dissipated_rolling;
+  to.rolling_stiffness_change += ce.rolling_stiffness_change;
 }
 
 template <class Law, class E, bool Shapes, bool Record, Summation S>
@@ -70,7 +67,7 @@ void compute(const ForceInput& in) {
   constexpr bool kEnergy = E::energy;
   constexpr bool kDampingWork = E::damping && E::energy;
   constexpr bool kRollingWork = kRolling && E::energy;
-  constexpr bool kElasticPerParticle = kDeterministic && kEnergy;
+  constexpr bool kEnergyPerParticle = kDeterministic && kEnergy;
 
   ParticleStore& p = *in.particles;
   ForceOutput& out = *in.out;
@@ -90,15 +87,11 @@ void compute(const ForceInput& in) {
   if constexpr (kDampingWork) out.damping_force.assign(n, Vec3::Zero());
   if constexpr (kDampingWork && Shapes) out.damping_torque.assign(n, Vec3::Zero());
   if constexpr (kRollingWork) out.rolling_damping_torque.assign(n, Vec3::Zero());
-  if constexpr (kElasticPerParticle) {
-    out.elastic_normal.assign(n, 0.0);
-    out.elastic_tangential.assign(n, 0.0);
-    out.elastic_rolling.assign(n, 0.0);
-  }
+  if constexpr (kEnergyPerParticle) out.particle_energy.assign(n, ContactEnergy{});
   out.wall_force.assign(kDeterministic ? wl.size() : walls.size(), Vec3::Zero());
   if constexpr (Shapes) in.posed->update(p);
   if constexpr (Record) out.contacts.clear();
-  ContactEnergy energy;  // this rank's running sums (fast: every account; deterministic: dissipation)
+  ContactEnergy energy;  // this rank's running sums (fast summation)
   long pair_contacts = 0, wall_contacts = 0;
   double max_ratio = 0.0;
   TangentialSpring dummy_spring;
@@ -186,10 +179,7 @@ void compute(const ForceInput& in) {
         p.torque[i] += m_r;
         if constexpr (kRollingWork) out.rolling_damping_torque[i] += rolling_viscous;
       }
-      if constexpr (kElasticPerParticle) {
-        book_elastic(ce, out.elastic_normal[i], out.elastic_tangential[i], out.elastic_rolling[i]);
-        book_dissipation(ce, energy);
-      }
+      if constexpr (kEnergyPerParticle) book(ce, out.particle_energy[i]);
       ++wall_contacts;
       max_ratio = std::max(max_ratio, kin.overlap / (Shapes ? p.min_semi_axis(i) : ri));
     }
@@ -276,12 +266,8 @@ void compute(const ForceInput& in) {
         Vec3 fi = kDeterministic ? force[i] : Vec3::Zero();
         Vec3 ti = Vec3::Zero();
         if constexpr (kDeterministic && kRotation) ti = torque[i];
-        [[maybe_unused]] double en = 0.0, et = 0.0, er = 0.0;
-        if constexpr (kElasticPerParticle) {
-          en = out.elastic_normal[i];
-          et = out.elastic_tangential[i];
-          er = out.elastic_rolling[i];
-        }
+        [[maybe_unused]] ContactEnergy ei;  // the particle's share of the step, so far
+        if constexpr (kEnergyPerParticle) ei = out.particle_energy[i];
         for (int k = start[r]; k < start[r + 1]; ++k) {
           const int j = nbr[k];
           ContactKinematics kin;
@@ -365,10 +351,7 @@ void compute(const ForceInput& in) {
               out.rolling_damping_torque[j] -= rolling_viscous;
             }
           }
-          if constexpr (kElasticPerParticle) {
-            book_elastic(ce, en, et, er);
-            if (owned_i) book_dissipation(ce, energy);
-          }
+          if constexpr (kEnergyPerParticle) book(ce, ei);
           if (!kDeterministic || owned_i) ++pair_contacts;
           const double delta = kin.overlap;
           const double r_min =
@@ -382,11 +365,7 @@ void compute(const ForceInput& in) {
           force[i] += fi;
           if constexpr (kRotation) torque[i] += ti;
         }
-        if constexpr (kElasticPerParticle) {
-          out.elastic_normal[i] = en;
-          out.elastic_tangential[i] = et;
-          out.elastic_rolling[i] = er;
-        }
+        if constexpr (kEnergyPerParticle) out.particle_energy[i] = ei;
       }
     }
   };

@@ -104,46 +104,53 @@ Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, std::v
   // of it on more (each then keeps the particles of its block).
   int size = 1;
   MPI_Comm_size(comm, &size);
-  std::vector<ShapeRecord> shapes;
+  std::vector<ShapeRecord> shapes_in;
   std::vector<StateRecord> all;
   if (size == 1)
     p_ = std::move(particles);
   else
-    all = broadcast_particles(particles, comm, shapes);
+    all = broadcast_particles(particles, comm, shapes_in);
   particles = ParticleStore{};
   SceneExtent extent;
   if (size == 1)
     for (std::size_t i = 0; i < p_.size(); ++i) extent.add(p_.x[i], p_.radius[i]);
   else
     for (const StateRecord& r : all) extent.add(get(r.x), r.radius);
-  shapes_ = size == 1 ? p_.has_shapes() : !shapes.empty();
-  rotation_ = scene.effects.integrates_rotation(shapes_);
-  loops_ = select_force_loops(scene.effects, shapes_, summation_, scene.contact_law);
-  history_ = ContactHistory(
-      {scene.effects.friction, scene.effects.wall_friction, scene.effects.rolling_resistance, shapes_});
-  n_global_ = extent.count;
-  max_radius_ = extent.max_radius;
-  // The skin in units of the largest diameter.
-  skin_ = scene.neighbor_skin * 2.0 * max_radius_;
-  max_radius_ = std::max(max_radius_, 1e-12);
-  range_ = 2.0 * max_radius_ + skin_;
-  const Box box = options.box ? *options.box : default_box(scene, extent, max_radius_);
-  domain_ = std::make_unique<Domain>(comm, box, range_, shapes_, options);
-  lists_ = std::make_unique<VerletList>(
-      max_radius_, skin_, summation_ == Summation::deterministic ? PairOrder::global_id : PairOrder::local);
+  const bool shapes = size == 1 ? p_.has_shapes() : !shapes_in.empty();
+  const double r_max = std::max(extent.max_radius, 1e-12);
+  set_up(extent.count, extent.max_radius, shapes,
+         options.box ? *options.box : default_box(scene, extent, r_max), comm, options);
   const Decomposition& dec = domain_->decomposition();
   for (std::size_t k = 0; k < all.size(); ++k) {
     if (dec.owner_of(get(all[k].x)) != dec.rank()) continue;
     append_state(p_, all[k]);
-    if (shapes_) append_shape(p_, shapes[k]);
+    if (shapes_) append_shape(p_, shapes_in[k]);
   }
   all = {};
-  shapes = {};
+  shapes_in = {};
   n_owned_ = static_cast<int>(p_.size());
   rebuild();
   evaluate_forces();
   e0_ = energy();
   timings_ = {};  // step() only
+}
+
+void Simulation::set_up(long count, double max_radius, bool shapes, const Box& box, MPI_Comm comm,
+                        const EngineOptions& options) {
+  shapes_ = shapes;
+  rotation_ = scene_.effects.integrates_rotation(shapes_);
+  loops_ = select_force_loops(scene_.effects, shapes_, summation_, scene_.contact_law);
+  history_ = ContactHistory(
+      {scene_.effects.friction, scene_.effects.wall_friction, scene_.effects.rolling_resistance, shapes_});
+  n_global_ = count;
+  max_radius_ = max_radius;
+  // The skin in units of the largest diameter.
+  skin_ = scene_.neighbor_skin * 2.0 * max_radius_;
+  max_radius_ = std::max(max_radius_, 1e-12);
+  range_ = 2.0 * max_radius_ + skin_;
+  domain_ = std::make_unique<Domain>(comm, box, range_, shapes_, options);
+  lists_ = std::make_unique<VerletList>(
+      max_radius_, skin_, summation_ == Summation::deterministic ? PairOrder::global_id : PairOrder::local);
 }
 
 void Simulation::step() {
@@ -165,19 +172,19 @@ void Simulation::step() {
   // Second half of the work of the previous step's damping forces, with v(k+1/2); the owned
   // particles are still those of that evaluation. Damping acts along the normal through the
   // centroids of spheres: no torque; ellipsoids' normal misses the centroid.
+  // Each grain's share goes into the exact sum on its own, as its share of the evaluation did.
   if (!out_.damping_force.empty()) {
-    double work = 0.0;
-    for (int i = 0; i < n; ++i) work += out_.damping_force[i].dot(p_.v[i]);
-    if (!out_.damping_torque.empty())
-      for (int i = 0; i < n; ++i) work += out_.damping_torque[i].dot(p_.omega[i]);
-    dissipated_damping_ -= half * work;
+    const bool torques = !out_.damping_torque.empty();
+    for (int i = 0; i < n; ++i) {
+      double work = out_.damping_force[i].dot(p_.v[i]);
+      if (torques) work += out_.damping_torque[i].dot(p_.omega[i]);
+      dissipated_[kDamping].add(-half * work);
+    }
   }
   // The same for the rolling dashpot (dem/contact/rolling_resistance.h).
-  if (!out_.rolling_damping_torque.empty()) {
-    double work = 0.0;
-    for (int i = 0; i < n; ++i) work += out_.rolling_damping_torque[i].dot(p_.omega[i]);
-    dissipated_rolling_ -= half * work;
-  }
+  if (!out_.rolling_damping_torque.empty())
+    for (int i = 0; i < n; ++i)
+      dissipated_[kRolling].add(-half * out_.rolling_damping_torque[i].dot(p_.omega[i]));
   // One reduction per step carries both global decisions: rebuild now (every rank at the
   // same steps), and the runaway-overlap guard of the previous evaluation.
   double local[2] = {moved || rebuild_pending_ ? 1.0 : 0.0, last_overlap_ratio_};
@@ -278,13 +285,21 @@ void Simulation::evaluate_forces() {
   (record_next_ ? loops_.recording : loops_.plain)(in);
   if (!record_next_) out_.contacts.clear();
   record_next_ = false;
-  dissipated_damping_ += out_.energy.dissipated_damping;
-  dissipated_friction_ += out_.energy.dissipated_friction;
-  stiffness_change_ += out_.energy.tangential_stiffness_change;
-  dissipated_rolling_ += out_.energy.dissipated_rolling;
-  rolling_stiffness_change_ += out_.energy.rolling_stiffness_change;
+  if (!out_.particle_energy.empty()) {
+    for (int i = 0; i < n_owned_; ++i) add_dissipation(out_.particle_energy[i]);
+  } else {
+    add_dissipation(out_.energy);
+  }
   last_overlap_ratio_ = out_.max_overlap_ratio;
   last_overlap_step_ = step_;
+}
+
+void Simulation::add_dissipation(const ContactEnergy& e) {
+  dissipated_[kDamping].add(e.dissipated_damping);
+  dissipated_[kFriction].add(e.dissipated_friction);
+  dissipated_[kStiffnessChange].add(e.tangential_stiffness_change);
+  dissipated_[kRolling].add(e.dissipated_rolling);
+  dissipated_[kRollingStiffnessChange].add(e.rolling_stiffness_change);
 }
 
 void Simulation::remove_wall(const std::string& name) {
@@ -450,23 +465,22 @@ EnergyBalance Simulation::energy() const {
   // Kinetic, potential and elastic energies, and this rank's cumulative dissipation.
   constexpr int kTerms =
       6;  // kinetic translational, rotational, potential, elastic normal, tangential, rolling
-  const bool elastic_per_particle = !out_.elastic_normal.empty();
+  const bool elastic_per_particle = !out_.particle_energy.empty();
   auto terms = [&](int i, double* e) {
     const auto k = static_cast<std::size_t>(i);
     const double m = p_.mass(k);
     e[0] = 0.5 * m * p_.v[i].squaredNorm();
     e[1] = rotation_ ? p_.rotational_energy(k) : 0.0;
     e[2] = -m * g_.dot(p_.x[i]);
-    e[3] = elastic_per_particle ? out_.elastic_normal[k] : 0.0;
-    e[4] = elastic_per_particle ? out_.elastic_tangential[k] : 0.0;
-    e[5] = elastic_per_particle ? out_.elastic_rolling[k] : 0.0;
+    e[3] = elastic_per_particle ? out_.particle_energy[k].elastic_normal : 0.0;
+    e[4] = elastic_per_particle ? out_.particle_energy[k].elastic_tangential : 0.0;
+    e[5] = elastic_per_particle ? out_.particle_energy[k].elastic_rolling : 0.0;
   };
-  double sums[kTerms + 5] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
-  const double dissipated[5] = {dissipated_damping_, dissipated_friction_, stiffness_change_,
-                                dissipated_rolling_, rolling_stiffness_change_};
+  double sums[kTerms + kChannels] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  // The dissipation: exact sums over the ranks (the same bits on every rank).
+  for (int c = 0; c < kChannels; ++c) sums[kTerms + c] = dissipated_[c].reduced(comm()).value();
   if (summation_ == Summation::deterministic) {
-    // Per particle in global-id order on rank 0 (bitwise rank-independent); the dissipation
-    // is a per-rank running sum reduced over the ranks (rank-independent to round-off).
+    // Per particle in global-id order on rank 0 (bitwise rank-independent).
     struct Record {
       GlobalId gid;
       double e[kTerms];
@@ -480,8 +494,7 @@ EnergyBalance Simulation::energy() const {
     std::sort(all.begin(), all.end(), [](const Record& a, const Record& b) { return a.gid < b.gid; });
     for (const Record& r : all)
       for (int k = 0; k < kTerms; ++k) sums[k] += r.e[k];
-    MPI_Reduce(dissipated, sums + kTerms, 5, MPI_DOUBLE, MPI_SUM, 0, comm());
-    MPI_Bcast(sums, kTerms + 5, MPI_DOUBLE, 0, comm());
+    MPI_Bcast(sums, kTerms, MPI_DOUBLE, 0, comm());
   } else {
     // In local order, the elastic energies from the force loop, reduced over the ranks.
     double e[kTerms];
@@ -494,8 +507,7 @@ EnergyBalance Simulation::energy() const {
     sums[3] = out_.energy.elastic_normal;
     sums[4] = out_.energy.elastic_tangential;
     sums[5] = out_.energy.elastic_rolling;
-    std::copy(dissipated, dissipated + 5, sums + kTerms);
-    if (ranks() > 1) MPI_Allreduce(MPI_IN_PLACE, sums, kTerms + 5, MPI_DOUBLE, MPI_SUM, comm());
+    if (ranks() > 1) MPI_Allreduce(MPI_IN_PLACE, sums, kTerms, MPI_DOUBLE, MPI_SUM, comm());
   }
   EnergyBalance b;
   b.kinetic_translational = sums[0];

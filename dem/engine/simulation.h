@@ -14,6 +14,7 @@
 // a lost particle) are thrown as upgrain::Error on every rank (guards.h).
 #include <mpi.h>
 
+#include <array>
 #include <chrono>
 #include <cstddef>
 #include <functional>
@@ -30,10 +31,12 @@
 #include "dem/core/plane_wall.h"
 #include "dem/engine/diagnostics.h"
 #include "dem/engine/energy.h"
+#include "dem/engine/engine_state.h"
 #include "dem/engine/force_loop.h"
 #include "dem/engine/summation.h"
 #include "dem/neighbor/verlet_list.h"
 #include "dem/parallel/domain.h"
+#include "dem/parallel/exact_sum.h"
 #include "dem/parallel/records.h"
 #include "dem/scene/scene_config.h"
 #include "dem/stress/grid_stress.h"
@@ -64,6 +67,16 @@ class Simulation {
   // `Simulation(scene, particles, {})` would pass a null communicator (MPI_Comm is a pointer):
   // refused, so that "no walls" is written std::vector<PlaneWall>{}.
   Simulation(const SceneConfig&, const ParticleStore&, std::nullptr_t) = delete;
+
+  // Continues a run from a state captured by capture_state() (collective; `state` is read on
+  // rank 0, other ranks may pass an empty one), on any number of ranks: the scene must be the
+  // one it was captured with. Nothing is evaluated: the next step() is the step that followed
+  // the capture, and with the deterministic summation it gives the same bits
+  // (docs/restart.md).
+  Simulation(const SceneConfig& scene, const EngineState& state, MPI_Comm comm = MPI_COMM_SELF,
+             const EngineOptions& options = {});
+  // The state between two steps, gathered on rank 0 (empty elsewhere). Collective.
+  [[nodiscard]] EngineState capture_state() const;
 
   void step();
   void run(long steps);
@@ -122,8 +135,7 @@ class Simulation {
     std::size_t b = history_.bytes();
     for (const auto* v : {&out_.damping_force, &out_.damping_torque, &out_.rolling_damping_torque})
       b += v->size() * sizeof(Vec3);
-    for (const auto* v : {&out_.elastic_normal, &out_.elastic_tangential, &out_.elastic_rolling})
-      b += v->size() * sizeof(double);
+    b += out_.particle_energy.size() * sizeof(ContactEnergy);
     return b;
   }
   [[nodiscard]] bool contacts_recorded() const { return recorded_; }
@@ -176,6 +188,11 @@ class Simulation {
   [[nodiscard]] const ContactSolverStats& contact_solver_stats() const { return solver_stats_; }
 
  private:
+  // What every constructor sets up from the scene and the whole set of particles (`count`
+  // grains, the largest of radius `max_radius`): shapes, rotation, the force loops, the
+  // history kinds, the interaction range, the domain on `box` and the lists.
+  void set_up(long count, double max_radius, bool shapes, const Box& box, MPI_Comm comm,
+              const EngineOptions& options);
   void rebuild();
   void evaluate_forces();
   [[nodiscard]] int owner_of_local(std::size_t i) const;
@@ -214,12 +231,13 @@ class Simulation {
   double last_overlap_ratio_ = 0.0;
   long last_overlap_step_ = 0;
 
-  // Cumulative dissipation on this rank (docs/integrator.md).
-  double dissipated_damping_ = 0.0;
-  double dissipated_friction_ = 0.0;
-  double stiffness_change_ = 0.0;
-  double dissipated_rolling_ = 0.0;
-  double rolling_stiffness_change_ = 0.0;
+  // Cumulative dissipation (docs/integrator.md), each channel the exact sum of its terms on this
+  // rank (dem/parallel/exact_sum.h): with the deterministic summation each grain's share of
+  // each step, so that the totals over the ranks do not depend on how many there are; with
+  // the fast one each evaluation's running sum.
+  enum Channel { kDamping, kFriction, kStiffnessChange, kRolling, kRollingStiffnessChange, kChannels };
+  std::array<ExactSum, kChannels> dissipated_;
+  void add_dissipation(const ContactEnergy& e);
   double removed_by_relaxation_ = 0.0;
   EnergyBalance e0_;
   ContactSolverStats solver_stats_;  // this rank's, cumulative

@@ -96,6 +96,7 @@ void write_grid_stress(const std::filesystem::path& path, const RegularGrid& gri
       write_dataset(g, "rai", rai.data(), cells, 1);
       write_dataset(g, "sigma_zz", szz.data(), cells, 1);
     }
+    hdf5::flush(file, target.final_path().string());
   }
   target.commit();
 }

@@ -99,6 +99,7 @@ void write_snapshot(const std::filesystem::path& path, const ParticleStore& p,
     write_dataset(wg, "normal", normal.data(), nw, 3);
     write_dataset(wg, "friction", friction.data(), nw, 1);
     write_dataset(wg, "force", force.data(), nw, 3);
+    hdf5::flush(file, target.final_path().string());
   }
   target.commit();
 }

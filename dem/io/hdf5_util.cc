@@ -68,4 +68,9 @@ hid_t create_group(hid_t parent, const std::string& name) {
   return g;
 }
 
+void flush(hid_t file, const std::string& path) {
+  if (H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
+    throw Error("cannot write " + path + " (HDF5 flush failed: is the disk full?)");
+}
+
 }  // namespace upgrain::dem::io::hdf5

@@ -62,5 +62,9 @@ void write_attribute(hid_t obj, const char* name, const std::string& value);
 // A 1-D attribute of fixed-length strings (each padded to the longest).
 void write_attribute(hid_t obj, const char* name, const std::vector<std::string>& values);
 hid_t create_group(hid_t parent, const std::string& name);
+// Writes every buffer of an open file to disk, and throws upgrain::Error naming `path` when it
+// cannot (a full disk, a write error): called before a file is committed (atomic_file.h), so a
+// file whose data did not reach the disk never gets its final name.
+void flush(hid_t file, const std::string& path);
 
 }  // namespace upgrain::dem::io::hdf5

@@ -47,6 +47,29 @@ Domain::Domain(MPI_Comm comm, const Box& box, double range, bool shapes, const D
   balance_state_.next_step = options.balance_at_start ? 0 : options.balance_interval;
 }
 
+DomainState Domain::state() const {
+  const Decomposition& dec = *decomp_;
+  DomainState s;
+  s.box = dec.box();
+  s.blocks = dec.blocks();
+  for (int d = 0; d < 3; ++d)
+    for (int k = 0; k <= s.blocks[d]; ++k) s.planes[d].push_back(dec.plane(d, k));
+  s.balance = balance_;
+  s.next_balance_step = balance_state_.next_step;
+  return s;
+}
+
+void Domain::restore(const DomainState& s) {
+  balance_state_.next_step = s.next_balance_step;
+  Decomposition& dec = *decomp_;
+  if (s.blocks != dec.blocks()) return;
+  for (int d = 0; d < 3; ++d) {
+    if (s.planes[d].size() != static_cast<std::size_t>(s.blocks[d] + 1)) continue;
+    dec.set_cuts(d, std::vector<double>(s.planes[d].begin() + 1, s.planes[d].end() - 1));
+  }
+  balance_ = s.balance;
+}
+
 template <class Exchange>
 void Domain::timed(Exchange exchange) {
   const std::chrono::steady_clock::time_point t = std::chrono::steady_clock::now();

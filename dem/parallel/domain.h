@@ -48,6 +48,17 @@ struct BalanceRecord {
   double after = 1.0;
 };
 
+// What a checkpoint keeps of a domain: the block planes and where the load balance stands
+// (docs/restart.md). Reused on a restart with the same blocks; another rank count starts from
+// the default planes.
+struct DomainState {
+  Box box;
+  std::array<int, 3> blocks{1, 1, 1};
+  std::array<std::vector<double>, 3> planes;  // blocks[d] + 1 per axis, the box faces included
+  BalanceRecord balance;
+  long next_balance_step = 0;
+};
+
 class Domain {
  public:
   // Collective over `comm`. `range`: the interaction range (largest diameter + skin), the
@@ -83,6 +94,10 @@ class Domain {
   [[nodiscard]] int ghost_owner(std::size_t i) const { return ghost_owner_[i - n_owned_]; }
 
   [[nodiscard]] const BalanceRecord& balance() const { return balance_; }
+  // The planes and the load balance's progress; and back, when the blocks are the same
+  // (otherwise only the balance's next step is taken). Between steps.
+  [[nodiscard]] DomainState state() const;
+  void restore(const DomainState& s);
   [[nodiscard]] long migrated_out() const { return migrated_out_; }
   // Wall-clock seconds spent in messages and reductions by migrate() and build_ghosts().
   [[nodiscard]] double message_seconds() const { return message_seconds_; }

@@ -305,8 +305,12 @@ TEST(ParallelEnergy, EnergiesAndWallForcesAreRankIndependent) {
   EXPECT_EQ(e.elastic_normal, e1.elastic_normal);
   EXPECT_EQ(e.elastic_tangential, e1.elastic_tangential);
   for (std::size_t w = 0; w < walls.size(); ++w) EXPECT_EQ(walls[w], walls1[w]) << "wall " << w;
-  // Cumulative dissipation: per-rank running sums, so to round-off.
   expect_energies_close(e, e1, 1e-13, std::to_string(test::world_size()) + " ranks vs 1");
+  // Cumulative dissipation: exact sums of each grain's share of each step
+  // (dem/parallel/exact_sum.h), so bitwise too.
+  EXPECT_EQ(e.dissipated_damping, e1.dissipated_damping);
+  EXPECT_EQ(e.dissipated_friction, e1.dissipated_friction);
+  EXPECT_EQ(e.tangential_stiffness_change, e1.tangential_stiffness_change);
   std::printf("dissipation on %d ranks vs 1: damping %.3g, friction %.3g relative\n", test::world_size(),
               std::abs(e.dissipated_damping / e1.dissipated_damping - 1.0),
               std::abs(e.dissipated_friction / e1.dissipated_friction - 1.0));

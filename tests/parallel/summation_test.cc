@@ -88,6 +88,10 @@ TEST(Summation, RollingResistanceIsBitwiseRankIndependent) {
     EXPECT_EQ(e.elastic_normal, o.elastic_normal);
     EXPECT_EQ(e.kinetic_rotational, o.kinetic_rotational);
     EXPECT_NEAR(e.dissipated_rolling, o.dissipated_rolling, 1e-12 * std::abs(o.dissipated_rolling));
+    // Exact sums of each grain's share of each step (dem/parallel/exact_sum.h): bitwise.
+    EXPECT_EQ(e.dissipated_rolling, o.dissipated_rolling);
+    EXPECT_EQ(e.rolling_stiffness_change, o.rolling_stiffness_change);
+    EXPECT_EQ(e.dissipated_damping, o.dissipated_damping);
   }
 }
 

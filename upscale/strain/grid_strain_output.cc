@@ -175,6 +175,7 @@ void write_grid_strain(const std::filesystem::path& path, const GridStrain& stra
       write_attribute(g, "difference", difference_name(rates->outputs_used));
       write_tensors(g, "stress", rates->stress);
     }
+    hdf5::flush(file, target.final_path().string());
   }
   target.commit();
 }
@@ -290,6 +291,7 @@ void write_compute_grid_strain(const std::filesystem::path& path, const GridStra
       write_dataset(g, "block", block.data(), block.size(), 1);
     }
     write_definitions(file, strain, nullptr);
+    hdf5::flush(file, target.final_path().string());
   }
   target.commit();
 }

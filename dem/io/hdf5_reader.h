@@ -1,9 +1,10 @@
 #pragma once
-// Reading the grid files the DEM writes (grid stress, grid strain) for the upscaling: an
-// open HDF5 file whose every error names the file, its kind and the object. Internal to
-// upscale/ (grid_fields.cc, strain_fields.cc).
+// Reading the HDF5 files Upgrain writes (grid stress and strain for the upscaling,
+// checkpoints for a restart): an open file whose every error names the file, its kind and the
+// object.
 #include <hdf5.h>
 
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -12,9 +13,7 @@
 #include "dem/core/error.h"
 #include "dem/io/hdf5_util.h"
 
-namespace upgrain::upscale::detail {
-
-namespace hdf5 = dem::io::hdf5;
+namespace upgrain::dem::io::hdf5 {
 
 // HDF5 prints its error stack to stderr on every failed call; our errors say what went
 // wrong, so the printing is switched off while a file is read.
@@ -53,9 +52,8 @@ class Reader {
   template <class T>
   std::vector<T> read(const std::string& name, hid_t mem_type, hsize_t rows, hsize_t cols = 1) const {
     if (!exists(name)) throw Error(where() + "missing dataset " + name);
-    hdf5::Handle set(H5Dopen2(file_, name.c_str(), H5P_DEFAULT), H5Dclose,
-                     "open dataset " + name + where(true));
-    hdf5::Handle space(H5Dget_space(set), H5Sclose, "get the dataspace of " + name + where(true));
+    Handle set(H5Dopen2(file_, name.c_str(), H5P_DEFAULT), H5Dclose, "open dataset " + name + where(true));
+    Handle space(H5Dget_space(set), H5Sclose, "get the dataspace of " + name + where(true));
     const int rank = H5Sget_simple_extent_ndims(space);
     hsize_t dims[2] = {0, 1};
     if (rank < 1 || rank > 2 || H5Sget_simple_extent_dims(space, dims, nullptr) < 0 || dims[0] != rows ||
@@ -68,13 +66,53 @@ class Reader {
     return v;
   }
 
-  [[nodiscard]] double attribute(const char* name) const {
-    if (H5Aexists(file_, name) <= 0) throw Error(where() + "missing attribute " + name);
-    hdf5::Handle a(H5Aopen(file_, name, H5P_DEFAULT), H5Aclose,
-                   std::string("open attribute ") + name + where(true));
+  // The rows of a 1-D or 2-D dataset (0 when it is missing).
+  [[nodiscard]] hsize_t rows(const std::string& name) const {
+    if (!exists(name)) return 0;
+    Handle set(H5Dopen2(file_, name.c_str(), H5P_DEFAULT), H5Dclose, "open dataset " + name + where(true));
+    Handle space(H5Dget_space(set), H5Sclose, "get the dataspace of " + name + where(true));
+    hsize_t dims[2] = {0, 1};
+    if (H5Sget_simple_extent_dims(space, dims, nullptr) < 0) throw Error(where() + "cannot size " + name);
+    return dims[0];
+  }
+  // A dataset of T (ElementType, hdf5_util.h) with `cols` columns and as many rows as it has;
+  // empty when it is missing and `optional`.
+  template <class T>
+  std::vector<T> read_all(const std::string& name, hsize_t cols = 1, bool optional = false) const {
+    if (optional && !exists(name)) return {};
+    return read<T>(name, ElementType<T>::memory(), rows(name), cols);
+  }
+
+  // A scalar attribute of the file, or of the group or dataset at `object`.
+  [[nodiscard]] double attribute(const char* name, const std::string& object = "/") const {
+    Handle a = open_attribute(name, object);
     double v = 0.0;
     if (H5Aread(a, H5T_NATIVE_DOUBLE, &v) < 0) throw Error(where() + "cannot read attribute " + name);
     return v;
+  }
+  // A string attribute (fixed or variable length).
+  [[nodiscard]] std::string text_attribute(const char* name, const std::string& object = "/") const {
+    Handle a = open_attribute(name, object);
+    Handle type(H5Aget_type(a), H5Tclose, std::string("type of attribute ") + name + where(true));
+    if (H5Tget_class(type) != H5T_STRING) throw Error(where() + "attribute " + name + " is not text");
+    if (H5Tis_variable_str(type) > 0) {
+      char* text = nullptr;
+      Handle memory(H5Tcopy(H5T_C_S1), H5Tclose, "copy a string type");
+      H5Tset_size(memory, H5T_VARIABLE);
+      if (H5Aread(a, memory, &text) < 0) throw Error(where() + "cannot read attribute " + name);
+      std::string out = text ? text : "";
+      H5free_memory(text);
+      return out;
+    }
+    const std::size_t size = H5Tget_size(type);
+    std::string out(size, '\0');
+    if (H5Aread(a, type, out.data()) < 0) throw Error(where() + "cannot read attribute " + name);
+    out.resize(std::strlen(out.c_str()));
+    return out;
+  }
+  [[nodiscard]] bool has_attribute(const char* name, const std::string& object = "/") const {
+    if (object != "/" && !exists(object)) return false;
+    return H5Aexists_by_name(file_, object.c_str(), name, H5P_DEFAULT) > 0;
   }
 
   // "<kind> <path>: " to start an error message, or " in <path>" to end one.
@@ -85,7 +123,7 @@ class Reader {
   // Names of the links in group `name`, by name.
   [[nodiscard]] std::vector<std::string> members(const std::string& name) const {
     if (!exists(name)) throw Error(where() + "missing group " + name);
-    hdf5::Handle g(H5Gopen2(file_, name.c_str(), H5P_DEFAULT), H5Gclose, "open group " + name + where(true));
+    Handle g(H5Gopen2(file_, name.c_str(), H5P_DEFAULT), H5Gclose, "open group " + name + where(true));
     H5G_info_t info;
     if (H5Gget_info(g, &info) < 0) throw Error(where() + "cannot list group " + name);
     std::vector<std::string> out;
@@ -101,6 +139,11 @@ class Reader {
   }
 
  private:
+  Handle open_attribute(const char* name, const std::string& object) const {
+    if (!has_attribute(name, object)) throw Error(where() + "missing attribute " + name + " of " + object);
+    return Handle(H5Aopen_by_name(file_, object.c_str(), name, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+                  std::string("open attribute ") + name + where(true));
+  }
   static hid_t open(const std::filesystem::path& path, const std::string& kind) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
@@ -116,7 +159,7 @@ class Reader {
 
   std::filesystem::path path_;
   std::string kind_;
-  hdf5::Handle file_;
+  Handle file_;
 };
 
-}  // namespace upgrain::upscale::detail
+}  // namespace upgrain::dem::io::hdf5

@@ -1,0 +1,61 @@
+#pragma once
+// The whole state of the engine between two steps, independent of the decomposition: what a
+// checkpoint keeps of the DEM (docs/restart.md). Simulation::capture_state() gathers it on
+// rank 0; the restoring constructor of Simulation continues from it on any number of ranks,
+// and with the deterministic summation the run goes on with the same bits as if it had not
+// stopped.
+//
+// Why each part is there:
+//  - the particles with the forces and torques of the last evaluation (the next step's first
+//    half kick uses them), and the last evaluation's damping forces and torques (the second
+//    half of their work) and each grain's share of its energies;
+//  - the positions at the last neighbour-list build: the restored lists are built from them,
+//    so they hold the same pairs as the interrupted run's, and the next rebuild comes at the
+//    same step (the skin test is against them);
+//  - every contact history, separation budgets of ellipsoid pairs included;
+//  - the walls (removed ones far behind their plane), the step, the rebuild count, the guard's
+//    last overlap, the initial energy, gravity, and the exact sums of the dissipation;
+//  - the blocks' planes and the load balance's progress, taken again on the same blocks.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "dem/contact/contact_parameters.h"
+#include "dem/contact/ellipsoid_geometry.h"
+#include "dem/core/contact_history.h"
+#include "dem/core/particle_store.h"
+#include "dem/core/plane_wall.h"
+#include "dem/engine/energy.h"
+#include "dem/parallel/domain.h"
+#include "dem/parallel/exact_sum.h"
+
+namespace upgrain::dem {
+
+struct EngineState {
+  static constexpr int kVersion = 1;
+
+  // Per particle, sorted by global id.
+  ParticleStore particles;
+  std::vector<Vec3> positions_at_build;
+  std::vector<Vec3> damping_force, damping_torque, rolling_damping_torque;  // empty when not kept
+  std::vector<ContactEnergy> particle_energy;  // deterministic summation with energy tracking
+
+  std::vector<ContactHistoryRecord> history;  // sorted by key, separation budgets kept
+  std::vector<PlaneWall> walls;
+
+  long step = 0;
+  long rebuilds = 0;
+  bool rebuild_pending = false;
+  double last_overlap_ratio = 0.0;
+  long last_overlap_step = 0;
+  Vec3 gravity = Vec3::Zero();
+  EnergyBalance initial_energy;
+  double removed_by_relaxation = 0.0;
+  static constexpr int kDissipationChannels = 5;
+  std::array<std::array<std::int64_t, ExactSum::kDigits + 1>, kDissipationChannels> dissipated{};
+  ContactSolverStats solver_stats;  // over every rank
+  double reference_mass = -1.0;     // of the first checked gather (the lost-particle guard)
+  DomainState domain;
+};
+
+}  // namespace upgrain::dem

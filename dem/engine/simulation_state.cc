@@ -1,0 +1,286 @@
+// Capture and restore of the engine's state between two steps (engine_state.h,
+// docs/restart.md).
+#include <algorithm>
+
+#include "dem/contact/contact_laws.h"
+#include "dem/core/error.h"
+#include "dem/engine/simulation.h"
+#include "dem/parallel/byte_stream.h"
+#include "dem/parallel/exchange.h"
+
+namespace upgrain::dem {
+
+namespace {
+
+// What a particle carries into a checkpoint besides its state and shape.
+struct ResumeRecord {
+  GlobalId gid;
+  double x_built[3];
+  double damping_force[3], damping_torque[3], rolling_damping_torque[3];
+  ContactEnergy energy;
+};
+struct ParticleRecord {
+  StateRecord state;
+  ShapeRecord shape;
+  ResumeRecord resume;
+};
+
+// Which optional per-particle parts a state holds.
+struct Parts {
+  bool shapes = false, damping_force = false, damping_torque = false, rolling = false, energy = false;
+};
+
+Parts parts_of(const EngineState& s) {
+  return {s.particles.has_shapes(), !s.damping_force.empty(), !s.damping_torque.empty(),
+          !s.rolling_damping_torque.empty(), !s.particle_energy.empty()};
+}
+
+// The whole state as bytes and back: rank 0's state on every rank (the restoring constructor
+// keeps each rank's part, as the first constructor does with a scene's particles).
+std::vector<char> to_bytes(const EngineState& s) {
+  ByteWriter w;
+  const Parts parts = parts_of(s);
+  w.put(parts);
+  std::vector<ParticleRecord> records(s.particles.size());
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    ParticleRecord& r = records[i];
+    r.state = pack_state(s.particles, i);
+    if (parts.shapes) r.shape = pack_shape(s.particles, i);
+    r.resume.gid = s.particles.id[i];
+    put(r.resume.x_built, s.positions_at_build[i]);
+    if (parts.damping_force) put(r.resume.damping_force, s.damping_force[i]);
+    if (parts.damping_torque) put(r.resume.damping_torque, s.damping_torque[i]);
+    if (parts.rolling) put(r.resume.rolling_damping_torque, s.rolling_damping_torque[i]);
+    if (parts.energy) r.resume.energy = s.particle_energy[i];
+  }
+  w.put(records);
+  w.put(s.history);
+  w.put(static_cast<std::uint64_t>(s.walls.size()));
+  for (const PlaneWall& wall : s.walls) {
+    w.put(wall.name);
+    w.put(wall.point);
+    w.put(wall.normal);
+    w.put(wall.friction);
+  }
+  w.put(s.step);
+  w.put(s.rebuilds);
+  w.put(s.rebuild_pending);
+  w.put(s.last_overlap_ratio);
+  w.put(s.last_overlap_step);
+  w.put(s.gravity);
+  w.put(s.initial_energy);
+  w.put(s.removed_by_relaxation);
+  w.put(s.dissipated);
+  w.put(s.solver_stats);
+  w.put(s.reference_mass);
+  w.put(s.domain.box);
+  w.put(s.domain.blocks);
+  for (const std::vector<double>& p : s.domain.planes) w.put(p);
+  w.put(s.domain.balance);
+  w.put(s.domain.next_balance_step);
+  return std::move(w.bytes());
+}
+
+EngineState from_bytes(const std::vector<char>& bytes) {
+  ByteReader r(bytes);
+  EngineState s;
+  Parts parts;
+  r.get(parts);
+  std::vector<ParticleRecord> records;
+  r.get(records);
+  s.particles.reserve(records.size());
+  for (const ParticleRecord& p : records) {
+    append_state(s.particles, p.state);
+    if (parts.shapes) append_shape(s.particles, p.shape);
+    s.positions_at_build.push_back(get(p.resume.x_built));
+    if (parts.damping_force) s.damping_force.push_back(get(p.resume.damping_force));
+    if (parts.damping_torque) s.damping_torque.push_back(get(p.resume.damping_torque));
+    if (parts.rolling) s.rolling_damping_torque.push_back(get(p.resume.rolling_damping_torque));
+    if (parts.energy) s.particle_energy.push_back(p.resume.energy);
+  }
+  r.get(s.history);
+  std::uint64_t walls = 0;
+  r.get(walls);
+  s.walls.resize(walls);
+  for (PlaneWall& wall : s.walls) {
+    r.get(wall.name);
+    r.get(wall.point);
+    r.get(wall.normal);
+    r.get(wall.friction);
+  }
+  r.get(s.step);
+  r.get(s.rebuilds);
+  r.get(s.rebuild_pending);
+  r.get(s.last_overlap_ratio);
+  r.get(s.last_overlap_step);
+  r.get(s.gravity);
+  r.get(s.initial_energy);
+  r.get(s.removed_by_relaxation);
+  r.get(s.dissipated);
+  r.get(s.solver_stats);
+  r.get(s.reference_mass);
+  r.get(s.domain.box);
+  r.get(s.domain.blocks);
+  for (std::vector<double>& p : s.domain.planes) r.get(p);
+  r.get(s.domain.balance);
+  r.get(s.domain.next_balance_step);
+  return s;
+}
+
+// The index of global id `gid` in a store sorted by id.
+std::size_t index_of(const ParticleStore& sorted, GlobalId gid) {
+  const auto it = std::lower_bound(sorted.id.begin(), sorted.id.end(), gid);
+  if (it == sorted.id.end() || *it != gid)
+    throw Error("restore: particle " + std::to_string(gid) + " is not in the state");
+  return static_cast<std::size_t>(it - sorted.id.begin());
+}
+
+}  // namespace
+
+EngineState Simulation::capture_state() const {
+  EngineState s;
+  // Per particle, gathered by id.
+  const std::vector<Vec3>& x_built = lists_->positions_at_build();
+  std::vector<ParticleRecord> mine(static_cast<std::size_t>(n_owned_));
+  const Parts parts{shapes_, !out_.damping_force.empty(), !out_.damping_torque.empty(),
+                    !out_.rolling_damping_torque.empty(), !out_.particle_energy.empty()};
+  for (int i = 0; i < n_owned_; ++i) {
+    ParticleRecord& r = mine[static_cast<std::size_t>(i)];
+    r = ParticleRecord{};
+    r.state = pack_state(p_, static_cast<std::size_t>(i));
+    if (parts.shapes) r.shape = pack_shape(p_, static_cast<std::size_t>(i));
+    r.resume.gid = p_.id[i];
+    put(r.resume.x_built, x_built[i]);
+    if (parts.damping_force) put(r.resume.damping_force, out_.damping_force[i]);
+    if (parts.damping_torque) put(r.resume.damping_torque, out_.damping_torque[i]);
+    if (parts.rolling) put(r.resume.rolling_damping_torque, out_.rolling_damping_torque[i]);
+    if (parts.energy) r.resume.energy = out_.particle_energy[i];
+  }
+  std::vector<ParticleRecord> all = gather_to_root(mine, comm());
+  std::sort(all.begin(), all.end(),
+            [](const ParticleRecord& a, const ParticleRecord& b) { return a.state.gid < b.state.gid; });
+  // Every history with its separation budget: the restored lists hold the same pairs, and the
+  // grains keep their motion bounds across the restart (the poses are primed from this state).
+  std::vector<ContactHistoryRecord> records;
+  history_.collect(lists_->pairs(), lists_->walls(), p_.id, true, records);
+  std::vector<ContactHistoryRecord> history = gather_to_root(records, comm());
+  // Collective parts before rank 0 fills the state.
+  std::array<ExactSum, kChannels> dissipated;
+  for (int c = 0; c < kChannels; ++c) dissipated[c] = dissipated_[c].reduced(comm());
+  ContactSolverStats stats = solver_stats_;
+  static_assert(sizeof(ContactSolverStats) % sizeof(std::int64_t) == 0);
+  MPI_Allreduce(MPI_IN_PLACE, &stats, static_cast<int>(sizeof(stats) / sizeof(std::int64_t)), MPI_INT64_T,
+                MPI_SUM, comm());
+  if (!is_root()) return s;
+  s.particles.reserve(all.size());
+  for (const ParticleRecord& r : all) {
+    append_state(s.particles, r.state);
+    if (parts.shapes) append_shape(s.particles, r.shape);
+    s.positions_at_build.push_back(get(r.resume.x_built));
+    if (parts.damping_force) s.damping_force.push_back(get(r.resume.damping_force));
+    if (parts.damping_torque) s.damping_torque.push_back(get(r.resume.damping_torque));
+    if (parts.rolling) s.rolling_damping_torque.push_back(get(r.resume.rolling_damping_torque));
+    if (parts.energy) s.particle_energy.push_back(r.resume.energy);
+  }
+  sort_unique(history);
+  s.history = std::move(history);
+  s.walls = walls_;
+  s.step = step_;
+  s.rebuilds = rebuilds_;
+  s.rebuild_pending = rebuild_pending_;
+  s.last_overlap_ratio = last_overlap_ratio_;
+  s.last_overlap_step = last_overlap_step_;
+  s.gravity = g_;
+  s.initial_energy = e0_;
+  s.removed_by_relaxation = removed_by_relaxation_;
+  for (int c = 0; c < kChannels; ++c) s.dissipated[c] = dissipated[c].state();
+  s.solver_stats = stats;
+  s.reference_mass = reference_mass_;
+  s.domain = domain_->state();
+  return s;
+}
+
+Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_root, MPI_Comm comm,
+                       const EngineOptions& options)
+    : scene_(scene),
+      summation_(options.summation),
+      dt_(scene.time_step),
+      material_(ContactMaterial::from(scene.particles.material, scene.friction, scene.damping_ratio)),
+      rolling_{scene.rolling_friction, scene.rolling_damping_ratio} {
+  find_contact_law(scene.contact_law).constants(scene, material_);
+  // Rank 0's state on every rank for a moment, as the scene's particles in the first
+  // constructor; each rank then keeps its block's part.
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  std::vector<char> bytes;
+  if (rank == 0) bytes = to_bytes(state_on_root);
+  broadcast_bytes(bytes, comm);
+  const EngineState s = from_bytes(bytes);
+  bytes = {};
+  if (s.particles.size() == 0) throw Error("restore: the state holds no particles");
+  walls_ = s.walls;
+  g_ = s.gravity;
+  double max_radius = 0.0;
+  for (double r : s.particles.radius) max_radius = std::max(max_radius, r);
+  EngineOptions o = options;
+  o.box = s.domain.box;
+  o.balance_at_start = false;
+  set_up(static_cast<long>(s.particles.size()), max_radius, s.particles.has_shapes(), s.domain.box, comm, o);
+  domain_->restore(s.domain);
+
+  // The particles of this rank's block, placed where the lists were last built: ownership, cell
+  // order, ghosts and the lists themselves then follow from the positions the interrupted run
+  // built them from (verlet_list.h), and the next rebuild comes at the same step.
+  const Decomposition& dec = domain_->decomposition();
+  for (std::size_t k = 0; k < s.particles.size(); ++k) {
+    if (dec.owner_of(s.positions_at_build[k]) != dec.rank()) continue;
+    append_state(p_, pack_state(s.particles, k));
+    p_.x.back() = s.positions_at_build[k];
+    if (shapes_) append_shape(p_, pack_shape(s.particles, k));
+  }
+  n_owned_ = static_cast<int>(p_.size());
+  sort_by_cell(p_, range_);
+  domain_->build_ghosts(p_, n_owned_);
+  lists_->build(p_, n_owned_, walls_);
+  history_.restore(lists_->pairs(), lists_->walls(), p_.id, s.history);
+  // Back to the positions of the state, and the ghosts with them.
+  for (int i = 0; i < n_owned_; ++i) p_.x[i] = s.particles.x[index_of(s.particles, p_.id[i])];
+  if (ranks() > 1) domain_->refresh_ghosts(p_);
+
+  // The last evaluation's per-particle output that the next step reads.
+  const std::size_t n = p_.size();
+  auto restore_field = [&](const std::vector<Vec3>& from, std::vector<Vec3>& to) {
+    if (from.empty()) return;
+    to.assign(n, Vec3::Zero());
+    for (int i = 0; i < n_owned_; ++i) to[i] = from[index_of(s.particles, p_.id[i])];
+  };
+  restore_field(s.damping_force, out_.damping_force);
+  restore_field(s.damping_torque, out_.damping_torque);
+  restore_field(s.rolling_damping_torque, out_.rolling_damping_torque);
+  if (!s.particle_energy.empty()) {
+    out_.particle_energy.assign(n, ContactEnergy{});
+    for (int i = 0; i < n_owned_; ++i)
+      out_.particle_energy[i] = s.particle_energy[index_of(s.particles, p_.id[i])];
+  }
+  out_.wall_force.assign(summation_ == Summation::deterministic ? lists_->walls().size() : walls_.size(),
+                         Vec3::Zero());
+  // The grains' poses of the last evaluation, so that the next one has their motion bounds.
+  if (shapes_) posed_.update(p_);
+
+  step_ = s.step;
+  rebuilds_ = s.rebuilds;
+  rebuild_pending_ = s.rebuild_pending;
+  last_overlap_ratio_ = s.last_overlap_ratio;
+  last_overlap_step_ = s.last_overlap_step;
+  e0_ = s.initial_energy;
+  removed_by_relaxation_ = s.removed_by_relaxation;
+  // The global sums are rank 0's to continue; the other ranks add from zero.
+  if (is_root()) {
+    for (int c = 0; c < kChannels; ++c) dissipated_[c] = ExactSum::from_state(s.dissipated[c]);
+    solver_stats_ = s.solver_stats;
+    reference_mass_ = s.reference_mass;
+  }
+  timings_ = {};
+}
+
+}  // namespace upgrain::dem

@@ -1,0 +1,169 @@
+// Restart of the engine (dem/engine/engine_state.h, docs/restart.md): a run captured between
+// two steps and continued from the captured state, on the same or another number of ranks,
+// ends with the same bits as the run that was not interrupted (deterministic summation):
+// positions, velocities, spins and orientations, energies with the dissipation, wall forces,
+// contact counts and the number of list rebuilds.
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <cstdio>
+#include <string>
+
+#include "dem/boundary/container.h"
+#include "dem/engine/simulation.h"
+#include "dem/scene/fill.h"
+#include "helpers.h"
+#include "tests/common/relaxed_bed.h"
+
+using namespace upgrain;
+using namespace upgrain::dem;
+
+namespace {
+
+// Everything the comparison looks at after a run.
+struct Outcome {
+  ParticleStore state;  // rank 0
+  EnergyBalance energy;
+  std::vector<Vec3> wall_forces;
+  StepDiagnostics diagnostics;
+};
+
+Outcome outcome(Simulation& sim) {
+  Outcome o;
+  o.state = sim.gather_sorted_by_id();
+  o.energy = sim.energy();
+  o.wall_forces = sim.wall_forces();
+  o.diagnostics = sim.diagnostics();
+  return o;
+}
+
+void expect_same(const Outcome& a, const Outcome& b, const std::string& what) {
+  if (test::world_rank() != 0) return;
+  test::expect_bitwise_equal(a.state, b.state, what);
+  EXPECT_EQ(a.state.force, b.state.force) << what;
+  const EnergyBalance &x = a.energy, &y = b.energy;
+  for (auto [u, v, name] :
+       {std::tuple{x.kinetic(), y.kinetic(), "kinetic"},
+        {x.potential, y.potential, "potential"},
+        {x.elastic_normal, y.elastic_normal, "elastic normal"},
+        {x.elastic_tangential, y.elastic_tangential, "elastic tangential"},
+        {x.dissipated_damping, y.dissipated_damping, "damping"},
+        {x.dissipated_friction, y.dissipated_friction, "friction"},
+        {x.tangential_stiffness_change, y.tangential_stiffness_change, "stiffness change"},
+        {x.dissipated_rolling, y.dissipated_rolling, "rolling"}})
+    EXPECT_EQ(u, v) << what << ": " << name << " energy";
+  EXPECT_EQ(a.wall_forces, b.wall_forces) << what;
+  EXPECT_EQ(a.diagnostics.particle_contacts, b.diagnostics.particle_contacts) << what;
+  EXPECT_EQ(a.diagnostics.wall_contacts, b.diagnostics.wall_contacts) << what;
+  EXPECT_EQ(a.diagnostics.neighbor_builds, b.diagnostics.neighbor_builds) << what;
+  EXPECT_EQ(a.diagnostics.max_overlap_ratio, b.diagnostics.max_overlap_ratio) << what;
+}
+
+// The scene run for `first` steps on all ranks, captured, and continued for `then` steps:
+// (1) without interruption on all ranks; (2) from the state on all ranks; (3) from the state on
+// rank 0 alone; (4) captured on all ranks but the last and continued on all of them (one rank
+// more: 1 -> 2, 2 -> 3, ...). Every continuation must give the bits of (1).
+void expect_restart_is_bitwise(const SceneConfig& s, long first, long then, const std::string& what) {
+  const ParticleStore fill = fill_container(s);
+  const std::vector<PlaneWall> walls = make_open_box(s.container);
+  // (1) and the state at `first` on all ranks.
+  Simulation world(s, fill, walls, MPI_COMM_WORLD);
+  world.run(first);
+  const EngineState at_first = world.capture_state();
+  world.run(then);
+  const Outcome reference = outcome(world);
+  if (test::world_rank() == 0) {
+    std::printf("%s: %ld + %ld steps on %d ranks, %ld rebuilds, %ld contacts, %zu histories at the capture\n",
+                what.c_str(), first, then, test::world_size(), reference.diagnostics.neighbor_builds,
+                reference.diagnostics.particle_contacts, at_first.history.size());
+    ASSERT_EQ(at_first.step, first);
+  }
+  // (2) all ranks from the state.
+  {
+    Simulation resumed(s, at_first, MPI_COMM_WORLD);
+    resumed.run(then);
+    expect_same(outcome(resumed), reference, what + ", resumed on all ranks");
+  }
+  // (3) rank 0 alone.
+  if (test::world_rank() == 0) {
+    Simulation alone(s, at_first, MPI_COMM_SELF);
+    alone.run(then);
+    Outcome o = outcome(alone);
+    expect_same(o, reference, what + ", resumed on one rank");
+  }
+  // (4) one rank fewer before the capture than after it.
+  if (test::world_size() > 1) {
+    MPI_Comm fewer;
+    const bool in = test::world_rank() < test::world_size() - 1;
+    MPI_Comm_split(MPI_COMM_WORLD, in ? 0 : MPI_UNDEFINED, test::world_rank(), &fewer);
+    EngineState captured;
+    if (in) {
+      {
+        Simulation before(s, fill, walls, fewer);
+        before.run(first);
+        captured = before.capture_state();
+      }
+      MPI_Comm_free(&fewer);
+    }
+    Simulation after(s, captured, MPI_COMM_WORLD);
+    after.run(then);
+    expect_same(outcome(after), reference,
+                what + ", " + std::to_string(test::world_size() - 1) + " ranks then " +
+                    std::to_string(test::world_size()));
+  }
+}
+
+TEST(Restart, SphereDepositionContinuesBitwise) {
+  SceneConfig s = test::deposition_scene(300);
+  expect_restart_is_bitwise(s, 2500, 1500, "300 spheres");
+}
+
+TEST(Restart, RollingResistanceContinuesBitwise) {
+  SceneConfig s = test::deposition_scene(200);
+  s.effects.rolling_resistance = true;
+  s.rolling_friction = 0.1;
+  s.rolling_damping_ratio = 0.3;
+  expect_restart_is_bitwise(s, 2000, 1000, "200 spheres, rolling resistance");
+}
+
+TEST(Restart, EllipsoidsAndAMixContinueBitwise) {
+  SceneConfig s = test::paper_ellipsoid_bed_scene(120);
+  s.fill.velocity = Vec3(0, 0, -1.0);
+  s.fill.velocity_jitter = 0.5;
+  expect_restart_is_bitwise(s, 25000, 4000, "120 paper ellipsoids");
+  s.particles.shapes = {{1.0, 1.0, 3.0}, {0.6, 0.4, 1.0}};
+  expect_restart_is_bitwise(s, 25000, 4000, "120 spheres and flat ellipsoids");
+}
+
+// A gate that opens between the capture and the end: the wall removed after the restart, and a
+// capture after it opened (the removed wall in the state).
+TEST(Restart, ContinuesAcrossAndAfterAGateOpening) {
+  SceneConfig s = test::deposition_scene(240);
+  s.container.gate_x = 0.6 * s.container.lx;
+  s.container.gate_open_time = 0.03;
+  const ParticleStore fill = fill_container(s);
+  const long open_step = static_cast<long>(s.container.gate_open_time / s.time_step);
+  auto run_with_gate = [&](Simulation& sim, long steps) {
+    for (long k = 0; k < steps; ++k) {
+      if (sim.step_count() == open_step) sim.remove_wall(kGateWallName);
+      sim.step();
+    }
+  };
+  for (const long first : {open_step - 500, open_step + 300}) {
+    Simulation world(s, fill, make_open_box(s.container), MPI_COMM_WORLD);
+    run_with_gate(world, first);
+    const EngineState state = world.capture_state();
+    run_with_gate(world, open_step + 1500 - first);
+    const Outcome reference = outcome(world);
+    Simulation resumed(s, state, MPI_COMM_WORLD);
+    run_with_gate(resumed, open_step + 1500 - first);
+    expect_same(outcome(resumed), reference, "gate, captured at step " + std::to_string(first));
+    if (test::world_rank() == 0) {
+      Simulation alone(s, state, MPI_COMM_SELF);
+      run_with_gate(alone, open_step + 1500 - first);
+      expect_same(outcome(alone), reference, "gate on one rank, captured at step " + std::to_string(first));
+    }
+  }
+}
+
+}  // namespace
