@@ -1,5 +1,7 @@
 #include "coupling/dem_run.h"
 
+#include "coupling/run/scene_run.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -26,6 +28,11 @@ dem::EngineOptions engine_options(const SceneInput& in) {
 
 RunResult run_dem(const SceneInput& in, MPI_Comm comm,
                   const std::function<void(const Progress&)>& on_progress) {
+  if (in.restarting) {
+    static const Checkpoint none;
+    return resume_scene(in.scene, in.resume ? *in.resume : none, in.control, in.output, on_progress, comm,
+                        engine_options(in));
+  }
   return run_scene(in.scene, in.control, in.output, on_progress, comm, engine_options(in));
 }
 

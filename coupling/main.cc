@@ -5,15 +5,20 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <iostream>
+#include <memory>
+#include <sstream>
 #include <string>
 
 #include "coupling/dem_run.h"
 #include "coupling/run/scene_run.h"
+#include "coupling/run/stop_request.h"
 #include "coupling/scene_input.h"
 #include "coupling/strain_report.h"
 #include "coupling/study.h"
 #include "dem/core/error.h"
+#include "dem/parallel/exchange.h"
 #include "dem/parallel/mpi_start.h"
 #include "dem/stress/asymmetry.h"
 #include "dem/time_step.h"
@@ -36,7 +41,14 @@ constexpr const char* kUsage =
     "  --print-parameters-markdown   the same as a Markdown table (docs/parameters.md)\n"
     "  --check                       read and validate the scene, print the time-step\n"
     "                                estimate, write nothing\n"
-    "  --output DIR                  override Output/folder\n";
+    "  --output DIR                  override Output/folder\n"
+    "  --restart DIR                 continue the run in DIR from its newest valid checkpoint\n"
+    "                                (DIR/checkpoints/, docs/restart.md), with the scene it was\n"
+    "                                started with; a scene file given as well may change only\n"
+    "                                Simulation/end time and the Checkpoint and Parallel sections\n"
+    "\n"
+    "Exit status: 0 done, 1 an error (named on one line), 128 + N stopped by signal N\n"
+    "(130 SIGINT, 143 SIGTERM, 129 SIGHUP) after writing a checkpoint.\n";
 
 void print_progress(const upgrain::coupling::Progress& p) {
   const double pct = 100.0 * static_cast<double>(p.step) / static_cast<double>(std::max(p.total_steps, 1L));
@@ -107,9 +119,72 @@ void print_deposition(const upgrain::coupling::SceneInput& in, const upgrain::co
   std::fflush(stdout);
 }
 
+std::string read_text(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw upgrain::Error(file + ": cannot open the parameter file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in && !in.eof()) throw upgrain::Error(file + ": cannot be read");
+  return text.str();
+}
+
+// The scene of a run to continue (upgrain --restart DIR [scene.prm]): rank 0 reads the newest
+// valid checkpoint of DIR, every rank the scene it stores; a scene file given as well may change
+// only what a restart may (coupling::differing_parameters). `notes` receives what the log
+// should say (refused checkpoints, where the run resumes), on rank 0.
+upgrain::coupling::SceneInput restart_input(const std::string& dir, const std::string& file,
+                                            std::vector<std::string>& notes) {
+  using namespace upgrain;
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  std::shared_ptr<coupling::Checkpoint> checkpoint;
+  std::string scene, error;
+  if (rank == 0) {
+    try {
+      std::vector<std::string> refused;
+      checkpoint = std::make_shared<coupling::Checkpoint>(coupling::newest_checkpoint(dir, refused));
+      for (const std::string& r : refused) notes.push_back("refused checkpoint " + r);
+      scene = checkpoint->scene;
+      char where[256];
+      std::snprintf(where, sizeof where, "resuming from %s at step %ld (t = %.9g s)",
+                    checkpoint->file.c_str(), checkpoint->step, checkpoint->time);
+      notes.push_back(where);
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  }
+  dem::throw_if_any(MPI_COMM_WORLD, error);
+  int length = static_cast<int>(scene.size());
+  MPI_Bcast(&length, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  scene.resize(static_cast<std::size_t>(length));
+  MPI_Bcast(scene.data(), length, MPI_CHAR, 0, MPI_COMM_WORLD);
+  coupling::SceneInput in = coupling::parse_scene_text(scene, dir + ": the scene of its checkpoint");
+  if (!file.empty()) {
+    // The given file's values for what a restart may change, the checkpoint's for the rest.
+    coupling::SceneInput given = coupling::parse_scene_text(read_text(file), file);
+    const std::vector<std::string> differ =
+        coupling::differing_parameters(scene, given.output.checkpoint.scene);
+    if (!differ.empty()) {
+      std::string m = file + " is not the scene of the run in " + dir + "; it differs in";
+      for (const std::string& d : differ) m += "\n  " + d;
+      throw Error(m +
+                  "\n(a restart may change only Simulation/end time and the Checkpoint and Parallel "
+                  "sections but the summation)");
+    }
+    in.scene.end_time = given.scene.end_time;
+    in.output.checkpoint = given.output.checkpoint;  // with the given file's text: its end time
+    in.parallel = given.parallel;
+  }
+  in.output.folder = dir;
+  in.restarting = true;
+  in.resume = checkpoint;
+  coupling::validate_scene(in);
+  return in;
+}
+
 int run(int argc, char** argv) {
   using namespace upgrain;
-  std::string file, output_override;
+  std::string file, output_override, restart_dir;
   bool check_only = false;
   for (int k = 1; k < argc; ++k) {
     const std::string a = argv[k];
@@ -124,6 +199,9 @@ int run(int argc, char** argv) {
       return 0;
     } else if (a == "--check") {
       check_only = true;
+    } else if (a == "--restart") {
+      if (k + 1 >= argc) throw Error("--restart needs the output folder of the run");
+      restart_dir = argv[++k];
     } else if (a == "--output") {
       if (k + 1 >= argc) throw Error("--output needs a folder name");
       output_override = argv[++k];
@@ -138,10 +216,17 @@ int run(int argc, char** argv) {
   int rank = 0, ranks = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
-  coupling::SceneInput in = file.empty() ? coupling::default_scene() : coupling::read_scene_file(file);
-  if (!output_override.empty()) {
-    in.output.folder = output_override;
-    coupling::validate_scene(in);
+  coupling::SceneInput in;
+  std::vector<std::string> restart_notes;
+  if (!restart_dir.empty()) {
+    if (!output_override.empty()) throw Error("--restart continues in its own folder: leave out --output");
+    in = restart_input(restart_dir, file, restart_notes);
+  } else {
+    in = file.empty() ? coupling::default_scene() : coupling::read_scene_file(file);
+    if (!output_override.empty()) {
+      in.output.folder = output_override;
+      coupling::validate_scene(in);
+    }
   }
   // Every rank has read and checked the scene before rank 0 creates the output folder.
   MPI_Barrier(MPI_COMM_WORLD);
@@ -170,7 +255,16 @@ int run(int argc, char** argv) {
     if (rank == 0) std::printf("  scene is valid; nothing written (--check)\n");
     return 0;
   }
-  if (rank == 0) std::printf("  output folder: %s\n", in.output.folder.c_str());
+  if (rank == 0) {
+    std::printf("  output folder: %s\n", in.output.folder.c_str());
+    for (const std::string& note : restart_notes) std::printf("  %s\n", note.c_str());
+    const coupling::CheckpointOptions& c = in.output.checkpoint;
+    if (c.interval > 0.0 || c.wall_interval > 0.0)
+      std::printf(
+          "  checkpoints: every %g s simulated, every %g s of wall clock (0 = never), the last %d kept\n",
+          c.interval, c.wall_interval, c.keep);
+  }
+  coupling::install_stop_handlers();
   auto progress = [rank](const coupling::Progress& p) {
     if (rank == 0) print_progress(p);
   };
@@ -188,6 +282,14 @@ int run(int argc, char** argv) {
         std::printf("  report: %s\n", (in.output.folder / "report.md").c_str());
       }
     }
+  } catch (const coupling::RunStopped& stopped) {
+    if (rank == 0) {
+      std::printf("\n  %s\n", stopped.what());
+      if (!stopped.checkpoint().empty())
+        std::printf("  continue with: upgrain --restart %s\n", in.output.folder.c_str());
+      std::fflush(stdout);
+    }
+    return 128 + stopped.signal();
   } catch (const Error& e) {
     throw Error(in.source + ": " + e.what());
   }

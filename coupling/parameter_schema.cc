@@ -168,6 +168,16 @@ const std::vector<ParameterSpec>& parameter_schema() {
        "summary.json. false: with Effects/energy tracking = auto the contacts track no energy (faster), and "
        "those columns are nan (null in summary.json)."},
 
+      {"Checkpoint", "interval", "0", K::real, 0.0, 1e6, "", "s",
+       "Simulated time between checkpoints in <Output/folder>/checkpoints/ (docs/restart.md); 0 = none on a "
+       "schedule. The same steps in every run of the scene, so an interrupted run resumed from one ends "
+       "with the bytes of one that was not."},
+      {"Checkpoint", "wall interval", "600", K::real, 0.0, 1e9, "", "s",
+       "Wall-clock time between checkpoints (checked at the time-series rows); 0 = none. A run also writes "
+       "one when it is asked to stop (SIGINT, SIGTERM, SIGHUP), then exits with 128 + the signal."},
+      {"Checkpoint", "keep", "2", K::integer, 1, 1000, "", "-",
+       "The newest checkpoints kept; older ones are removed."},
+
       {"Parallel", "summation", "deterministic", K::selection, 0, 0, "deterministic|fast", "-",
        "How the DEM sums forces and global quantities (docs/architecture.md). deterministic: each grain adds "
        "its contacts in the order of its partners' ids, and every result and output byte is the same on any "

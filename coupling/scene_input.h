@@ -2,7 +2,9 @@
 // What the driver hands to the DEM engine after reading and validating a scene file.
 #include <array>
 #include <iosfwd>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "coupling/run/output_options.h"
 #include "coupling/run/scene_run.h"
@@ -35,6 +37,10 @@ struct SceneInput {
   std::string collapse = "none";    // Container/collapse: none, constrained or unconstrained
   StudyOptions study;
   ParallelInput parallel;
+  // A restart (upgrain --restart): the run continues from `resume` (rank 0's; null elsewhere)
+  // in its own output folder, which then holds results by design.
+  bool restarting = false;
+  std::shared_ptr<const Checkpoint> resume;
 };
 
 // Reads a .prm file: syntax and entry names first (prm_syntax.h), values by deal.II's
@@ -44,6 +50,15 @@ SceneInput read_scene_file(const std::string& filename);
 
 // The built-in default scene: every parameter at its default.
 SceneInput default_scene();
+
+// A scene from the text of a parameter file (a checkpoint's scene), with `source` naming it in
+// errors; not yet validated (validate_scene).
+SceneInput parse_scene_text(const std::string& text, const std::string& source);
+
+// The entries two scenes' parameter texts (CheckpointOptions::scene) give different values,
+// as "Section/entry: 'a' -> 'b'", but those a restart may change: Simulation/end time, the
+// Checkpoint section, the Parallel section but its summation, and Output/folder and overwrite.
+std::vector<std::string> differing_parameters(const std::string& run, const std::string& given);
 
 // Checks that involve several parameters or the file system: gradation curve, the fill
 // fits the container, the time step is safe, the stress grid's box, the output folder

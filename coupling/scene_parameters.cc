@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "coupling/parameter_schema.h"
@@ -209,6 +210,12 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   in.output.energy_balance = prm.get_bool("energy balance");
   prm.leave_subsection();
 
+  prm.enter_subsection("Checkpoint");
+  in.output.checkpoint.interval = prm.get_double("interval");
+  in.output.checkpoint.wall_interval = prm.get_double("wall interval");
+  in.output.checkpoint.keep = static_cast<int>(prm.get_integer("keep"));
+  prm.leave_subsection();
+
   prm.enter_subsection("Parallel");
   {
     in.parallel.summation =
@@ -272,10 +279,77 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   in.study.continuum.refinements = static_cast<unsigned>(prm.get_integer("refinements"));
   in.study.continuum.degree = static_cast<unsigned>(prm.get_integer("degree"));
   prm.leave_subsection();
+  // Every entry, one per line: what a checkpoint stores of the scene (docs/restart.md).
+  std::ostringstream all;
+  prm.print_parameters(all, ParameterHandler::OutputStyle::ShortPRM);
+  in.output.checkpoint.scene = all.str();
   return in;
 }
 
+// "Section/entry" -> value of every `set` line of a parameter text.
+std::map<std::string, std::string> set_lines_of(const std::string& text) {
+  std::map<std::string, std::string> out;
+  std::vector<std::string> sections;
+  std::istringstream in(text);
+  std::string line;
+  auto trim = [](std::string s) {
+    const auto b = s.find_first_not_of(" \t\r"), e = s.find_last_not_of(" \t\r");
+    return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
+  };
+  while (std::getline(in, line)) {
+    line = trim(line.substr(0, line.find('#')));
+    if (line.rfind("subsection ", 0) == 0) {
+      sections.push_back(trim(line.substr(11)));
+    } else if (line == "end") {
+      if (!sections.empty()) sections.pop_back();
+    } else if (line.rfind("set ", 0) == 0) {
+      const auto eq = line.find('=');
+      if (eq == std::string::npos) continue;
+      std::string key;
+      for (const std::string& s : sections) key += s + "/";
+      out[key + trim(line.substr(4, eq - 4))] = trim(line.substr(eq + 1));
+    }
+  }
+  return out;
+}
+
 }  // namespace
+
+SceneInput parse_scene_text(const std::string& text, const std::string& source) {
+  check_prm_syntax(text, source);
+  ParameterHandler prm;
+  declare(prm);
+  try {
+    prm.parse_input_from_string(text, "", false);
+  } catch (const dealii::ExceptionBase& e) {
+    std::ostringstream info;
+    e.print_info(info);
+    throw Error(source + ": " + info.str());
+  }
+  try {
+    return extract(prm, source);
+  } catch (const Error& e) {
+    throw Error(source + ": " + e.what());
+  }
+}
+
+std::vector<std::string> differing_parameters(const std::string& run, const std::string& given) {
+  const std::map<std::string, std::string> a = set_lines_of(run), b = set_lines_of(given);
+  auto may_change = [](const std::string& key) {
+    return key == "Simulation/end time" || key.rfind("Checkpoint/", 0) == 0 ||
+           (key.rfind("Parallel/", 0) == 0 && key != "Parallel/summation") || key == "Output/folder" ||
+           key == "Output/overwrite";
+  };
+  std::vector<std::string> out;
+  for (const auto& [key, value] : a) {
+    const auto it = b.find(key);
+    const std::string other = it == b.end() ? "(absent)" : it->second;
+    if (other != value && !may_change(key)) out.push_back(key + ": '" + value + "' -> '" + other + "'");
+  }
+  for (const auto& [key, value] : b)
+    if (!a.count(key) && !may_change(key)) out.push_back(key + ": (absent) -> '" + value + "'");
+  return out;
+}
 
 SceneInput read_scene_file(const std::string& filename) {
   std::ifstream file(filename);

@@ -209,7 +209,7 @@ void validate_scene(SceneInput& in) {
   if (fs::exists(folder, ec)) {
     if (!fs::is_directory(folder, ec))
       throw Error(where + "Output/folder = '" + folder.string() + "' exists and is not a folder");
-    if (!fs::is_empty(folder, ec) && !in.overwrite)
+    if (!fs::is_empty(folder, ec) && !in.overwrite && !in.restarting)
       throw Error(where + "Output/folder = '" + folder.string() +
                   "' already holds results; choose another folder or set 'Output/overwrite = true'");
   }

@@ -4,13 +4,64 @@
 
 namespace upgrain::coupling {
 
-GridEvaluation::GridEvaluation(dem::Simulation& sim, const OutputOptions& output)
+GridEvaluation::GridEvaluation(dem::Simulation& sim, const OutputOptions& output,
+                               const GridEvaluationState* resume)
     : output_(output), strain_on_(output.grid_strain.enabled) {
   sim.on_root([&] { stress_out_.emplace(output_.folder, output_.grid_stress.formulas); });
+  if (strain_on_) {
+    sim.on_root([&] { strain_out_.emplace(output_.folder); });
+    rate_history_.emplace(output_.grid_strain.rate_formula);
+  }
+  if (resume) {
+    sim.on_root([&] { restore(*resume, static_cast<int>(sim.compute_grid_blocks().size())); });
+    return;
+  }
+  if (strain_on_ && output_.grid_strain.reference_time <= 0.0) evaluate_strain(sim, grid_now(sim), nullptr);
+}
+
+GridEvaluationState GridEvaluation::state() const {
+  GridEvaluationState s;
+  if (stress_out_) {
+    s.stress_files = stress_out_->entries();
+    s.stress_rows = stress_out_->csv_rows();
+  }
+  if (compute_grid_out_) s.compute_grid_rows = compute_grid_out_->csv_rows();
+  if (strain_out_) {
+    s.strain_files = strain_out_->entries();
+    s.strain_rows = strain_out_->csv_rows();
+  }
+  s.reference = strain_reference_;
+  s.previous = final_strain_;
+  if (strain_on_) s.rates = rate_history_;
+  s.block_reference = block_reference_;
+  s.reference_blocks = reference_blocks_;
+  s.previous_blocks = last_block_strain_;
+  if (block_strain_out_) s.block_rows = block_strain_out_->csv_rows();
+  return s;
+}
+
+void GridEvaluation::restore(const GridEvaluationState& s, int blocks) {
+  stress_out_->resume(s.stress_files, s.stress_rows);
+  if (s.compute_grid_rows >= 0) {
+    compute_grid_out_.emplace(output_.folder, output_.grid_stress.formulas);
+    compute_grid_out_->resume(s.compute_grid_rows);
+  }
   if (!strain_on_) return;
-  sim.on_root([&] { strain_out_.emplace(output_.folder); });
-  rate_history_.emplace(output_.grid_strain.rate_formula);
-  if (output_.grid_strain.reference_time <= 0.0) evaluate_strain(sim, grid_now(sim), nullptr);
+  strain_out_->resume(s.strain_files, s.strain_rows);
+  strain_reference_ = s.reference;
+  final_strain_ = s.previous;
+  if (s.rates) rate_history_ = s.rates;
+  // The compute grids are the blocks of the rank count: on another one the strain per block
+  // starts again from the next evaluation (docs/restart.md).
+  if (s.block_reference && s.block_reference->cells == blocks) {
+    block_reference_ = s.block_reference;
+    reference_blocks_ = s.reference_blocks;
+    last_block_strain_ = s.previous_blocks;
+  }
+  if (s.block_rows >= 0) {
+    block_strain_out_.emplace(output_.folder);
+    block_strain_out_->resume(s.block_rows);
+  }
 }
 
 dem::RegularGrid GridEvaluation::grid_now(dem::Simulation& sim) const {

@@ -4,6 +4,7 @@
 // finite strain of both against their reference state and the objective stress rates of the
 // fixed grid's cells. Written by rank 0; the stress is collective (dem/engine/simulation.h).
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "coupling/run/output_options.h"
@@ -16,11 +17,35 @@
 
 namespace upgrain::coupling {
 
+// What a checkpoint keeps of the grid evaluations (rank 0's): the files written and the rows
+// of their tables, the strain references, the last strains (the next increment's F_prev) and
+// the stresses the rates difference. A table not begun yet has -1 rows.
+struct GridEvaluationState {
+  std::vector<dem::io::GridStressEntry> stress_files;
+  long stress_rows = 0;
+  long compute_grid_rows = -1;
+  std::vector<upscale::GridStrainEntry> strain_files;
+  long strain_rows = 0;
+  std::optional<upscale::StrainReference> reference;
+  std::optional<upscale::GridStrain> previous;
+  std::optional<upscale::StressRateHistory> rates;
+  std::optional<upscale::StrainReference> block_reference;
+  std::vector<dem::Box> reference_blocks;
+  std::optional<upscale::GridStrain> previous_blocks;
+  long block_rows = -1;
+};
+
 class GridEvaluation {
  public:
   // Collective. Opens the output files on rank 0; with a strain reference at t0 = 0, the
-  // initial state is the reference and the first strain output (F = 1).
-  GridEvaluation(dem::Simulation& sim, const OutputOptions& output);
+  // initial state is the reference and the first strain output (F = 1). With `resume` (read on
+  // rank 0), a restart: the files and tables are cut back to the checkpoint's and the state is
+  // its; nothing is evaluated.
+  GridEvaluation(dem::Simulation& sim, const OutputOptions& output,
+                 const GridEvaluationState* resume = nullptr);
+
+  // Rank 0's state, for a checkpoint (not collective).
+  [[nodiscard]] GridEvaluationState state() const;
 
   // Collective, after a step that recorded its contacts (Simulation::request_contacts()).
   void evaluate(dem::Simulation& sim);
@@ -39,6 +64,7 @@ class GridEvaluation {
   void evaluate_strain(dem::Simulation& sim, const dem::RegularGrid& grid, const dem::GridStress* stress);
   void evaluate_block_strain(dem::Simulation& sim, const dem::ParticleStore& p,
                              const std::vector<int>& owner);
+  void restore(const GridEvaluationState& s, int blocks);
 
   const OutputOptions& output_;
   bool strain_on_ = false;

@@ -3,6 +3,7 @@
 // time series of the DEM (dem/io/run_recorder.h), the grid stress (dem/io/grid_stress_output.h)
 // and the grid strain of the upscaling layer (upscale/strain/grid_strain_output.h).
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "dem/io/grid_stress_output.h"
@@ -10,6 +11,17 @@
 #include "upscale/strain/grid_strain_output.h"
 
 namespace upgrain::coupling {
+
+// Checkpoints (docs/restart.md): written into <folder>/checkpoints/ at an interval of simulated
+// time, of wall-clock time, and when the run is asked to stop (SIGINT, SIGTERM, SIGHUP).
+struct CheckpointOptions {
+  double interval = 0.0;       // s of simulated time; 0: none on a schedule
+  double wall_interval = 0.0;  // s of wall-clock time; 0: none
+  int keep = 2;                // the newest kept; older ones are removed
+  // The scene's parameters as the driver read them (every entry, one per line), stored with
+  // their hash so that a restart continues the same scene.
+  std::string scene;
+};
 
 struct OutputOptions {
   std::filesystem::path folder = "upgrain-output";
@@ -22,6 +34,7 @@ struct OutputOptions {
   bool energy_balance = true;
   // The effect set and its reasons, for summary.json; empty: the scene's set as given.
   std::vector<dem::EffectChoice> effect_choices;
+  CheckpointOptions checkpoint;
 };
 
 }  // namespace upgrain::coupling

@@ -23,6 +23,16 @@ void RunFiles::write_snapshot(dem::Simulation& sim) {
   sim.on_root([&] { recorder_->write_snapshot(all, sim.walls(), forces, sim.time(), sim.step_count()); });
 }
 
+dem::io::RunRecorder::State RunFiles::state() {
+  if (!recorder_) return {};
+  recorder_->flush();
+  return recorder_->state();
+}
+
+void RunFiles::resume(dem::Simulation& sim, const dem::io::RunRecorder::State& s) {
+  if (output_) sim.on_root([&] { recorder_->resume(s); });
+}
+
 void RunFiles::write_summary(const dem::Simulation& sim, const RunResult& r) {
   if (!output_) return;
   sim.on_root([&] {

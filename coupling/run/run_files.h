@@ -23,6 +23,11 @@ class RunFiles {
   // The last rows and summary.json.
   void write_summary(const dem::Simulation& sim, const RunResult& r);
 
+  // A checkpoint's part (rank 0, after a flush): the series rows and the snapshots so far;
+  // and a restart from it (collective; `s` is read on rank 0).
+  [[nodiscard]] dem::io::RunRecorder::State state();
+  void resume(dem::Simulation& sim, const dem::io::RunRecorder::State& s);
+
  private:
   const std::optional<OutputOptions>& output_;
   std::optional<dem::io::RunRecorder> recorder_;  // rank 0

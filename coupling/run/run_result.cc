@@ -22,12 +22,12 @@ std::string quoted(std::string s) {
 }
 }  // namespace
 
-void measure_final_state(dem::Simulation& sim, double wall_seconds, RunResult& r) {
+void measure_final_state(dem::Simulation& sim, double wall_seconds, long steps_taken, RunResult& r) {
   sim.check_finite();
   r.wall_seconds = wall_seconds;
   r.steps = sim.step_count();
   r.simulated_time = sim.time();
-  r.particle_steps_per_second = static_cast<double>(r.steps) * static_cast<double>(sim.particle_count()) /
+  r.particle_steps_per_second = static_cast<double>(steps_taken) * static_cast<double>(sim.particle_count()) /
                                 std::max(r.wall_seconds, 1e-9);
   r.energy = sim.energy();
   r.energy_balance_error = dem::balance_error(sim.initial_energy(), r.energy);

@@ -42,8 +42,9 @@ struct RunResult {
 };
 
 // The figures of the engine's final state into `r` (collective; the bed and the mass on rank
-// 0): steps, time, energies, diagnostics, load, wall forces, bed. `wall_seconds` is the run's.
-void measure_final_state(dem::Simulation& sim, double wall_seconds, RunResult& r);
+// 0): steps, time, energies, diagnostics, load, wall forces, bed. `wall_seconds` is the time the
+// run took for its `steps_taken` steps (a resumed run's, since its checkpoint).
+void measure_final_state(dem::Simulation& sim, double wall_seconds, long steps_taken, RunResult& r);
 
 // summary.json's entries: the run's figures, the ranks and summation, and the effect set with
 // the reason for each entry. JSON has no NaN: a figure not computed (the energy channels

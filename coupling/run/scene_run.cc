@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <regex>
 #include <utility>
 
 #include "coupling/run/grid_evaluation.h"
 #include "coupling/run/run_files.h"
 #include "coupling/run/run_schedule.h"
+#include "coupling/run/stop_request.h"
 #include "dem/parallel/exchange.h"
 #include "dem/scene/fill.h"
 
@@ -15,28 +17,71 @@ namespace upgrain::coupling {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+namespace fs = std::filesystem;
 
-// Progress reports on rank 0, at most one a second and at the last step.
+double seconds_between(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
+
+// Progress reports on rank 0, at most one a second and at the last step; the rate is that of
+// the steps taken since `first_step` (a resumed run counts from its checkpoint).
 class ProgressClock {
  public:
-  ProgressClock(const dem::Simulation& sim, const ProgressReport& report)
-      : report_(sim.is_root() ? report : ProgressReport{}), start_(Clock::now()), last_(start_) {}
+  ProgressClock(const dem::Simulation& sim, const ProgressReport& report, long first_step)
+      : report_(sim.is_root() ? report : ProgressReport{}),
+        first_(first_step),
+        start_(Clock::now()),
+        last_(start_) {}
 
   void at(long s, long total, bool last) {
     if (!report_) return;
     const auto now = Clock::now();
-    if (std::chrono::duration<double>(now - last_).count() < 1.0 && s != total && !last) return;
-    const double rate = s / std::max(seconds(), 1e-9);
-    report_({s, total, rate, (total - s) / rate});
+    if (seconds_between(last_, now) < 1.0 && s != total && !last) return;
+    const double rate = static_cast<double>(s - first_) / std::max(seconds(), 1e-9);
+    report_({s, total, rate, static_cast<double>(total - s) / std::max(rate, 1e-300)});
     last_ = now;
   }
-  [[nodiscard]] double seconds() const {
-    return std::chrono::duration<double>(Clock::now() - start_).count();
-  }
+  [[nodiscard]] double seconds() const { return seconds_between(start_, Clock::now()); }
 
  private:
   ProgressReport report_;
+  long first_;
   Clock::time_point start_, last_;
+};
+
+// When to write a checkpoint: every `interval` of simulated time (the same steps in every run
+// of the scene), every `wall_interval` of wall-clock time, and when the run is asked to stop.
+// The wall clock and the stop request are each rank's own: the ranks agree on them at the
+// time-series rows, in one reduction.
+class CheckpointClock {
+ public:
+  CheckpointClock(const CheckpointOptions& o, double dt, bool output)
+      : options_(o), output_(output), last_(Clock::now()) {
+    if (output && o.interval > 0.0) every_ = std::max(1L, static_cast<long>(std::llround(o.interval / dt)));
+  }
+  struct Decision {
+    bool write = false;
+    int stop = 0;  // the signal that asked the run to stop
+  };
+  Decision at(long s, bool sync, MPI_Comm comm) {
+    Decision d;
+    d.write = every_ > 0 && s % every_ == 0;
+    if (!sync) return d;
+    int local[2] = {stop_signal(), output_ && options_.wall_interval > 0.0 &&
+                                       seconds_between(last_, Clock::now()) >= options_.wall_interval};
+    int global[2] = {0, 0};
+    MPI_Allreduce(local, global, 2, MPI_INT, MPI_MAX, comm);
+    d.stop = global[0];
+    d.write = d.write || (output_ && (global[0] != 0 || global[1] != 0));
+    return d;
+  }
+  void written() { last_ = Clock::now(); }
+
+ private:
+  const CheckpointOptions& options_;
+  bool output_;
+  long every_ = 0;
+  Clock::time_point last_;
 };
 
 // Walls taken out at their time (the collapse scenes, dem/boundary/wall_release.h). The bed is
@@ -51,20 +96,146 @@ void release_walls(dem::Simulation& sim, const RunSchedule& schedule, ScheduleSt
   }
 }
 
-// One step, recorded when an evaluation is due, and its outputs.
-struct StepOutputs {
-  RunFiles& files;
-  std::optional<GridEvaluation>& grids;
+// A restart's clean-up (rank 0): the files of steps after the checkpoint (snapshots, grid
+// stress and strain, checkpoints), and the temporary files a killed run left behind.
+void remove_outputs_after(const fs::path& folder, long step) {
+  static const std::regex numbered(R"(.*_(\d+)\.h5)");
+  static const std::regex temporary(R"(.*\.tmp\.\d+)");
+  for (const char* sub : {"snapshots", "grid_stress", "grid_strain", "compute_grid_strain", "checkpoints"}) {
+    std::error_code ec;
+    for (const fs::directory_entry& e : fs::directory_iterator(folder / sub, ec)) {
+      const std::string name = e.path().filename().string();
+      std::smatch m;
+      const bool later = std::regex_match(name, m, numbered) && std::stol(m[1]) > step;
+      if (later || std::regex_match(name, temporary)) fs::remove_all(e.path(), ec);
+    }
+  }
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(folder, ec))
+    if (std::regex_match(e.path().filename().string(), temporary)) fs::remove_all(e.path(), ec);
+}
 
+// One run of the loop, fresh or resumed.
+class SceneRun {
+ public:
+  SceneRun(dem::Simulation& sim, const RunControl& control, const std::optional<OutputOptions>& output,
+           const ProgressReport& on_progress, const RunState* resume)
+      : sim_(sim),
+        control_(control),
+        output_(output),
+        schedule_(make_schedule(sim.scene(), output)),
+        files_(sim, output),
+        checkpoints_(output ? output->checkpoint : no_checkpoints_, sim.time_step(), output.has_value()),
+        clock_(sim, on_progress, resume ? resume->schedule.step : 0) {
+    if (resume) {
+      files_.resume(sim, resume->files);
+      if (schedule_.evaluation_every > 0) grids_.emplace(sim, *output, &resume->grid_state);
+      // The schedule's state is rank 0's (the checkpoint is read there).
+      long where[3] = {resume->schedule.step, static_cast<long>(resume->schedule.next_release),
+                       resume->schedule.rest_check_from};
+      MPI_Bcast(where, 3, MPI_LONG, 0, sim.comm());
+      state_ = {where[0], static_cast<std::size_t>(where[1]), where[2]};
+      clock_ = ProgressClock(sim, on_progress, state_.step);
+      return;
+    }
+    files_.record_series(sim);
+    files_.write_snapshot(sim);
+    // Grid stress needs the contacts of a force evaluation, which are recorded on request
+    // before the step that computes them (Simulation::request_contacts()).
+    if (schedule_.evaluation_every > 0) grids_.emplace(sim, *output);
+    state_.rest_check_from = schedule_.total / 10;
+  }
+
+  RunResult run() {
+    RunResult r;
+    first_step_ = sim_.step_count();
+    for (long s = state_.step + 1; s <= schedule_.total; ++s) {
+      state_.step = s;
+      release_walls(sim_, schedule_, state_);
+      const bool walls_pending = state_.next_release < schedule_.releases.size();
+      const bool evaluate = schedule_.evaluation_due(s);
+      if (evaluate) sim_.request_contacts();
+      sim_.step();
+      if (evaluate) grids_->evaluate(sim_);
+      const bool series_now = schedule_.series_due(s);
+      if (series_now) {
+        files_.record_series(sim_);
+        // Every rank takes the same decision: the energies are the same bits everywhere.
+        if (control_.rest_ratio > 0.0 && s > state_.rest_check_from && !walls_pending &&
+            sim_.kinetic_to_released() < control_.rest_ratio)
+          r.stopped_at_rest = true;
+      }
+      if (files_.enabled() && (schedule_.snapshot_due(s) || r.stopped_at_rest)) {
+        if (!series_now) files_.record_series(sim_);
+        files_.write_snapshot(sim_);
+      }
+      clock_.at(s, schedule_.total, r.stopped_at_rest);
+      if (r.stopped_at_rest) {
+        // One more step, recorded, so that the final state has its stress.
+        if (grids_ && !evaluate && !control_.relax_at_end) final_step();
+        break;
+      }
+      const CheckpointClock::Decision d = checkpoints_.at(s, series_now, sim_.comm());
+      fs::path written;
+      if (d.write) written = write_checkpoint_now();
+      if (d.stop != 0) throw RunStopped(d.stop, s, written);
+    }
+    if (control_.relax_at_end) {
+      r.relaxation = dem::relax_to_equilibrium(sim_, control_.relaxation);
+      // One recorded step of the relaxed state for its stress, snapshot and series row.
+      final_step();
+    }
+    measure_final_state(sim_, clock_.seconds(), sim_.step_count() - first_step_, r);
+    if (grids_) {
+      r.final_stress = grids_->final_stress();
+      r.final_grid = grids_->final_grid();
+      r.final_strain = grids_->final_strain();
+    }
+    files_.write_summary(sim_, r);
+    return r;
+  }
+
+ private:
   // A recorded step of the final state (after the run stopped at rest between evaluations, or
   // after the relaxation): its stress, series row and snapshot.
-  void final_step(dem::Simulation& sim) const {
-    if (grids) sim.request_contacts();
-    sim.step();
-    if (grids) grids->evaluate(sim);
-    files.record_series(sim);
-    files.write_snapshot(sim);
+  void final_step() {
+    if (grids_) sim_.request_contacts();
+    sim_.step();
+    if (grids_) grids_->evaluate(sim_);
+    files_.record_series(sim_);
+    files_.write_snapshot(sim_);
   }
+
+  // Collective: the engine's state and the run's, written by rank 0.
+  fs::path write_checkpoint_now() {
+    Checkpoint c;
+    c.engine = sim_.capture_state();
+    fs::path written;
+    sim_.on_root([&] {
+      c.step = sim_.step_count();
+      c.time = sim_.time();
+      c.scene = output_->checkpoint.scene;
+      c.run.schedule = state_;
+      c.run.files = files_.state();
+      c.run.grids = grids_.has_value();
+      if (grids_) c.run.grid_state = grids_->state();
+      written = write_checkpoint(output_->folder, c, output_->checkpoint.keep);
+    });
+    checkpoints_.written();
+    return written;
+  }
+
+  static inline const CheckpointOptions no_checkpoints_{};
+  dem::Simulation& sim_;
+  const RunControl& control_;
+  const std::optional<OutputOptions>& output_;
+  RunSchedule schedule_;
+  RunFiles files_;
+  std::optional<GridEvaluation> grids_;
+  CheckpointClock checkpoints_;
+  ProgressClock clock_;
+  ScheduleState state_;
+  long first_step_ = 0;  // the engine's step when this run began (a resumed run's checkpoint)
 };
 
 }  // namespace
@@ -90,60 +261,18 @@ RunResult run_scene(const dem::SceneConfig& scene, const RunControl& control,
 
 RunResult run_scene(dem::Simulation& sim, const RunControl& control,
                     const std::optional<OutputOptions>& output, const ProgressReport& on_progress) {
-  const RunSchedule schedule = make_schedule(sim.scene(), output);
-  RunFiles files(sim, output);
-  files.record_series(sim);
-  files.write_snapshot(sim);
-  // Grid stress needs the contacts of a force evaluation, which are recorded on request
-  // before the step that computes them (Simulation::request_contacts()).
-  std::optional<GridEvaluation> grids;
-  if (schedule.evaluation_every > 0) grids.emplace(sim, *output);
-  const StepOutputs outputs{files, grids};
+  SceneRun run(sim, control, output, on_progress, nullptr);
+  return run.run();
+}
 
-  RunResult r;
-  ScheduleState state;
-  state.rest_check_from = schedule.total / 10;
-  ProgressClock clock(sim, on_progress);
-  for (long s = 1; s <= schedule.total; ++s) {
-    state.step = s;
-    release_walls(sim, schedule, state);
-    const bool walls_pending = state.next_release < schedule.releases.size();
-    const bool evaluate = schedule.evaluation_due(s);
-    if (evaluate) sim.request_contacts();
-    sim.step();
-    if (evaluate) grids->evaluate(sim);
-    const bool series_now = schedule.series_due(s);
-    if (series_now) {
-      files.record_series(sim);
-      // Every rank takes the same decision: the energies are the same bits everywhere.
-      if (control.rest_ratio > 0.0 && s > state.rest_check_from && !walls_pending &&
-          sim.kinetic_to_released() < control.rest_ratio)
-        r.stopped_at_rest = true;
-    }
-    if (files.enabled() && (schedule.snapshot_due(s) || r.stopped_at_rest)) {
-      if (!series_now) files.record_series(sim);
-      files.write_snapshot(sim);
-    }
-    clock.at(s, schedule.total, r.stopped_at_rest);
-    if (r.stopped_at_rest) {
-      // One more step, recorded, so that the final state has its stress.
-      if (grids && !evaluate && !control.relax_at_end) outputs.final_step(sim);
-      break;
-    }
-  }
-  if (control.relax_at_end) {
-    r.relaxation = dem::relax_to_equilibrium(sim, control.relaxation);
-    // One recorded step of the relaxed state for its stress, snapshot and series row.
-    outputs.final_step(sim);
-  }
-  measure_final_state(sim, clock.seconds(), r);
-  if (grids) {
-    r.final_stress = grids->final_stress();
-    r.final_grid = grids->final_grid();
-    r.final_strain = grids->final_strain();
-  }
-  files.write_summary(sim, r);
-  return r;
+RunResult resume_scene(const dem::SceneConfig& scene, const Checkpoint& checkpoint, const RunControl& control,
+                       const OutputOptions& output, const ProgressReport& on_progress, MPI_Comm comm,
+                       const dem::EngineOptions& options) {
+  dem::Simulation sim(scene, checkpoint.engine, comm, options);
+  sim.on_root([&] { remove_outputs_after(output.folder, checkpoint.step); });
+  const std::optional<OutputOptions> out = output;
+  SceneRun run(sim, control, out, on_progress, &checkpoint.run);
+  return run.run();
 }
 
 }  // namespace upgrain::coupling

@@ -2,13 +2,15 @@
 // The run of a scene, whatever it is (a deposition, a collapse, a settled bed carried on):
 // fill the container, step to the end time or until the bed is at rest, remove walls at their
 // time, write the time series, snapshots and grid evaluations on schedule, relax at the end
-// if asked, and summarise (docs/output.md, docs/scenes.md). Used by the driver, the studies
+// if asked, write checkpoints and stop cleanly when asked to (docs/restart.md), and summarise
+// (docs/output.md, docs/scenes.md). Used by the driver, the studies
 // and the regression tests; collective over the engine's ranks.
 #include <mpi.h>
 
 #include <functional>
 #include <optional>
 
+#include "coupling/run/checkpoint.h"
 #include "coupling/run/output_options.h"
 #include "coupling/run/run_result.h"
 #include "dem/engine/relaxation.h"
@@ -46,5 +48,14 @@ RunResult run_scene(const dem::SceneConfig& scene, const RunControl& control,
 // The same on an engine already made (collective over its ranks).
 RunResult run_scene(dem::Simulation& engine, const RunControl& control,
                     const std::optional<OutputOptions>& output, const ProgressReport& on_progress = {});
+
+// Continues a run from a checkpoint (docs/restart.md; `checkpoint` is read on rank 0) in its own
+// output folder, on any number of ranks: the tables are cut back to the checkpoint's rows, files
+// written after it are removed, and the run goes on from the step after it. `scene` and
+// `output` are the run's (from the checkpoint's parameters). With the deterministic summation it
+// ends with the bytes of the run that was not interrupted.
+RunResult resume_scene(const dem::SceneConfig& scene, const Checkpoint& checkpoint, const RunControl& control,
+                       const OutputOptions& output, const ProgressReport& on_progress = {},
+                       MPI_Comm comm = MPI_COMM_SELF, const dem::EngineOptions& options = {});
 
 }  // namespace upgrain::coupling

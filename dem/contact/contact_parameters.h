@@ -39,6 +39,28 @@ struct ContactEnergy {
   double rolling_stiffness_change = 0.0;
 };
 
+// A particle's share of the contact energies (the deterministic summation books each contact on
+// the particle it is first in): the elastic energies of one evaluation, and the dissipation
+// since the last neighbour-list rebuild (dem/engine/simulation.h).
+struct ElasticEnergy {
+  double normal = 0.0, tangential = 0.0, rolling = 0.0;
+};
+struct DissipatedEnergy {
+  double damping = 0.0, friction = 0.0, stiffness_change = 0.0, rolling = 0.0, rolling_stiffness_change = 0.0;
+};
+inline void book(const ContactEnergy& ce, ElasticEnergy& e) {
+  e.normal += ce.elastic_normal;
+  e.tangential += ce.elastic_tangential;
+  e.rolling += ce.elastic_rolling;
+}
+inline void book(const ContactEnergy& ce, DissipatedEnergy& d) {
+  d.damping += ce.dissipated_damping;
+  d.friction += ce.dissipated_friction;
+  d.stiffness_change += ce.tangential_stiffness_change;
+  d.rolling += ce.dissipated_rolling;
+  d.rolling_stiffness_change += ce.rolling_stiffness_change;
+}
+
 // An incremental spring's stored vector (a tangential force, a rolling torque) carried into
 // the current contact plane of normal n with its magnitude kept, and the energy that the
 // stiffness's change from `old_stiffness` to `stiffness` creates in it, |s|^2/2 (1/k - 1/k_old),

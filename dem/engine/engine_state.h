@@ -8,7 +8,8 @@
 // Why each part is there:
 //  - the particles with the forces and torques of the last evaluation (the next step's first
 //    half kick uses them), and the last evaluation's damping forces and torques (the second
-//    half of their work) and each grain's share of its energies;
+//    half of their work) and each grain's share of its energies, and its dissipation since the
+//    last rebuild (added to the exact sums at the next one);
 //  - the positions at the last neighbour-list build: the restored lists are built from them,
 //    so they hold the same pairs as the interrupted run's, and the next rebuild comes at the
 //    same step (the skin test is against them);
@@ -38,10 +39,18 @@ struct EngineState {
   ParticleStore particles;
   std::vector<Vec3> positions_at_build;
   std::vector<Vec3> damping_force, damping_torque, rolling_damping_torque;  // empty when not kept
-  std::vector<ContactEnergy> particle_energy;  // deterministic summation with energy tracking
+  // Deterministic summation with energy tracking: each grain's elastic energies of the last
+  // evaluation, and its dissipation since the last rebuild (not yet in the exact sums).
+  std::vector<ElasticEnergy> particle_elastic;
+  std::vector<DissipatedEnergy> dissipation_share;
 
   std::vector<ContactHistoryRecord> history;  // sorted by key, separation budgets kept
   std::vector<PlaneWall> walls;
+
+  // What the last evaluation counted and exerted (StepDiagnostics, Simulation::wall_forces()),
+  // over every rank, for a restart that asks before its first step.
+  long pair_contacts = 0, wall_contacts = 0;
+  std::vector<Vec3> wall_forces;
 
   long step = 0;
   long rebuilds = 0;

@@ -37,10 +37,10 @@ struct ForceOutput {
   // and, for ellipsoids, its torque; with rolling resistance, the viscous rolling torque. For
   // the second half of their work (docs/integrator.md).
   std::vector<Vec3> damping_force, damping_torque, rolling_damping_torque;
-  // Deterministic summation with energy tracking: each local particle's share of the step's
-  // energies, elastic and dissipated, of its wall contacts and of the pairs it is first (lower
-  // id) in, so that every pair counts once over the ranks and the sums do not depend on them.
-  std::vector<ContactEnergy> particle_energy;
+  // Deterministic summation with energy tracking: each local particle's elastic energies, of
+  // its wall contacts and of the pairs it is first (lower id) in, so that every pair counts
+  // once over the ranks and the sum can run in global-id order.
+  std::vector<ElasticEnergy> particle_elastic;
   // Fast: the force of the particles on each wall. Deterministic: the force on the particle of
   // each wall entry (zero when apart), summed per wall in global-id order for the output.
   std::vector<Vec3> wall_force;
@@ -67,6 +67,9 @@ struct ForceInput {
   const WallList* wall_entries = nullptr;
   const std::vector<PlaneWall>* walls = nullptr;
   ContactHistory* history = nullptr;
+  // Deterministic summation with energy tracking: each owned particle's dissipation since the
+  // last rebuild, to which the evaluation adds (its wall contacts and the pairs it is first in).
+  DissipatedEnergy* dissipation = nullptr;
   ContactMaterial material;
   RollingParameters rolling;  // scenes with rolling resistance
   double dt = 0.0;

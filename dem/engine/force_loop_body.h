@@ -42,19 +42,6 @@ inline double rolling_inertia(const ParticleStore& p, std::size_t i, const Vec3&
   return own + p.mass(i) * lever.squaredNorm();
 }
 
-// A contact's energy: every account of one contact added to another's (a particle's share of the
-// step, deterministic summation; the rank's running sums, fast).
-inline void book(const ContactEnergy& ce, ContactEnergy& to) {
-  to.elastic_normal += ce.elastic_normal;
-  to.elastic_tangential += ce.elastic_tangential;
-  to.elastic_rolling += ce.elastic_rolling;
-  to.dissipated_damping += ce.dissipated_damping;
-  to.dissipated_friction += ce.dissipated_friction;
-  to.tangential_stiffness_change += ce.tangential_stiffness_change;
-  to.dissipated_rolling += ce.dissipated_rolling;
-  to.rolling_stiffness_change += ce.rolling_stiffness_change;
-}
-
 template <class Law, class E, bool Shapes, bool Record, Summation S>
 void compute(const ForceInput& in) {
   constexpr bool kDeterministic = S == Summation::deterministic;
@@ -87,7 +74,8 @@ void compute(const ForceInput& in) {
   if constexpr (kDampingWork) out.damping_force.assign(n, Vec3::Zero());
   if constexpr (kDampingWork && Shapes) out.damping_torque.assign(n, Vec3::Zero());
   if constexpr (kRollingWork) out.rolling_damping_torque.assign(n, Vec3::Zero());
-  if constexpr (kEnergyPerParticle) out.particle_energy.assign(n, ContactEnergy{});
+  if constexpr (kEnergyPerParticle) out.particle_elastic.assign(n, ElasticEnergy{});
+  DissipatedEnergy* const dissipation = in.dissipation;
   out.wall_force.assign(kDeterministic ? wl.size() : walls.size(), Vec3::Zero());
   if constexpr (Shapes) in.posed->update(p);
   if constexpr (Record) out.contacts.clear();
@@ -179,7 +167,10 @@ void compute(const ForceInput& in) {
         p.torque[i] += m_r;
         if constexpr (kRollingWork) out.rolling_damping_torque[i] += rolling_viscous;
       }
-      if constexpr (kEnergyPerParticle) book(ce, out.particle_energy[i]);
+      if constexpr (kEnergyPerParticle) {
+        book(ce, out.particle_elastic[i]);
+        book(ce, dissipation[i]);
+      }
       ++wall_contacts;
       max_ratio = std::max(max_ratio, kin.overlap / (Shapes ? p.min_semi_axis(i) : ri));
     }
@@ -266,8 +257,14 @@ void compute(const ForceInput& in) {
         Vec3 fi = kDeterministic ? force[i] : Vec3::Zero();
         Vec3 ti = Vec3::Zero();
         if constexpr (kDeterministic && kRotation) ti = torque[i];
-        [[maybe_unused]] ContactEnergy ei;  // the particle's share of the step, so far
-        if constexpr (kEnergyPerParticle) ei = out.particle_energy[i];
+        // The particle's shares so far: elastic, of this evaluation; dissipated, since the last
+        // rebuild (a ghost's is its owner's to keep).
+        [[maybe_unused]] ElasticEnergy elastic_i;
+        [[maybe_unused]] DissipatedEnergy dissipated_i;
+        if constexpr (kEnergyPerParticle) {
+          elastic_i = out.particle_elastic[i];
+          if (owned_i) dissipated_i = dissipation[i];
+        }
         for (int k = start[r]; k < start[r + 1]; ++k) {
           const int j = nbr[k];
           ContactKinematics kin;
@@ -351,7 +348,10 @@ void compute(const ForceInput& in) {
               out.rolling_damping_torque[j] -= rolling_viscous;
             }
           }
-          if constexpr (kEnergyPerParticle) book(ce, ei);
+          if constexpr (kEnergyPerParticle) {
+            book(ce, elastic_i);
+            book(ce, dissipated_i);
+          }
           if (!kDeterministic || owned_i) ++pair_contacts;
           const double delta = kin.overlap;
           const double r_min =
@@ -365,7 +365,10 @@ void compute(const ForceInput& in) {
           force[i] += fi;
           if constexpr (kRotation) torque[i] += ti;
         }
-        if constexpr (kEnergyPerParticle) out.particle_energy[i] = ei;
+        if constexpr (kEnergyPerParticle) {
+          out.particle_elastic[i] = elastic_i;
+          if (owned_i) dissipation[i] = dissipated_i;
+        }
       }
     }
   };

@@ -172,19 +172,33 @@ void Simulation::step() {
   // Second half of the work of the previous step's damping forces, with v(k+1/2); the owned
   // particles are still those of that evaluation. Damping acts along the normal through the
   // centroids of spheres: no torque; ellipsoids' normal misses the centroid.
-  // Each grain's share goes into the exact sum on its own, as its share of the evaluation did.
+  // Deterministic summation: each grain's work is its own share, as its share of the evaluation.
+  const bool per_grain = dissipation_per_grain();
   if (!out_.damping_force.empty()) {
     const bool torques = !out_.damping_torque.empty();
+    double work = 0.0;
     for (int i = 0; i < n; ++i) {
-      double work = out_.damping_force[i].dot(p_.v[i]);
-      if (torques) work += out_.damping_torque[i].dot(p_.omega[i]);
-      dissipated_[kDamping].add(-half * work);
+      double w = out_.damping_force[i].dot(p_.v[i]);
+      if (torques) w += out_.damping_torque[i].dot(p_.omega[i]);
+      if (per_grain)
+        dissipation_share_[i].damping -= half * w;
+      else
+        work += w;
     }
+    if (!per_grain) dissipated_[kDamping].add(-half * work);
   }
   // The same for the rolling dashpot (dem/contact/rolling_resistance.h).
-  if (!out_.rolling_damping_torque.empty())
-    for (int i = 0; i < n; ++i)
-      dissipated_[kRolling].add(-half * out_.rolling_damping_torque[i].dot(p_.omega[i]));
+  if (!out_.rolling_damping_torque.empty()) {
+    double work = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const double w = out_.rolling_damping_torque[i].dot(p_.omega[i]);
+      if (per_grain)
+        dissipation_share_[i].rolling -= half * w;
+      else
+        work += w;
+    }
+    if (!per_grain) dissipated_[kRolling].add(-half * work);
+  }
   // One reduction per step carries both global decisions: rebuild now (every rank at the
   // same steps), and the runaway-overlap guard of the previous evaluation.
   double local[2] = {moved || rebuild_pending_ ? 1.0 : 0.0, last_overlap_ratio_};
@@ -240,6 +254,7 @@ void Simulation::rebuild() {
   std::chrono::steady_clock::time_point t = std::chrono::steady_clock::now();
   check_finite();
   timings_.rebuild_messages += seconds_since(t);
+  if (dissipation_per_grain()) settle_dissipation();
   // Histories of the contacts, keyed by global ids, before local indices change. The
   // separation budgets of ellipsoid pairs rest on grains keeping their local index, which
   // depends on the decomposition: the deterministic summation drops them.
@@ -262,6 +277,8 @@ void Simulation::rebuild() {
   domain_->build_ghosts(p_, n_owned_);
   lists_->build(p_, n_owned_, walls_);
   history_.restore(lists_->pairs(), lists_->walls(), p_.id, records);
+  if (dissipation_per_grain())
+    dissipation_share_.assign(static_cast<std::size_t>(n_owned_), DissipatedEnergy{});
   ++rebuilds_;
   domain_->measure_balance(n_owned_, lists_->slots_per_owned());
   timings_.rebuild_messages += domain_->message_seconds() - messages_before;
@@ -275,6 +292,7 @@ void Simulation::evaluate_forces() {
   in.wall_entries = &lists_->walls();
   in.walls = &walls_;
   in.history = &history_;
+  in.dissipation = dissipation_share_.data();
   in.material = material_;
   in.rolling = rolling_;
   in.dt = dt_;
@@ -282,24 +300,30 @@ void Simulation::evaluate_forces() {
   in.solver_stats = &solver_stats_;
   in.out = &out_;
   recorded_ = record_next_;
+  restored_wall_forces_.clear();
   (record_next_ ? loops_.recording : loops_.plain)(in);
   if (!record_next_) out_.contacts.clear();
   record_next_ = false;
-  if (!out_.particle_energy.empty()) {
-    for (int i = 0; i < n_owned_; ++i) add_dissipation(out_.particle_energy[i]);
-  } else {
-    add_dissipation(out_.energy);
+  if (!dissipation_per_grain()) {
+    DissipatedEnergy step;
+    book(out_.energy, step);
+    add_to(dissipated_, step);
   }
   last_overlap_ratio_ = out_.max_overlap_ratio;
   last_overlap_step_ = step_;
 }
 
-void Simulation::add_dissipation(const ContactEnergy& e) {
-  dissipated_[kDamping].add(e.dissipated_damping);
-  dissipated_[kFriction].add(e.dissipated_friction);
-  dissipated_[kStiffnessChange].add(e.tangential_stiffness_change);
-  dissipated_[kRolling].add(e.dissipated_rolling);
-  dissipated_[kRollingStiffnessChange].add(e.rolling_stiffness_change);
+void Simulation::add_to(std::array<ExactSum, kChannels>& sums, const DissipatedEnergy& d) {
+  sums[kDamping].add(d.damping);
+  sums[kFriction].add(d.friction);
+  sums[kStiffnessChange].add(d.stiffness_change);
+  sums[kRolling].add(d.rolling);
+  sums[kRollingStiffnessChange].add(d.rolling_stiffness_change);
+}
+
+void Simulation::settle_dissipation() {
+  for (const DissipatedEnergy& share : dissipation_share_) add_to(dissipated_, share);
+  dissipation_share_.assign(static_cast<std::size_t>(n_owned_), DissipatedEnergy{});
 }
 
 void Simulation::remove_wall(const std::string& name) {
@@ -465,20 +489,23 @@ EnergyBalance Simulation::energy() const {
   // Kinetic, potential and elastic energies, and this rank's cumulative dissipation.
   constexpr int kTerms =
       6;  // kinetic translational, rotational, potential, elastic normal, tangential, rolling
-  const bool elastic_per_particle = !out_.particle_energy.empty();
+  const bool elastic_per_particle = !out_.particle_elastic.empty();
   auto terms = [&](int i, double* e) {
     const auto k = static_cast<std::size_t>(i);
     const double m = p_.mass(k);
     e[0] = 0.5 * m * p_.v[i].squaredNorm();
     e[1] = rotation_ ? p_.rotational_energy(k) : 0.0;
     e[2] = -m * g_.dot(p_.x[i]);
-    e[3] = elastic_per_particle ? out_.particle_energy[k].elastic_normal : 0.0;
-    e[4] = elastic_per_particle ? out_.particle_energy[k].elastic_tangential : 0.0;
-    e[5] = elastic_per_particle ? out_.particle_energy[k].elastic_rolling : 0.0;
+    e[3] = elastic_per_particle ? out_.particle_elastic[k].normal : 0.0;
+    e[4] = elastic_per_particle ? out_.particle_elastic[k].tangential : 0.0;
+    e[5] = elastic_per_particle ? out_.particle_elastic[k].rolling : 0.0;
   };
   double sums[kTerms + kChannels] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
-  // The dissipation: exact sums over the ranks (the same bits on every rank).
-  for (int c = 0; c < kChannels; ++c) sums[kTerms + c] = dissipated_[c].reduced(comm()).value();
+  // The dissipation: exact sums over the ranks (the same bits on every rank), with the grains'
+  // shares since the last rebuild (added to a copy: asking changes nothing).
+  std::array<ExactSum, kChannels> total = dissipated_;
+  for (const DissipatedEnergy& share : dissipation_share_) add_to(total, share);
+  for (int c = 0; c < kChannels; ++c) sums[kTerms + c] = total[c].reduced(comm()).value();
   if (summation_ == Summation::deterministic) {
     // Per particle in global-id order on rank 0 (bitwise rank-independent).
     struct Record {
@@ -535,6 +562,7 @@ EnergyBalance Simulation::energy() const {
 }
 
 std::vector<Vec3> Simulation::wall_forces() const {
+  if (!restored_wall_forces_.empty()) return restored_wall_forces_;
   std::vector<double> total(3 * walls_.size(), 0.0);
   if (summation_ == Summation::deterministic) {
     // Per wall, the entries' forces in global-id order (bitwise rank-independent).

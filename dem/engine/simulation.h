@@ -135,7 +135,8 @@ class Simulation {
     std::size_t b = history_.bytes();
     for (const auto* v : {&out_.damping_force, &out_.damping_torque, &out_.rolling_damping_torque})
       b += v->size() * sizeof(Vec3);
-    b += out_.particle_energy.size() * sizeof(ContactEnergy);
+    b += out_.particle_elastic.size() * sizeof(ElasticEnergy) +
+         dissipation_share_.size() * sizeof(DissipatedEnergy);
     return b;
   }
   [[nodiscard]] bool contacts_recorded() const { return recorded_; }
@@ -229,15 +230,24 @@ class Simulation {
   bool record_next_ = false;
   bool recorded_ = false;
   double last_overlap_ratio_ = 0.0;
+  std::vector<Vec3> restored_wall_forces_;  // after a restore, until the first evaluation
   long last_overlap_step_ = 0;
 
   // Cumulative dissipation (docs/integrator.md), each channel the exact sum of its terms on this
-  // rank (dem/parallel/exact_sum.h): with the deterministic summation each grain's share of
-  // each step, so that the totals over the ranks do not depend on how many there are; with
-  // the fast one each evaluation's running sum.
+  // rank (dem/parallel/exact_sum.h). Deterministic summation: each grain keeps its own share
+  // since the last rebuild, summed step by step in its own order (`dissipation_share_`, by
+  // local index), and adds it to the exact sums at the next rebuild, before grains change index
+  // or rank; the totals over the ranks then do not depend on how many there are. Fast: each
+  // evaluation's running sums go straight into the exact sums.
   enum Channel { kDamping, kFriction, kStiffnessChange, kRolling, kRollingStiffnessChange, kChannels };
   std::array<ExactSum, kChannels> dissipated_;
-  void add_dissipation(const ContactEnergy& e);
+  std::vector<DissipatedEnergy> dissipation_share_;
+  // Adds shares to the exact sums: the grains' at a rebuild, the rank's of an evaluation (fast).
+  static void add_to(std::array<ExactSum, kChannels>& sums, const DissipatedEnergy& d);
+  void settle_dissipation();
+  [[nodiscard]] bool dissipation_per_grain() const {
+    return summation_ == Summation::deterministic && scene_.effects.energy_tracking;
+  }
   double removed_by_relaxation_ = 0.0;
   EnergyBalance e0_;
   ContactSolverStats solver_stats_;  // this rank's, cumulative

@@ -17,7 +17,8 @@ struct ResumeRecord {
   GlobalId gid;
   double x_built[3];
   double damping_force[3], damping_torque[3], rolling_damping_torque[3];
-  ContactEnergy energy;
+  ElasticEnergy elastic;
+  DissipatedEnergy dissipated;
 };
 struct ParticleRecord {
   StateRecord state;
@@ -32,7 +33,7 @@ struct Parts {
 
 Parts parts_of(const EngineState& s) {
   return {s.particles.has_shapes(), !s.damping_force.empty(), !s.damping_torque.empty(),
-          !s.rolling_damping_torque.empty(), !s.particle_energy.empty()};
+          !s.rolling_damping_torque.empty(), !s.particle_elastic.empty()};
 }
 
 // The whole state as bytes and back: rank 0's state on every rank (the restoring constructor
@@ -51,7 +52,10 @@ std::vector<char> to_bytes(const EngineState& s) {
     if (parts.damping_force) put(r.resume.damping_force, s.damping_force[i]);
     if (parts.damping_torque) put(r.resume.damping_torque, s.damping_torque[i]);
     if (parts.rolling) put(r.resume.rolling_damping_torque, s.rolling_damping_torque[i]);
-    if (parts.energy) r.resume.energy = s.particle_energy[i];
+    if (parts.energy) {
+      r.resume.elastic = s.particle_elastic[i];
+      r.resume.dissipated = s.dissipation_share[i];
+    }
   }
   w.put(records);
   w.put(s.history);
@@ -62,6 +66,10 @@ std::vector<char> to_bytes(const EngineState& s) {
     w.put(wall.normal);
     w.put(wall.friction);
   }
+  w.put(s.pair_contacts);
+  w.put(s.wall_contacts);
+  w.put(static_cast<std::uint64_t>(s.wall_forces.size()));
+  for (const Vec3& f : s.wall_forces) w.put(f);
   w.put(s.step);
   w.put(s.rebuilds);
   w.put(s.rebuild_pending);
@@ -96,7 +104,10 @@ EngineState from_bytes(const std::vector<char>& bytes) {
     if (parts.damping_force) s.damping_force.push_back(get(p.resume.damping_force));
     if (parts.damping_torque) s.damping_torque.push_back(get(p.resume.damping_torque));
     if (parts.rolling) s.rolling_damping_torque.push_back(get(p.resume.rolling_damping_torque));
-    if (parts.energy) s.particle_energy.push_back(p.resume.energy);
+    if (parts.energy) {
+      s.particle_elastic.push_back(p.resume.elastic);
+      s.dissipation_share.push_back(p.resume.dissipated);
+    }
   }
   r.get(s.history);
   std::uint64_t walls = 0;
@@ -108,6 +119,12 @@ EngineState from_bytes(const std::vector<char>& bytes) {
     r.get(wall.normal);
     r.get(wall.friction);
   }
+  r.get(s.pair_contacts);
+  r.get(s.wall_contacts);
+  std::uint64_t forces = 0;
+  r.get(forces);
+  s.wall_forces.resize(forces);
+  for (Vec3& f : s.wall_forces) r.get(f);
   r.get(s.step);
   r.get(s.rebuilds);
   r.get(s.rebuild_pending);
@@ -143,7 +160,7 @@ EngineState Simulation::capture_state() const {
   const std::vector<Vec3>& x_built = lists_->positions_at_build();
   std::vector<ParticleRecord> mine(static_cast<std::size_t>(n_owned_));
   const Parts parts{shapes_, !out_.damping_force.empty(), !out_.damping_torque.empty(),
-                    !out_.rolling_damping_torque.empty(), !out_.particle_energy.empty()};
+                    !out_.rolling_damping_torque.empty(), !out_.particle_elastic.empty()};
   for (int i = 0; i < n_owned_; ++i) {
     ParticleRecord& r = mine[static_cast<std::size_t>(i)];
     r = ParticleRecord{};
@@ -154,7 +171,10 @@ EngineState Simulation::capture_state() const {
     if (parts.damping_force) put(r.resume.damping_force, out_.damping_force[i]);
     if (parts.damping_torque) put(r.resume.damping_torque, out_.damping_torque[i]);
     if (parts.rolling) put(r.resume.rolling_damping_torque, out_.rolling_damping_torque[i]);
-    if (parts.energy) r.resume.energy = out_.particle_energy[i];
+    if (parts.energy) {
+      r.resume.elastic = out_.particle_elastic[i];
+      r.resume.dissipated = dissipation_share_[static_cast<std::size_t>(i)];
+    }
   }
   std::vector<ParticleRecord> all = gather_to_root(mine, comm());
   std::sort(all.begin(), all.end(),
@@ -167,8 +187,14 @@ EngineState Simulation::capture_state() const {
   // Collective parts before rank 0 fills the state.
   std::array<ExactSum, kChannels> dissipated;
   for (int c = 0; c < kChannels; ++c) dissipated[c] = dissipated_[c].reduced(comm());
+  long contacts[2] = {out_.pair_contacts, out_.wall_contacts};
+  MPI_Allreduce(MPI_IN_PLACE, contacts, 2, MPI_LONG, MPI_SUM, comm());
+  double overlap = last_overlap_ratio_;
+  MPI_Allreduce(MPI_IN_PLACE, &overlap, 1, MPI_DOUBLE, MPI_MAX, comm());
+  const std::vector<Vec3> wall_force = wall_forces();
   ContactSolverStats stats = solver_stats_;
   static_assert(sizeof(ContactSolverStats) % sizeof(std::int64_t) == 0);
+  static_assert(kChannels == EngineState::kDissipationChannels);
   MPI_Allreduce(MPI_IN_PLACE, &stats, static_cast<int>(sizeof(stats) / sizeof(std::int64_t)), MPI_INT64_T,
                 MPI_SUM, comm());
   if (!is_root()) return s;
@@ -180,7 +206,10 @@ EngineState Simulation::capture_state() const {
     if (parts.damping_force) s.damping_force.push_back(get(r.resume.damping_force));
     if (parts.damping_torque) s.damping_torque.push_back(get(r.resume.damping_torque));
     if (parts.rolling) s.rolling_damping_torque.push_back(get(r.resume.rolling_damping_torque));
-    if (parts.energy) s.particle_energy.push_back(r.resume.energy);
+    if (parts.energy) {
+      s.particle_elastic.push_back(r.resume.elastic);
+      s.dissipation_share.push_back(r.resume.dissipated);
+    }
   }
   sort_unique(history);
   s.history = std::move(history);
@@ -188,7 +217,10 @@ EngineState Simulation::capture_state() const {
   s.step = step_;
   s.rebuilds = rebuilds_;
   s.rebuild_pending = rebuild_pending_;
-  s.last_overlap_ratio = last_overlap_ratio_;
+  s.last_overlap_ratio = overlap;
+  s.pair_contacts = contacts[0];
+  s.wall_contacts = contacts[1];
+  s.wall_forces = wall_force;
   s.last_overlap_step = last_overlap_step_;
   s.gravity = g_;
   s.initial_energy = e0_;
@@ -257,10 +289,14 @@ Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_roo
   restore_field(s.damping_force, out_.damping_force);
   restore_field(s.damping_torque, out_.damping_torque);
   restore_field(s.rolling_damping_torque, out_.rolling_damping_torque);
-  if (!s.particle_energy.empty()) {
-    out_.particle_energy.assign(n, ContactEnergy{});
-    for (int i = 0; i < n_owned_; ++i)
-      out_.particle_energy[i] = s.particle_energy[index_of(s.particles, p_.id[i])];
+  if (!s.particle_elastic.empty()) {
+    out_.particle_elastic.assign(n, ElasticEnergy{});
+    dissipation_share_.assign(static_cast<std::size_t>(n_owned_), DissipatedEnergy{});
+    for (int i = 0; i < n_owned_; ++i) {
+      const std::size_t k = index_of(s.particles, p_.id[i]);
+      out_.particle_elastic[i] = s.particle_elastic[k];
+      dissipation_share_[i] = s.dissipation_share[k];
+    }
   }
   out_.wall_force.assign(summation_ == Summation::deterministic ? lists_->walls().size() : walls_.size(),
                          Vec3::Zero());
@@ -274,8 +310,11 @@ Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_roo
   last_overlap_step_ = s.last_overlap_step;
   e0_ = s.initial_energy;
   removed_by_relaxation_ = s.removed_by_relaxation;
-  // The global sums are rank 0's to continue; the other ranks add from zero.
+  restored_wall_forces_ = s.wall_forces;
+  // The global sums and counts are rank 0's to continue; the other ranks add from zero.
   if (is_root()) {
+    out_.pair_contacts = s.pair_contacts;
+    out_.wall_contacts = s.wall_contacts;
     for (int c = 0; c < kChannels; ++c) dissipated_[c] = ExactSum::from_state(s.dissipated[c]);
     solver_stats_ = s.solver_stats;
     reference_mass_ = s.reference_mass;

@@ -18,6 +18,8 @@ class ComputeGridStressRecorder {
   ComputeGridStressRecorder(std::filesystem::path folder, std::vector<StressFormula> formulas);
   // Appends the rows of this evaluation.
   void record(const ComputeGridStress& blocks, double time, long step);
+  [[nodiscard]] long csv_rows() const { return csv_.rows(); }
+  void resume(long csv_rows) { csv_.resume(csv_rows); }
 
  private:
   std::filesystem::path folder_;

@@ -112,6 +112,12 @@ GridStressRecorder::GridStressRecorder(std::filesystem::path folder, std::vector
   create_folder(folder_ / "grid_stress");
 }
 
+void GridStressRecorder::resume(const std::vector<GridStressEntry>& entries, long csv_rows) {
+  entries_ = entries;
+  csv_.resume(csv_rows);
+  flush();
+}
+
 void GridStressRecorder::record(const RegularGrid& grid, const GridStress& stress, double time, long step) {
   char name[64];
   std::snprintf(name, sizeof name, "grid_stress_%09ld.h5", step);

@@ -46,6 +46,9 @@ class GridStressRecorder {
   void record(const RegularGrid& grid, const GridStress& stress, double time, long step);
   [[nodiscard]] const std::vector<GridStressEntry>& entries() const { return entries_; }
   [[nodiscard]] const std::vector<StressFormula>& formulas() const { return formulas_; }
+  [[nodiscard]] long csv_rows() const { return csv_.rows(); }
+  // A restart: the files of a checkpoint (its entries, its rows of grid_stress.csv).
+  void resume(const std::vector<GridStressEntry>& entries, long csv_rows);
 
  private:
   void flush() const;

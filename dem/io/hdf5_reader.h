@@ -83,6 +83,41 @@ class Reader {
     return read<T>(name, ElementType<T>::memory(), rows(name), cols);
   }
 
+  // Fields of vectors and tensors (hdf5_util.h: rows of 3 and 9 doubles).
+  [[nodiscard]] std::vector<Vec3> read_vectors(const std::string& name, bool optional = false) const {
+    const std::vector<double> flat = read_all<double>(name, 3, optional);
+    std::vector<Vec3> v(flat.size() / 3);
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = Vec3(flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]);
+    return v;
+  }
+  [[nodiscard]] std::vector<Mat3> read_tensors(const std::string& name, bool optional = false) const {
+    const std::vector<double> flat = read_all<double>(name, 9, optional);
+    std::vector<Mat3> t(flat.size() / 9);
+    for (std::size_t c = 0; c < t.size(); ++c)
+      for (int e = 0; e < 9; ++e) t[c](e / 3, e % 3) = flat[9 * c + e];
+    return t;
+  }
+  // A list of strings written by write_attribute (fixed length, null padded).
+  [[nodiscard]] std::vector<std::string> text_list_attribute(const char* name,
+                                                             const std::string& object = "/") const {
+    Handle a = open_attribute(name, object);
+    Handle type(H5Aget_type(a), H5Tclose, std::string("type of attribute ") + name + where(true));
+    Handle space(H5Aget_space(a), H5Sclose, std::string("space of attribute ") + name + where(true));
+    hsize_t n = 0;
+    if (H5Sget_simple_extent_ndims(space) != 1 || H5Sget_simple_extent_dims(space, &n, nullptr) < 0 ||
+        H5Tget_class(type) != H5T_STRING || H5Tis_variable_str(type) > 0)
+      throw Error(where() + "attribute " + name + " is not a list of text");
+    const std::size_t width = H5Tget_size(type);
+    std::string packed(width * n, '\0');
+    if (n > 0 && H5Aread(a, type, packed.data()) < 0) throw Error(where() + "cannot read attribute " + name);
+    std::vector<std::string> out(n);
+    for (hsize_t i = 0; i < n; ++i) {
+      out[i] = packed.substr(i * width, width);
+      out[i].resize(std::strlen(out[i].c_str()));
+    }
+    return out;
+  }
+
   // A scalar attribute of the file, or of the group or dataset at `object`.
   [[nodiscard]] double attribute(const char* name, const std::string& object = "/") const {
     Handle a = open_attribute(name, object);

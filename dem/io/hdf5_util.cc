@@ -61,6 +61,20 @@ void write_attribute(hid_t obj, const char* name, const std::vector<std::string>
   if (n > 0) H5Awrite(attr, type, packed.data());
 }
 
+void write_vectors(hid_t group, const char* name, const std::vector<Vec3>& v) {
+  std::vector<double> flat(3 * v.size());
+  for (std::size_t i = 0; i < v.size(); ++i)
+    for (int d = 0; d < 3; ++d) flat[3 * i + d] = v[i][d];
+  write_dataset(group, name, flat.data(), v.size(), 3);
+}
+
+void write_tensors(hid_t group, const char* name, const std::vector<Mat3>& t) {
+  std::vector<double> flat(9 * t.size());
+  for (std::size_t c = 0; c < t.size(); ++c)
+    for (int e = 0; e < 9; ++e) flat[9 * c + e] = t[c](e / 3, e % 3);
+  write_dataset(group, name, flat.data(), t.size(), 9);
+}
+
 hid_t create_group(hid_t parent, const std::string& name) {
   Handle properties(untimed(H5P_GROUP_CREATE), H5Pclose, "create a property list");
   const hid_t g = H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, properties, H5P_DEFAULT);

@@ -5,7 +5,9 @@
 
 #include <cstdint>
 #include <string>
+
 #include <vector>
+#include "dem/core/types.h"
 
 namespace upgrain::dem::io::hdf5 {
 
@@ -62,6 +64,9 @@ void write_attribute(hid_t obj, const char* name, const std::string& value);
 // A 1-D attribute of fixed-length strings (each padded to the longest).
 void write_attribute(hid_t obj, const char* name, const std::vector<std::string>& values);
 hid_t create_group(hid_t parent, const std::string& name);
+// Fields of vectors and tensors as rows of 3 and 9 doubles (tensors row-major, T_ij at 3 i + j).
+void write_vectors(hid_t group, const char* name, const std::vector<Vec3>& v);
+void write_tensors(hid_t group, const char* name, const std::vector<Mat3>& t);
 // Writes every buffer of an open file to disk, and throws upgrain::Error naming `path` when it
 // cannot (a full disk, a write error): called before a file is committed (atomic_file.h), so a
 // file whose data did not reach the disk never gets its final name.

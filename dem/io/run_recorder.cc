@@ -54,6 +54,14 @@ void RunRecorder::flush() {
   write_xdmf(folder_ / "particles.xdmf", snapshots_);
 }
 
+void RunRecorder::resume(const State& s) {
+  series_.resume(s.series_rows);
+  rows_.clear();
+  rows_written_ = 0;
+  snapshots_ = s.snapshots;
+  write_xdmf(folder_ / "particles.xdmf", snapshots_);
+}
+
 void RunRecorder::write_summary(const std::map<std::string, std::string>& entries) const {
   std::ostringstream j;
   j << "{\n";

@@ -30,6 +30,16 @@ class RunRecorder {
   void write_summary(const std::map<std::string, std::string>& entries) const;
 
   [[nodiscard]] const std::filesystem::path& folder() const { return folder_; }
+
+  // What a checkpoint keeps (after a flush): the rows of time_series.csv and the snapshots.
+  struct State {
+    long series_rows = 0;
+    std::vector<SnapshotInfo> snapshots;
+  };
+  [[nodiscard]] State state() const { return {series_.rows(), snapshots_}; }
+  // A restart: the series cut back to the checkpoint's rows and particles.xdmf rewritten with
+  // its snapshots.
+  void resume(const State& s);
   [[nodiscard]] const std::vector<std::string>& series_rows() const { return rows_; }
 
  private:

@@ -26,6 +26,7 @@ class ExactSum {
   static constexpr int kDigits = 68;
 
   void add(double term) {
+    if (term == 0.0) return;
     const auto bits = std::bit_cast<std::uint64_t>(term);
     const int biased = static_cast<int>((bits >> 52) & 0x7ff);
     std::uint64_t significand = bits & ((std::uint64_t{1} << 52) - 1);

@@ -2,18 +2,46 @@
 // Before MPI_Init: a process started without a launcher (an MPI singleton: a test case, or
 // `upgrain scene.prm` on one rank) needs no runtime daemon and no transport but the self one.
 // Open MPI spawns the daemon for a singleton unless told otherwise, which costs about 0.5 s
-// per process; isolated it starts in 0.05 s. The user's own settings win.
+// per process; isolated it starts in 0.05 s. Isolated singletons started at the same moment
+// (a test suite run in parallel) race to create the same session directory, and the loser's
+// MPI_Init fails ("A call to mkdir was unable to create the desired directory ... File
+// exists"); each therefore gets a session directory of its own, removed at exit. The user's
+// own settings win.
 #include <mpi.h>
+#include <unistd.h>
 
 #include <cstdlib>
+#include <filesystem>
+#include <string>
 
 namespace upgrain::dem {
+
+namespace detail {
+inline std::string& singleton_session_base() {
+  static std::string base;
+  return base;
+}
+inline void remove_singleton_session_base() {
+  std::error_code ec;
+  if (!singleton_session_base().empty()) std::filesystem::remove_all(singleton_session_base(), ec);
+}
+}  // namespace detail
 
 inline void prefer_isolated_singleton() {
   if (std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr) return;  // started by mpirun
   setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
   setenv("OMPI_MCA_pml", "ob1", 0);
   setenv("OMPI_MCA_btl", "self", 0);
+  if (std::getenv("OMPI_MCA_orte_tmpdir_base") == nullptr) {
+    std::error_code ec;
+    const std::filesystem::path base =
+        std::filesystem::temp_directory_path(ec) / ("upgrain-mpi-" + std::to_string(::getpid()));
+    if (!ec && std::filesystem::create_directories(base, ec) && !ec) {
+      detail::singleton_session_base() = base.string();
+      setenv("OMPI_MCA_orte_tmpdir_base", base.c_str(), 1);
+      std::atexit(detail::remove_singleton_session_base);
+    }
+  }
 }
 
 }  // namespace upgrain::dem

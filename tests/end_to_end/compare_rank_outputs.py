@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
 """Checks that runs of one scene on different rank counts wrote the same results.
 
-Usage: compare_rank_outputs.py REFERENCE_FOLDER OTHER_FOLDER...
+Usage: compare_rank_outputs.py [--other-blocks] REFERENCE_FOLDER OTHER_FOLDER...
 
 - Every HDF5 file (snapshots, grid stress, grid strain), XDMF file and grid CSV table:
   byte-identical.
 - time_series.csv and summary.json: every number bitwise equal (the cumulative dissipation is
   an exact sum, docs/parallel.md), but the timings and how the work was shared.
-Report, plots, logs and the deal.II meshes (which carry their creation time) are skipped,
-and the compute-grid stress and strain, whose blocks are those of each rank count.
+Report, plots, logs and the deal.II meshes (which carry their creation time) are skipped.
+With --other-blocks (runs on different rank counts) so are the compute-grid stress and strain,
+whose blocks are those of each rank count, and the checkpoints, which keep the blocks.
 """
 import csv
 import json
@@ -18,8 +19,10 @@ import sys
 SKIP_SUFFIXES = ('.md', '.png', '.log', '.pvtu', '.vtu', '.pvd')
 # The stress and strain per MPI block: the blocks are the rank count's own (docs/stress.md,
 # docs/strain.md).
-SKIP_FILES = {'compute_grid_stress.csv', 'compute_grid_strain.csv'}
-SKIP_FOLDERS = ('compute_grid_strain' + os.sep,)
+BLOCK_FILES = {'compute_grid_stress.csv', 'compute_grid_strain.csv'}
+BLOCK_FOLDERS = ('compute_grid_strain' + os.sep, 'checkpoints' + os.sep)
+SKIP_FILES = set()
+SKIP_FOLDERS = ()
 # Timings, and how the work was shared, which depend on the rank count by design.
 TIMINGS = {'wall_time_s', 'particle_steps_per_second', 'mpi_ranks', 'load_rebalances', 'load_owned_imbalance',
            'load_compute_imbalance', 'load_communication_share'}
@@ -73,9 +76,14 @@ def compare(ref, other):
 
 
 def main():
-    ref = sys.argv[1]
+    global SKIP_FILES, SKIP_FOLDERS
+    args = sys.argv[1:]
+    if args and args[0] == '--other-blocks':
+        SKIP_FILES, SKIP_FOLDERS = BLOCK_FILES, BLOCK_FOLDERS
+        args = args[1:]
+    ref = args[0]
     failed = False
-    for other in sys.argv[2:]:
+    for other in args[1:]:
         identical, problems = compare(ref, other)
         for p in problems[:20]:
             print(f'{other}: {p}')

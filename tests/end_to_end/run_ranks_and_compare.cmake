@@ -22,7 +22,7 @@ foreach(k ${RANKS})
     message(STATUS "${k} ranks: ${check}")
   endforeach()
 endforeach()
-execute_process(COMMAND ${PYTHON} ${CHECK} ${folders} RESULT_VARIABLE code OUTPUT_VARIABLE check
+execute_process(COMMAND ${PYTHON} ${CHECK} --other-blocks ${folders} RESULT_VARIABLE code OUTPUT_VARIABLE check
                 ERROR_VARIABLE err)
 if(NOT code EQUAL 0)
   message(FATAL_ERROR "outputs differ between rank counts:\n${check}\n${err}")

@@ -25,12 +25,7 @@ constexpr const char* kConvention =
     "F maps reference (t0) to current positions, L current positions to velocities; tensors row-major "
     "T_ij at 3 i + j; invalid cells are zero with a reason code (reason_names)";
 
-void write_tensors(hid_t g, const char* name, const std::vector<Mat3>& t) {
-  std::vector<double> flat(9 * t.size());
-  for (std::size_t c = 0; c < t.size(); ++c)
-    for (int e = 0; e < 9; ++e) flat[9 * c + e] = t[c](e / 3, e % 3);
-  hdf5::write_dataset(g, name, flat.data(), t.size(), 9);
-}
+using hdf5::write_tensors;
 
 void write_scalars(hid_t g, const char* name, const std::vector<double>& s) {
   hdf5::write_dataset(g, name, s.data(), s.size(), 1);
@@ -230,6 +225,12 @@ void GridStrainRecorder::record(const GridStrain& strain, const GridStressRates*
     }
   }
   csv_.append(rows);
+  flush();
+}
+
+void GridStrainRecorder::resume(const std::vector<GridStrainEntry>& entries, long csv_rows) {
+  entries_ = entries;
+  csv_.resume(csv_rows);
   flush();
 }
 

@@ -54,6 +54,9 @@ class GridStrainRecorder {
   // with reason code no_history.
   void record(const GridStrain& strain, const GridStressRates* rates = nullptr);
   [[nodiscard]] const std::vector<GridStrainEntry>& entries() const { return entries_; }
+  [[nodiscard]] long csv_rows() const { return csv_.rows(); }
+  // A restart: the files of a checkpoint (its entries, its rows of grid_strain.csv).
+  void resume(const std::vector<GridStrainEntry>& entries, long csv_rows);
 
  private:
   void flush() const;
@@ -92,6 +95,8 @@ class ComputeGridStrainRecorder {
   // Eulerian: now); `id`, `member`: the block of each particle of a set, ascending ids.
   void record(const GridStrain& strain, const std::vector<Box>& blocks, std::span<const GlobalId> id,
               std::span<const int> member);
+  [[nodiscard]] long csv_rows() const { return csv_.rows(); }
+  void resume(long csv_rows) { csv_.resume(csv_rows); }
 
  private:
   std::filesystem::path folder_;

@@ -77,13 +77,18 @@ class StressRateHistory {
   // upgrain::Error when the cell counts or times do not fit.
   GridStressRates push(std::span<const Mat3> stress, const GridStrain& strain);
 
- private:
+  // The outputs kept, oldest first (for a checkpoint), and back.
   struct Output {
     double time = 0.0;
     std::vector<Mat3> stress;
     std::array<std::vector<Mat3>, kStrainDefinitionCount> rotation;
     std::array<std::vector<StrainReason>, kStrainDefinitionCount> f_reason;
   };
+  [[nodiscard]] const std::deque<Output>& outputs() const { return outputs_; }
+  [[nodiscard]] StressFormula formula() const { return formula_; }
+  void restore(std::deque<Output> outputs) { outputs_ = std::move(outputs); }
+
+ private:
   StressFormula formula_;
   std::deque<Output> outputs_;
 };

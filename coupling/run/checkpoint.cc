@@ -1,0 +1,182 @@
+#include "coupling/run/checkpoint.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <regex>
+
+#include "dem/core/error.h"
+#include "dem/io/atomic_file.h"
+#include "dem/io/engine_state_file.h"
+#include "dem/io/hdf5_reader.h"
+#include "dem/io/hdf5_util.h"
+#include "dem/io/output_state_file.h"
+#include "upscale/strain/strain_state_file.h"
+
+namespace upgrain::coupling {
+
+namespace fs = std::filesystem;
+namespace hdf5 = dem::io::hdf5;
+
+namespace {
+
+constexpr const char* kFormat = "Upgrain checkpoint";
+
+long step_of(const fs::path& file) {
+  static const std::regex name(R"(checkpoint_(\d+)\.h5)");
+  std::smatch m;
+  const std::string f = file.filename().string();
+  return std::regex_match(f, m, name) ? std::stol(m[1]) : -1;
+}
+
+void write_grid_state(hid_t parent, const GridEvaluationState& s) {
+  hdf5::Handle g(hdf5::create_group(parent, "grids"), H5Gclose, "create group grids");
+  dem::io::write_grid_stress_list(g, "stress_files", s.stress_files);
+  hdf5::write_attribute(g, "stress_rows", static_cast<double>(s.stress_rows));
+  hdf5::write_attribute(g, "compute_grid_rows", static_cast<double>(s.compute_grid_rows));
+  upscale::write_strain_list(g, "strain_files", s.strain_files);
+  hdf5::write_attribute(g, "strain_rows", static_cast<double>(s.strain_rows));
+  hdf5::write_attribute(g, "block_rows", static_cast<double>(s.block_rows));
+  if (s.reference) upscale::write_strain_reference(g, "reference", *s.reference);
+  if (s.previous) upscale::write_previous_strain(g, "previous", *s.previous);
+  if (s.rates) upscale::write_rate_history(g, "rates", *s.rates);
+  if (s.block_reference) upscale::write_strain_reference(g, "block_reference", *s.block_reference);
+  if (s.previous_blocks) upscale::write_previous_strain(g, "previous_blocks", *s.previous_blocks);
+  std::vector<dem::Vec3> corners;
+  for (const dem::Box& b : s.reference_blocks) corners.insert(corners.end(), {b.lo, b.hi});
+  hdf5::write_vectors(g, "reference_blocks", corners);
+}
+
+GridEvaluationState read_grid_state(const hdf5::Reader& in, const std::string& group,
+                                    dem::StressFormula rate_formula) {
+  GridEvaluationState s;
+  s.stress_files = dem::io::read_grid_stress_list(in, group + "/stress_files");
+  s.stress_rows = static_cast<long>(in.attribute("stress_rows", group));
+  s.compute_grid_rows = static_cast<long>(in.attribute("compute_grid_rows", group));
+  s.strain_files = upscale::read_strain_list(in, group + "/strain_files");
+  s.strain_rows = static_cast<long>(in.attribute("strain_rows", group));
+  s.block_rows = static_cast<long>(in.attribute("block_rows", group));
+  if (in.exists(group + "/reference")) s.reference = upscale::read_strain_reference(in, group + "/reference");
+  if (in.exists(group + "/previous")) s.previous = upscale::read_previous_strain(in, group + "/previous");
+  if (in.exists(group + "/rates")) s.rates = upscale::read_rate_history(in, group + "/rates", rate_formula);
+  if (in.exists(group + "/block_reference"))
+    s.block_reference = upscale::read_strain_reference(in, group + "/block_reference");
+  if (in.exists(group + "/previous_blocks"))
+    s.previous_blocks = upscale::read_previous_strain(in, group + "/previous_blocks");
+  const std::vector<dem::Vec3> corners = in.read_vectors(group + "/reference_blocks");
+  for (std::size_t k = 0; k + 1 < corners.size(); k += 2)
+    s.reference_blocks.push_back({corners[k], corners[k + 1]});
+  return s;
+}
+
+}  // namespace
+
+std::string scene_hash(const std::string& scene) {
+  std::uint64_t h = 14695981039346656037ULL;
+  for (unsigned char c : scene) {
+    h ^= c;
+    h *= 1099511628211ULL;
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return hex;
+}
+
+fs::path write_checkpoint(const fs::path& folder, const Checkpoint& c, int keep) {
+  const fs::path dir = folder / "checkpoints";
+  dem::io::create_folder(dir);
+  char name[64];
+  std::snprintf(name, sizeof name, "checkpoint_%09ld.h5", c.step);
+  dem::io::AtomicFile target(dir / name);
+  {
+    hdf5::Handle file(H5Fcreate(target.temporary_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
+                      H5Fclose, "create " + target.temporary_path().string());
+    hdf5::write_attribute(file, "format", kFormat);
+    hdf5::write_attribute(file, "format_version", static_cast<double>(kCheckpointVersion));
+    hdf5::write_attribute(file, "code_version", UPGRAIN_VERSION);
+    hdf5::write_attribute(file, "step", static_cast<double>(c.step));
+    hdf5::write_attribute(file, "time", c.time);
+    hdf5::write_attribute(file, "scene", c.scene);
+    hdf5::write_attribute(file, "scene_hash", scene_hash(c.scene));
+    dem::io::write_engine_state(file, "engine", c.engine);
+    hdf5::Handle run(hdf5::create_group(file, "run"), H5Gclose, "create group run");
+    const ScheduleState& s = c.run.schedule;
+    hdf5::write_attribute(run, "step", static_cast<double>(s.step));
+    hdf5::write_attribute(run, "next_release", static_cast<double>(s.next_release));
+    hdf5::write_attribute(run, "rest_check_from", static_cast<double>(s.rest_check_from));
+    hdf5::write_attribute(run, "series_rows", static_cast<double>(c.run.files.series_rows));
+    dem::io::write_snapshot_list(run, "snapshots", c.run.files.snapshots);
+    if (c.run.grids) write_grid_state(run, c.run.grid_state);
+    hdf5::flush(file, target.final_path().string());
+  }
+  target.commit();
+  // The newest `keep` stay (a crash while writing the next leaves the last one whole).
+  const std::vector<fs::path> all = checkpoint_files(folder);
+  for (std::size_t k = static_cast<std::size_t>(std::max(keep, 1)); k < all.size(); ++k) {
+    std::error_code ec;
+    fs::remove(all[k], ec);
+  }
+  return target.final_path();
+}
+
+std::vector<fs::path> checkpoint_files(const fs::path& folder) {
+  std::vector<fs::path> out;
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(folder / "checkpoints", ec))
+    if (e.is_regular_file() && step_of(e.path()) >= 0) out.push_back(e.path());
+  std::sort(out.begin(), out.end(),
+            [](const fs::path& a, const fs::path& b) { return step_of(a) > step_of(b); });
+  return out;
+}
+
+Checkpoint read_checkpoint(const fs::path& file) {
+  hdf5::QuietHdf5 quiet;
+  hdf5::Reader in(file, "checkpoint");
+  if (!in.has_attribute("format") || in.text_attribute("format") != kFormat)
+    throw Error(in.where() + "not an Upgrain checkpoint");
+  const double version = in.attribute("format_version");
+  if (version != kCheckpointVersion)
+    throw Error(in.where() + "checkpoint format " + std::to_string(static_cast<int>(version)) +
+                ", this build reads format " + std::to_string(kCheckpointVersion));
+  Checkpoint c;
+  c.file = file;
+  c.step = static_cast<long>(in.attribute("step"));
+  c.time = in.attribute("time");
+  c.scene = in.text_attribute("scene");
+  c.scene_hash = in.text_attribute("scene_hash");
+  if (scene_hash(c.scene) != c.scene_hash) throw Error(in.where() + "the scene does not match its hash");
+  c.engine = dem::io::read_engine_state(in, "/engine");
+  if (c.engine.step != c.step) throw Error(in.where() + "the engine's step is not the checkpoint's");
+  RunState& r = c.run;
+  r.schedule.step = static_cast<long>(in.attribute("step", "/run"));
+  r.schedule.next_release = static_cast<std::size_t>(in.attribute("next_release", "/run"));
+  r.schedule.rest_check_from = static_cast<long>(in.attribute("rest_check_from", "/run"));
+  r.files.series_rows = static_cast<long>(in.attribute("series_rows", "/run"));
+  r.files.snapshots = dem::io::read_snapshot_list(in, "/run/snapshots");
+  r.grids = in.exists("/run/grids");
+  if (r.grids) {
+    // The rate formula is checked against the scene's when the run resumes; read it as stored.
+    const auto formula =
+        in.exists("/run/grids/rates")
+            ? static_cast<dem::StressFormula>(static_cast<int>(in.attribute("formula", "/run/grids/rates")))
+            : dem::StressFormula::bagi;
+    r.grid_state = read_grid_state(in, "/run/grids", formula);
+  }
+  return c;
+}
+
+Checkpoint newest_checkpoint(const fs::path& folder, std::vector<std::string>& refused) {
+  const std::vector<fs::path> files = checkpoint_files(folder);
+  if (files.empty()) throw Error("no checkpoint in " + (folder / "checkpoints").string());
+  for (const fs::path& f : files) {
+    try {
+      return read_checkpoint(f);
+    } catch (const std::exception& e) {
+      refused.push_back(f.string() + ": " + e.what());
+    }
+  }
+  throw Error("no readable checkpoint in " + (folder / "checkpoints").string() + " (" +
+              std::to_string(files.size()) + " refused)");
+}
+
+}  // namespace upgrain::coupling

@@ -1,0 +1,57 @@
+#pragma once
+// Checkpoints of a run (docs/restart.md): the engine's whole state (dem/engine/engine_state.h)
+// and where the run stands (its schedule, the files and table rows written, the grid
+// evaluations' state), with the scene's parameters and their hash, in one HDF5 file
+// <folder>/checkpoints/checkpoint_<step>.h5, written atomically (temporary name, flushed, then
+// renamed); the newest `keep` are kept. A restart reads the newest one that is valid.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "coupling/run/grid_evaluation.h"
+#include "coupling/run/run_schedule.h"
+#include "dem/engine/engine_state.h"
+#include "dem/io/run_recorder.h"
+
+namespace upgrain::coupling {
+
+inline constexpr int kCheckpointVersion = 1;
+
+// Where a run stands besides the engine.
+struct RunState {
+  ScheduleState schedule;
+  dem::io::RunRecorder::State files;
+  bool grids = false;  // the run evaluates grids
+  GridEvaluationState grid_state;
+};
+
+struct Checkpoint {
+  std::filesystem::path file;
+  long step = 0;
+  double time = 0.0;
+  std::string scene;  // the scene's parameters, one entry per line (CheckpointOptions::scene)
+  std::string scene_hash;
+  dem::EngineState engine;
+  RunState run;
+};
+
+// The hash of a scene's parameter text (64-bit FNV-1a, in hex): the same text, the same hash.
+std::string scene_hash(const std::string& scene);
+
+// Writes `c` (its engine state and run state) as checkpoint_<step>.h5 in <folder>/checkpoints/,
+// then removes all but the newest `keep`. Rank 0 only; throws upgrain::Error naming the file
+// when it cannot be written whole (nothing is then left under the checkpoint's name).
+std::filesystem::path write_checkpoint(const std::filesystem::path& folder, const Checkpoint& c, int keep);
+
+// Every checkpoint file of <folder>/checkpoints/, newest (largest step) first.
+std::vector<std::filesystem::path> checkpoint_files(const std::filesystem::path& folder);
+
+// Reads one checkpoint; throws upgrain::Error naming the file and what is wrong (not HDF5, cut
+// short, of another version, a part missing).
+Checkpoint read_checkpoint(const std::filesystem::path& file);
+
+// The newest checkpoint of `folder` that reads whole. Each newer one that does not is named in
+// `refused`, with its reason. Throws upgrain::Error when none reads.
+Checkpoint newest_checkpoint(const std::filesystem::path& folder, std::vector<std::string>& refused);
+
+}  // namespace upgrain::coupling

@@ -1,0 +1,292 @@
+#include "dem/io/engine_state_file.h"
+
+#include <algorithm>
+#include <cstdint>
+
+namespace upgrain::dem::io {
+
+namespace {
+
+using hdf5::Handle;
+using hdf5::write_attribute;
+using hdf5::write_dataset;
+using hdf5::write_vectors;
+
+constexpr int kHistoryValues = 13;
+
+// The initial energy's terms, by name (EnergyBalance, dem/engine/energy.h).
+struct EnergyTerm {
+  const char* name;
+  double EnergyBalance::*value;
+};
+constexpr EnergyTerm kEnergyTerms[] = {
+    {"kinetic_translational", &EnergyBalance::kinetic_translational},
+    {"kinetic_rotational", &EnergyBalance::kinetic_rotational},
+    {"potential", &EnergyBalance::potential},
+    {"elastic_normal", &EnergyBalance::elastic_normal},
+    {"elastic_tangential", &EnergyBalance::elastic_tangential},
+    {"dissipated_damping", &EnergyBalance::dissipated_damping},
+    {"dissipated_friction", &EnergyBalance::dissipated_friction},
+    {"tangential_stiffness_change", &EnergyBalance::tangential_stiffness_change},
+    {"elastic_rolling", &EnergyBalance::elastic_rolling},
+    {"dissipated_rolling", &EnergyBalance::dissipated_rolling},
+    {"rolling_stiffness_change", &EnergyBalance::rolling_stiffness_change},
+    {"removed_by_relaxation", &EnergyBalance::removed_by_relaxation},
+};
+
+std::vector<double> flat(const std::vector<ElasticEnergy>& e) {
+  std::vector<double> out;
+  for (const ElasticEnergy& x : e) out.insert(out.end(), {x.normal, x.tangential, x.rolling});
+  return out;
+}
+std::vector<double> flat(const std::vector<DissipatedEnergy>& d) {
+  std::vector<double> out;
+  for (const DissipatedEnergy& x : d)
+    out.insert(out.end(), {x.damping, x.friction, x.stiffness_change, x.rolling, x.rolling_stiffness_change});
+  return out;
+}
+
+void write_particles(hid_t parent, const EngineState& s) {
+  Handle g(hdf5::create_group(parent, "particles"), H5Gclose, "create group particles");
+  const ParticleStore& p = s.particles;
+  const hsize_t n = p.size();
+  write_dataset(g, "id", p.id.data(), n);
+  write_dataset(g, "radius", p.radius.data(), n);
+  write_dataset(g, "inv_mass", p.inv_mass.data(), n);
+  write_dataset(g, "inv_inertia", p.inv_inertia.data(), n);
+  write_vectors(g, "x", p.x);
+  write_vectors(g, "v", p.v);
+  write_vectors(g, "omega", p.omega);
+  write_vectors(g, "force", p.force);
+  write_vectors(g, "torque", p.torque);
+  write_vectors(g, "positions_at_build", s.positions_at_build);
+  if (p.has_shapes()) {
+    std::vector<std::int32_t> kind(n);
+    std::vector<double> q(4 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+      kind[i] = static_cast<std::int32_t>(p.shape[i]);
+      const Eigen::Quaterniond& o = p.orientation[i];
+      q[4 * i] = o.x(), q[4 * i + 1] = o.y(), q[4 * i + 2] = o.z(), q[4 * i + 3] = o.w();
+    }
+    write_dataset(g, "shape", kind.data(), n);
+    write_vectors(g, "semi_axes", p.semi_axes);
+    write_dataset(g, "orientation", q.data(), n, 4);
+    write_vectors(g, "inertia_body", p.inertia_body);
+  }
+  if (!s.damping_force.empty()) write_vectors(g, "damping_force", s.damping_force);
+  if (!s.damping_torque.empty()) write_vectors(g, "damping_torque", s.damping_torque);
+  if (!s.rolling_damping_torque.empty()) write_vectors(g, "rolling_damping_torque", s.rolling_damping_torque);
+  if (!s.particle_elastic.empty()) {
+    write_dataset(g, "elastic", flat(s.particle_elastic).data(), n, 3);
+    write_dataset(g, "dissipation_share", flat(s.dissipation_share).data(), n, 5);
+  }
+}
+
+void write_history(hid_t parent, const std::vector<ContactHistoryRecord>& records) {
+  Handle g(hdf5::create_group(parent, "history"), H5Gclose, "create group history");
+  const hsize_t n = records.size();
+  std::vector<std::int64_t> a(n), b(n);
+  std::vector<double> v(kHistoryValues * n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const ContactHistoryRecord& r = records[k];
+    a[k] = r.a;
+    b[k] = r.b;
+    double* x = v.data() + kHistoryValues * k;
+    std::copy(r.tangential_force, r.tangential_force + 3, x);
+    x[3] = r.tangential_stiffness;
+    std::copy(r.rolling_torque, r.rolling_torque + 3, x + 4);
+    x[7] = r.rolling_stiffness;
+    std::copy(r.normal, r.normal + 3, x + 8);
+    x[11] = r.r_star;
+    x[12] = r.gap_budget;
+  }
+  write_dataset(g, "a", a.data(), n);
+  write_dataset(g, "b", b.data(), n);
+  write_dataset(g, "values", v.data(), n, kHistoryValues);
+}
+
+void write_walls(hid_t parent, const std::vector<PlaneWall>& walls) {
+  Handle g(hdf5::create_group(parent, "walls"), H5Gclose, "create group walls");
+  std::vector<std::string> names;
+  std::vector<Vec3> point, normal;
+  std::vector<double> friction;
+  for (const PlaneWall& w : walls) {
+    names.push_back(w.name);
+    point.push_back(w.point);
+    normal.push_back(w.normal);
+    friction.push_back(w.friction);
+  }
+  write_attribute(g, "names", names);
+  write_vectors(g, "point", point);
+  write_vectors(g, "normal", normal);
+  write_dataset(g, "friction", friction.data(), friction.size());
+}
+
+void write_domain(hid_t parent, const DomainState& d) {
+  Handle g(hdf5::create_group(parent, "domain"), H5Gclose, "create group domain");
+  write_vectors(g, "box", {d.box.lo, d.box.hi});
+  const std::int32_t blocks[3] = {d.blocks[0], d.blocks[1], d.blocks[2]};
+  write_dataset(g, "blocks", blocks, 3);
+  const char* names[3] = {"planes_x", "planes_y", "planes_z"};
+  for (int a = 0; a < 3; ++a) write_dataset(g, names[a], d.planes[a].data(), d.planes[a].size());
+  const double balance[4] = {static_cast<double>(d.balance.count), static_cast<double>(d.balance.last_step),
+                             d.balance.before, d.balance.after};
+  write_dataset(g, "balance", balance, 4);
+}
+
+}  // namespace
+
+void write_engine_state(hid_t parent, const std::string& group, const EngineState& s) {
+  Handle g(hdf5::create_group(parent, group), H5Gclose, "create group " + group);
+  write_attribute(g, "version", static_cast<double>(EngineState::kVersion));
+  write_attribute(g, "history_version", static_cast<double>(ContactHistoryRecord::kVersion));
+  write_attribute(g, "step", static_cast<double>(s.step));
+  write_attribute(g, "pair_contacts", static_cast<double>(s.pair_contacts));
+  write_attribute(g, "wall_contacts", static_cast<double>(s.wall_contacts));
+  write_vectors(g, "wall_forces", s.wall_forces);
+  write_attribute(g, "rebuilds", static_cast<double>(s.rebuilds));
+  write_attribute(g, "rebuild_pending", s.rebuild_pending ? 1.0 : 0.0);
+  write_attribute(g, "last_overlap_ratio", s.last_overlap_ratio);
+  write_attribute(g, "last_overlap_step", static_cast<double>(s.last_overlap_step));
+  write_attribute(g, "removed_by_relaxation", s.removed_by_relaxation);
+  write_attribute(g, "reference_mass", s.reference_mass);
+  write_attribute(g, "next_balance_step", static_cast<double>(s.domain.next_balance_step));
+  for (const EnergyTerm& t : kEnergyTerms)
+    write_attribute(g, (std::string("initial_") + t.name).c_str(), s.initial_energy.*t.value);
+  write_vectors(g, "gravity", {s.gravity});
+  std::vector<std::int64_t> digits;
+  for (const auto& channel : s.dissipated) digits.insert(digits.end(), channel.begin(), channel.end());
+  write_dataset(g, "dissipated", digits.data(), s.dissipated.size(), ExactSum::kDigits + 1);
+  static_assert(sizeof(ContactSolverStats) == 9 * sizeof(std::int64_t));
+  write_dataset(g, "solver_stats", reinterpret_cast<const std::int64_t*>(&s.solver_stats), 9);
+  write_particles(g, s);
+  write_history(g, s.history);
+  write_walls(g, s.walls);
+  write_domain(g, s.domain);
+}
+
+EngineState read_engine_state(const hdf5::Reader& in, const std::string& group) {
+  EngineState s;
+  const double version = in.attribute("version", group);
+  if (version != EngineState::kVersion)
+    throw Error(in.where() + "engine state version " + std::to_string(version) + ", this build reads " +
+                std::to_string(EngineState::kVersion));
+  if (in.attribute("history_version", group) != ContactHistoryRecord::kVersion)
+    throw Error(in.where() + "contact-history records of another version");
+  auto whole = [&](const char* name) { return static_cast<long>(in.attribute(name, group)); };
+  s.step = whole("step");
+  s.pair_contacts = whole("pair_contacts");
+  s.wall_contacts = whole("wall_contacts");
+  s.wall_forces = in.read_vectors(group + "/wall_forces");
+  s.rebuilds = whole("rebuilds");
+  s.rebuild_pending = in.attribute("rebuild_pending", group) != 0.0;
+  s.last_overlap_ratio = in.attribute("last_overlap_ratio", group);
+  s.last_overlap_step = whole("last_overlap_step");
+  s.removed_by_relaxation = in.attribute("removed_by_relaxation", group);
+  s.reference_mass = in.attribute("reference_mass", group);
+  s.domain.next_balance_step = whole("next_balance_step");
+  for (const EnergyTerm& t : kEnergyTerms)
+    s.initial_energy.*t.value = in.attribute((std::string("initial_") + t.name).c_str(), group);
+  const std::vector<Vec3> gravity = in.read_vectors(group + "/gravity");
+  if (gravity.size() != 1) throw Error(in.where() + group + "/gravity is not one vector");
+  s.gravity = gravity[0];
+  const std::vector<std::int64_t> digits = in.read<std::int64_t>(group + "/dissipated", H5T_NATIVE_INT64,
+                                                                 s.dissipated.size(), ExactSum::kDigits + 1);
+  for (std::size_t c = 0; c < s.dissipated.size(); ++c)
+    std::copy(digits.begin() + c * (ExactSum::kDigits + 1),
+              digits.begin() + (c + 1) * (ExactSum::kDigits + 1), s.dissipated[c].begin());
+  const std::vector<std::int64_t> stats = in.read<std::int64_t>(group + "/solver_stats", H5T_NATIVE_INT64, 9);
+  std::copy(stats.begin(), stats.end(), reinterpret_cast<std::int64_t*>(&s.solver_stats));
+
+  // Particles.
+  const std::string pg = group + "/particles/";
+  ParticleStore& p = s.particles;
+  p.id = in.read_all<std::int64_t>(pg + "id");
+  const hsize_t n = p.id.size();
+  p.radius = in.read<double>(pg + "radius", H5T_NATIVE_DOUBLE, n);
+  p.inv_mass = in.read<double>(pg + "inv_mass", H5T_NATIVE_DOUBLE, n);
+  p.inv_inertia = in.read<double>(pg + "inv_inertia", H5T_NATIVE_DOUBLE, n);
+  for (auto [name, field] : {std::pair{"x", &p.x},
+                             {"v", &p.v},
+                             {"omega", &p.omega},
+                             {"force", &p.force},
+                             {"torque", &p.torque},
+                             {"positions_at_build", &s.positions_at_build}}) {
+    *field = in.read_vectors(pg + name);
+    if (field->size() != n) throw Error(in.where() + pg + name + " does not hold one row per particle");
+  }
+  if (in.exists(pg + "shape")) {
+    const std::vector<std::int32_t> kind = in.read<std::int32_t>(pg + "shape", H5T_NATIVE_INT32, n);
+    for (std::int32_t k : kind) {
+      if (k < 0 || k >= kShapeKinds) throw Error(in.where() + "unknown shape kind " + std::to_string(k));
+      p.shape.push_back(static_cast<ShapeKind>(k));
+    }
+    p.semi_axes = in.read_vectors(pg + "semi_axes");
+    p.inertia_body = in.read_vectors(pg + "inertia_body");
+    const std::vector<double> q = in.read<double>(pg + "orientation", H5T_NATIVE_DOUBLE, n, 4);
+    for (std::size_t i = 0; i < n; ++i)
+      p.orientation.emplace_back(q[4 * i + 3], q[4 * i], q[4 * i + 1], q[4 * i + 2]);
+    if (p.semi_axes.size() != n || p.inertia_body.size() != n)
+      throw Error(in.where() + "shapes of another particle count");
+  }
+  s.damping_force = in.read_vectors(pg + "damping_force", true);
+  s.damping_torque = in.read_vectors(pg + "damping_torque", true);
+  s.rolling_damping_torque = in.read_vectors(pg + "rolling_damping_torque", true);
+  if (in.exists(pg + "elastic")) {
+    const std::vector<double> e = in.read<double>(pg + "elastic", H5T_NATIVE_DOUBLE, n, 3);
+    const std::vector<double> d = in.read<double>(pg + "dissipation_share", H5T_NATIVE_DOUBLE, n, 5);
+    for (std::size_t i = 0; i < n; ++i) {
+      s.particle_elastic.push_back({e[3 * i], e[3 * i + 1], e[3 * i + 2]});
+      s.dissipation_share.push_back({d[5 * i], d[5 * i + 1], d[5 * i + 2], d[5 * i + 3], d[5 * i + 4]});
+    }
+  }
+  if (!std::is_sorted(p.id.begin(), p.id.end()) || std::adjacent_find(p.id.begin(), p.id.end()) != p.id.end())
+    throw Error(in.where() + "particle ids are not sorted and unique");
+
+  // Histories.
+  const std::string hg = group + "/history/";
+  const std::vector<std::int64_t> a = in.read_all<std::int64_t>(hg + "a");
+  const std::vector<std::int64_t> b = in.read<std::int64_t>(hg + "b", H5T_NATIVE_INT64, a.size());
+  const std::vector<double> v = in.read<double>(hg + "values", H5T_NATIVE_DOUBLE, a.size(), kHistoryValues);
+  s.history.resize(a.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    ContactHistoryRecord& r = s.history[k];
+    r.a = a[k];
+    r.b = b[k];
+    const double* x = v.data() + kHistoryValues * k;
+    std::copy(x, x + 3, r.tangential_force);
+    r.tangential_stiffness = x[3];
+    std::copy(x + 4, x + 7, r.rolling_torque);
+    r.rolling_stiffness = x[7];
+    std::copy(x + 8, x + 11, r.normal);
+    r.r_star = x[11];
+    r.gap_budget = x[12];
+  }
+  if (!std::is_sorted(s.history.begin(), s.history.end()))
+    throw Error(in.where() + "contact histories are not sorted by key");
+
+  // Walls.
+  const std::string wg = group + "/walls";
+  const std::vector<std::string> names = in.text_list_attribute("names", wg);
+  const std::vector<Vec3> point = in.read_vectors(wg + "/point"), normal = in.read_vectors(wg + "/normal");
+  const std::vector<double> friction = in.read<double>(wg + "/friction", H5T_NATIVE_DOUBLE, names.size());
+  if (point.size() != names.size() || normal.size() != names.size())
+    throw Error(in.where() + "walls differ in count");
+  for (std::size_t w = 0; w < names.size(); ++w)
+    s.walls.push_back({names[w], point[w], normal[w], friction[w]});
+
+  // Domain.
+  const std::string dg = group + "/domain/";
+  const std::vector<Vec3> box = in.read_vectors(dg + "box");
+  if (box.size() != 2) throw Error(in.where() + dg + "box is not two corners");
+  s.domain.box = Box{box[0], box[1]};
+  const std::vector<std::int32_t> blocks = in.read<std::int32_t>(dg + "blocks", H5T_NATIVE_INT32, 3);
+  for (int d = 0; d < 3; ++d) s.domain.blocks[d] = blocks[d];
+  const char* names3[3] = {"planes_x", "planes_y", "planes_z"};
+  for (int d = 0; d < 3; ++d) s.domain.planes[d] = in.read_all<double>(dg + names3[d]);
+  const std::vector<double> balance = in.read<double>(dg + "balance", H5T_NATIVE_DOUBLE, 4);
+  s.domain.balance = {static_cast<long>(balance[0]), static_cast<long>(balance[1]), balance[2], balance[3]};
+  return s;
+}
+
+}  // namespace upgrain::dem::io

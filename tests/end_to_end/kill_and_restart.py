@@ -1,0 +1,104 @@
+#!/usr/bin/env python3
+"""Kills runs of a scene at random moments, continues each with `upgrain --restart`, and checks
+that the continued run wrote the same files as a run that was not interrupted
+(docs/restart.md).
+
+Usage: kill_and_restart.py UPGRAIN SCENE WORK [--kills N] [--signal KILL|TERM]
+                           [--ranks R] [--restart-ranks R2] [--seed S] [--delays LOW HIGH]
+
+1. The scene runs once without interruption (WORK/whole), on R ranks, and its wall time T is
+   measured.
+2. The same scene runs in WORK/broken; it is sent the signal after a random fraction of T
+   (0.1 to 0.8; a restart's LOW to HIGH, 0.1 to 0.5 by default). Each following start is `upgrain --restart WORK/broken` on R2 ranks (R2 = R
+   by default), again killed, N times in all; then one last restart runs to the end. A start
+   that ends before its signal counts as done.
+3. With SIGTERM each stopped run writes a checkpoint and, on one rank, exits with 143 (under
+   mpiexec the launcher reports its own code). No temporary file may remain once the last run
+   has ended.
+4. compare_rank_outputs.py compares the two folders: every HDF5, XDMF and CSV file
+   byte-identical, time_series.csv and summary.json bitwise but the timings (and, on other
+   rank counts, the compute-grid files and the checkpoints, which follow the blocks).
+"""
+import argparse
+import os
+import random
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def command(upgrain, ranks, args):
+    if ranks <= 1:
+        return [upgrain] + args
+    return ['mpiexec', '-n', str(ranks), upgrain] + args
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument('upgrain')
+    p.add_argument('scene')
+    p.add_argument('work')
+    p.add_argument('--kills', type=int, default=3)
+    p.add_argument('--signal', choices=['KILL', 'TERM'], default='KILL')
+    p.add_argument('--ranks', type=int, default=1)
+    p.add_argument('--restart-ranks', type=int, default=0)
+    p.add_argument('--seed', type=int, default=1)
+    p.add_argument('--delays', type=float, nargs=2, default=[0.1, 0.5], metavar=('LOW', 'HIGH'),
+                   help="a restart's signal after LOW to HIGH of the uninterrupted run's wall time")
+    a = p.parse_args()
+    rng = random.Random(a.seed)
+    restart_ranks = a.restart_ranks or a.ranks
+    shutil.rmtree(a.work, ignore_errors=True)
+    os.makedirs(a.work)
+    whole = os.path.join(a.work, 'whole')
+    broken = os.path.join(a.work, 'broken')
+    log = open(os.path.join(a.work, 'runs.log'), 'w')
+
+    t0 = time.monotonic()
+    r = subprocess.run(command(a.upgrain, a.ranks, ['--output', whole, a.scene]), stdout=log, stderr=log)
+    wall = time.monotonic() - t0
+    if r.returncode != 0:
+        sys.exit(f'the uninterrupted run failed ({r.returncode}); see {log.name}')
+    print(f'uninterrupted run: {wall:.2f} s')
+
+    sig = signal.SIGKILL if a.signal == 'KILL' else signal.SIGTERM
+    done = False
+    for k in range(a.kills):
+        args = ['--output', broken, a.scene] if k == 0 else ['--restart', broken]
+        ranks = a.ranks if k == 0 else restart_ranks
+        delay = rng.uniform(0.1, 0.8) * wall if k == 0 else rng.uniform(*a.delays) * wall
+        proc = subprocess.Popen(command(a.upgrain, ranks, args), stdout=log, stderr=log, start_new_session=True)
+        try:
+            code = proc.wait(timeout=delay)
+            print(f'start {k + 1}: ended by itself ({code}) before its signal at {delay:.2f} s')
+            if code != 0:
+                sys.exit(f'start {k + 1} failed with {code}; see {log.name}')
+            done = True
+            break
+        except subprocess.TimeoutExpired:
+            os.killpg(proc.pid, sig)  # the launcher and every rank
+            code = proc.wait()
+            print(f'start {k + 1}: signal {a.signal} at {delay:.2f} s, exit {code}')
+            # One process: 128 + 15. Under mpiexec the launcher reports its own code.
+            if sig == signal.SIGTERM and ranks == 1 and code != 143:
+                sys.exit(f'a run stopped by SIGTERM must exit with 143, not {code}; see {log.name}')
+    if not done:
+        r = subprocess.run(command(a.upgrain, restart_ranks, ['--restart', broken]), stdout=log, stderr=log)
+        if r.returncode != 0:
+            sys.exit(f'the last restart failed ({r.returncode}); see {log.name}')
+    leftovers = [os.path.join(d, f) for d, _, files in os.walk(broken) for f in files if '.tmp.' in f]
+    if leftovers:
+        sys.exit(f'temporary files left behind: {leftovers[:5]}')
+    compare = [sys.executable, os.path.join(HERE, 'compare_rank_outputs.py')]
+    if restart_ranks != a.ranks:
+        compare.append('--other-blocks')
+    compare += [whole, broken]
+    sys.exit(subprocess.run(compare).returncode)
+
+
+if __name__ == '__main__':
+    main()
