@@ -264,6 +264,7 @@ int run(int argc, char** argv) {
           "  checkpoints: every %g s simulated, every %g s of wall clock (0 = never), the last %d kept\n",
           c.interval, c.wall_interval, c.keep);
   }
+  std::fflush(stdout);  // the preamble reaches a log file before a run that may be killed
   coupling::install_stop_handlers();
   auto progress = [rank](const coupling::Progress& p) {
     if (rank == 0) print_progress(p);
