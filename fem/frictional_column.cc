@@ -41,6 +41,7 @@
 
 #include "fem/column_mesh.h"
 #include "fem/contact/coulomb_friction.h"
+#include "fem/material_point.h"
 
 namespace upgrain::fem {
 
@@ -69,66 +70,6 @@ SymmetricTensor<2, dim> symmetric_tensor_of(const Vec6& a) {
   return t;
 }
 
-// The state at one quadrature point, as in step-18: the stress and strain of the last
-// converged step, and what the current Newton iterate would make of them. An incremental
-// (stress-based) state serves both the elastic and the Drucker–Prager material and lets a
-// layer placed during staged construction start stress-free on a deformed column.
-struct MaterialPoint {
-  Vec6 stress = Vec6::Zero();  // sigma_n
-  Vec6 strain = Vec6::Zero();  // eps_n (at placement for a layer added later)
-  ReturnRegion region = ReturnRegion::elastic;
-  Vec6 new_stress = Vec6::Zero();
-  Vec6 new_strain = Vec6::Zero();
-  ReturnRegion new_region = ReturnRegion::elastic;
-
-  void commit() {
-    stress = new_stress;
-    strain = new_strain;
-    region = new_region;
-  }
-  void place(const Vec6& current_strain) {
-    stress.setZero();
-    strain = current_strain;
-    region = ReturnRegion::elastic;
-  }
-};
-
-// A quadrature point on a wall or the floor: the material there (its normal stress is the
-// wall pressure) and the friction state, the traction t_n and displacement u_n of the last
-// converged step (contact/coulomb_friction.h).
-struct WallPoint {
-  MaterialPoint material;
-  Vector3 traction = Vector3::Zero();
-  Vector3 displacement = Vector3::Zero();
-  bool slipping = false;
-  double pressure = 0.0;
-  Vector3 new_traction = Vector3::Zero();
-  Vector3 new_displacement = Vector3::Zero();
-  bool new_slipping = false;
-  double new_pressure = 0.0;
-
-  void commit() {
-    material.commit();
-    traction = new_traction;
-    displacement = new_displacement;
-    slipping = new_slipping;
-    pressure = new_pressure;
-  }
-  void place(const Vec6& current_strain, const Vector3& current_displacement) {
-    material.place(current_strain);
-    traction.setZero();
-    displacement = current_displacement;
-    slipping = false;
-    pressure = 0.0;
-  }
-};
-
-struct MaterialResponse {
-  Vec6 stress;
-  Mat6 tangent;
-  ReturnRegion region;
-};
-
 class FrictionalColumn {
  public:
   FrictionalColumn(const FrictionalColumnProblem& problem, MPI_Comm comm);
@@ -152,7 +93,6 @@ class FrictionalColumn {
   void postprocess();
   void output_results(const std::string& folder) const;
 
-  MaterialResponse material_response(const MaterialPoint& point, const Vec6& strain) const;
   unsigned int layer_of(const typename DoFHandler<dim>::active_cell_iterator& cell) const;
   bool is_active(const typename DoFHandler<dim>::active_cell_iterator& cell) const {
     return layer_of(cell) <= top_layer_;
@@ -164,8 +104,7 @@ class FrictionalColumn {
 
   const FrictionalColumnProblem problem_;
   const Elasticity elasticity_;
-  const Mat6 elastic_stiffness_;
-  const DruckerPrager cone_;
+  const MaterialLaw material_;
   MPI_Comm comm_;
   ConditionalOStream pcout_;
 
@@ -202,8 +141,7 @@ class FrictionalColumn {
 FrictionalColumn::FrictionalColumn(const FrictionalColumnProblem& problem, MPI_Comm comm)
     : problem_(problem),
       elasticity_(Elasticity::from_youngs(problem.column.youngs_modulus, problem.column.poisson_ratio)),
-      elastic_stiffness_(elasticity_.stiffness()),
-      cone_(drucker_prager_cone(problem.strength)),
+      material_(problem.material, elasticity_, drucker_prager_cone(problem.strength)),
       comm_(comm),
       pcout_(std::cout, problem.newton.log && Utilities::MPI::this_mpi_process(comm) == 0),
       triangulation_(comm),
@@ -215,22 +153,6 @@ FrictionalColumn::FrictionalColumn(const FrictionalColumnProblem& problem, MPI_C
       // No communicator: as in elastic_column.cc, the library prints nothing and the
       // destructor must not synchronise while an exception unwinds on all ranks.
       timer_(std::cout, TimerOutput::never, TimerOutput::wall_times) {}
-
-MaterialResponse FrictionalColumn::material_response(const MaterialPoint& point, const Vec6& strain) const {
-  // The elastic predictor sigma_n + C (eps - eps_n), returned to the cone if it lies outside.
-  const Vec6 trial = point.stress + elastic_stiffness_ * (strain - point.strain);
-  if (problem_.material == ColumnMaterial::elastic) return {trial, elastic_stiffness_, ReturnRegion::elastic};
-  const ReturnMapping r = return_map(cone_, elasticity_, trial);
-  // At the apex of a perfectly plastic cone the consistent tangent is zero (the stress is
-  // the apex whatever the strain): a cell whose points all sit there has no stiffness and
-  // the Newton matrix is singular. Cohesionless material reaches the apex in tension, which
-  // Newton iterates visit near the free top on their way to a compressed solution. The
-  // matrix then takes the elastic stiffness at such points; the residual keeps the returned
-  // stress, so the solution is unchanged and Newton converges quadratically once no point
-  // is at the apex (docs/fem.md, "Newton's method").
-  if (r.region == ReturnRegion::apex) return {r.stress, elastic_stiffness_, r.region};
-  return {r.stress, r.tangent, r.region};
-}
 
 unsigned int FrictionalColumn::layer_of(const typename DoFHandler<dim>::active_cell_iterator& cell) const {
   const double z = cell->center()[2] / problem_.column.height;
@@ -401,7 +323,7 @@ void FrictionalColumn::assemble_system(const double load_factor,
     for (unsigned int q = 0; q < n_q; ++q) {
       fill_shape_matrices(fe_values, q);
       const Vec6 strain = mandel_of(strains[q]);
-      const MaterialResponse m = material_response(points[q], strain);
+      const MaterialResponse m = material_.respond(points[q], strain);
       points[q].new_stress = m.stress;
       points[q].new_strain = strain;
       points[q].new_region = m.region;
@@ -426,7 +348,7 @@ void FrictionalColumn::assemble_system(const double load_factor,
         const Tensor<1, dim> nq = fe_face_values.normal_vector(q);
         const Vector3 normal(nq[0], nq[1], nq[2]);
         const Vec6 strain = mandel_of(face_strains[q]);
-        const MaterialResponse m = material_response(wall_point->material, strain);
+        const MaterialResponse m = material_.respond(wall_point->material, strain);
         const Vec6 normal_projector = mandel::from_matrix(normal * normal.transpose());
         const double pressure = -normal_projector.dot(m.stress);
         const Vector3 u(face_displacements[q][0], face_displacements[q][1], face_displacements[q][2]);

@@ -9,19 +9,10 @@
 //   Phi(sigma) = sqrt(J2(s)) + eta p - xi c,     Psi(sigma) = sqrt(J2(s)) + eta_bar p,
 // with p = tr(sigma)/3, s = dev(sigma), J2 = s:s/2. eta = eta_bar is associated flow;
 // eta_bar < eta (a dilatancy angle psi < phi) is non-associated.
+#include "fem/plasticity/cone_matching.h"
 #include "fem/plasticity/mandel.h"
 
 namespace upgrain::fem {
-
-// How the cone is fitted to the Mohr–Coulomb hexagon of (phi, c) (de Souza Neto et al.
-// 2008, sect. 6.4.3; docs/fem.md):
-// - outer: through the triaxial-compression corners (the outer edges of the hexagon);
-// - inner: through the triaxial-extension corners;
-// - plane_strain: the same collapse load as Mohr–Coulomb in plane strain. For associated
-//   flow this is de Souza Neto et al.'s plane-strain match; for psi < phi the match is
-//   derived in docs/fem.md (eta_bar gives Mohr–Coulomb's dilatancy in plane strain, and eta,
-//   xi its strength under that flow).
-enum class ConeMatching { outer, inner, plane_strain };
 
 struct DruckerPrager {
   double eta = 0.0;       // friction coefficient of Phi
