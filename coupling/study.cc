@@ -207,10 +207,21 @@ int run_study(const SceneInput& in, MPI_Comm comm, const std::function<void(cons
   std::vector<ContinuumResult> continua = {
       continuum_result("fem", "elastic on rollers", sol.cell_average_stress, 0.0)};
   std::vector<FrictionalRun> frictional;
+  std::vector<std::pair<std::string, std::string>> failed;  // label, why
   for (const ContinuumVariant variant : in.study.continuum.variants) {
     t0 = Clock::now();
     FrictionalRun run = frictional_run(in, problem, variant);
-    run.solution = fem::solve_frictional_column(run.problem, comm, (folder / run.key).string());
+    try {
+      run.solution = fem::solve_frictional_column(run.problem, comm, (folder / run.key).string());
+    } catch (const fem::NewtonFailure& e) {
+      // Every rank throws alike (the decision rests on reduced residuals). The DEM run and
+      // the other continua are kept; the report says what failed.
+      failed.emplace_back(run.label, e.what());
+      on_rank0(comm, [&] {
+        std::printf("  warning: %s left out of the study: %s\n", run.label.c_str(), e.what());
+      });
+      continue;
+    }
     timings.emplace_back("continuum: " + run.label + " (FEM, output included)", since(t0));
     continua.push_back(continuum_result(run.key, run.label, run.solution.cell_average_stress,
                                         run.solution.side_wall_vertical_force / run.solution.weight));
@@ -252,7 +263,7 @@ int run_study(const SceneInput& in, MPI_Comm comm, const std::function<void(cons
     }
     timings.emplace_back("tables and plots", since(t0));
     timings.emplace_back("whole study", since(t_all));
-    const StudyRecord record{in,      r, d,       problem, sol,          frictional,
+    const StudyRecord record{in,      r, d,       problem, sol,          frictional, failed,
                              janssen, c, timings, plots,   strain_plots, ranks};
     write_report(folder, record);
     write_study_json(folder, record);

@@ -124,6 +124,7 @@ void headline_section(std::ostringstream& m, const StudyRecord& s) {
     m << "; floor and walls carry the weight to "
       << fmt((q.floor_vertical_force + q.side_wall_vertical_force) / q.weight - 1.0, 2) << ".\n";
   }
+  for (const auto& [label, why] : s.failed) m << "- **" << label << " is left out**: " << why << ".\n";
   for (const FormulaComparison* fc : ranked_formulas(c)) {
     const std::size_t best = fc->closest;
     m << "- **Closest to the DEM (" << dem::name_of(fc->formula) << "): " << c.continua[best].label << "**, "
@@ -268,7 +269,9 @@ void write_study_json(const std::filesystem::path& folder, const StudyRecord& s)
     }
     j << "}";
   }
-  j << "\n  },\n  \"formulas\": {";
+  j << "\n  },\n  \"failed_continua\": [";
+  for (std::size_t k = 0; k < s.failed.size(); ++k) j << (k ? ", " : "") << "\"" << s.failed[k].first << "\"";
+  j << "],\n  \"formulas\": {";
   for (std::size_t k = 0; k < c.formulas.size(); ++k) {
     const FormulaComparison& fc = c.formulas[k];
     j << (k ? "," : "") << "\n    \"" << dem::io::field_name(fc.formula)

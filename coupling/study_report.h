@@ -38,6 +38,7 @@ struct StudyRecord {
   fem::ColumnProblem rollers_problem;  // the elastic column on rollers
   fem::ColumnSolution rollers;
   std::vector<FrictionalRun> frictional;
+  std::vector<std::pair<std::string, std::string>> failed;  // continua whose Newton failed: label, why
   fem::JanssenColumn janssen;
   DemFemComparison comparison;
   std::vector<std::pair<std::string, double>> timings;  // stage, wall seconds on rank 0

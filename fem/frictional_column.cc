@@ -208,16 +208,18 @@ void FrictionalColumn::make_constraints(AffineConstraints<double>& constraints,
                                              Functions::ConstantFunction<dim>(value, dim), constraints,
                                              fe_.component_mask(FEValuesExtractors::Scalar(component)));
   if (top_layer + 1 < n_layers_) {
-    // Ghost cells count too: a dof shared with a built cell of another rank is free.
-    std::vector<bool> built(dof_handler_.n_dofs(), false);
+    // Ghost cells count too: a dof shared with a built cell of another rank is free. The
+    // dofs of owned and ghost cells are the locally relevant ones, indexed within that set.
+    std::vector<bool> built(locally_relevant_dofs_.n_elements(), false);
     std::vector<types::global_dof_index> dofs(fe_.n_dofs_per_cell());
     for (const auto& cell : dof_handler_.active_cell_iterators()) {
       if (cell->is_artificial() || layer_of(cell) > top_layer) continue;
       cell->get_dof_indices(dofs);
-      for (const auto i : dofs) built[i] = true;
+      for (const auto i : dofs) built[locally_relevant_dofs_.index_within_set(i)] = true;
     }
     for (const auto i : locally_relevant_dofs_)
-      if (!built[i] && !constraints.is_constrained(i)) constraints.add_line(i);
+      if (!built[locally_relevant_dofs_.index_within_set(i)] && !constraints.is_constrained(i))
+        constraints.add_line(i);
   }
   constraints.close();
 }
@@ -498,7 +500,7 @@ void FrictionalColumn::solve_load_step(const double from, const double to,
       << " bisections of the step); |r|/|f| "
       << "per iteration:";
     for (const double r : log.residuals) m << ' ' << r;
-    throw std::runtime_error(m.str());
+    throw NewtonFailure(m.str());
   }
   pcout_ << "    load step " << result_.load_steps.size() + 1 << " failed: bisected" << std::endl;
   ++result_.bisections;

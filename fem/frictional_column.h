@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -101,6 +102,12 @@ struct FrictionalColumnSolution {
   double total_seconds = 0.0;
 };
 
+// Thrown, on every rank alike, when Newton's method fails in a load step even after the
+// step has been bisected: the message names the load step and the residual history.
+struct NewtonFailure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 // Throws std::invalid_argument naming the first bad parameter (FrictionalColumnProblem.<field>).
 void validate(const FrictionalColumnProblem& problem);
 
@@ -109,9 +116,8 @@ DruckerPrager drucker_prager_cone(const MohrCoulombStrength& strength);
 
 // Solves on the ranks of `comm` (collective), writing column.pvtu and its pieces to
 // vtu_folder unless it is empty (atomically, as solve_column does). Throws
-// std::invalid_argument on bad input (every rank, before any communication),
-// std::runtime_error if Newton does not converge (naming the load step and the residuals)
-// or output fails.
+// std::invalid_argument on bad input (every rank, before any communication), NewtonFailure
+// if Newton does not converge, and std::runtime_error if output fails.
 FrictionalColumnSolution solve_frictional_column(const FrictionalColumnProblem& problem, MPI_Comm comm,
                                                  const std::string& vtu_folder);
 

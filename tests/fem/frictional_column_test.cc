@@ -360,6 +360,23 @@ TEST(FrictionalColumn, OneAndTwoRanksAgree) {
                 serial.side_wall_vertical_force / serial.weight);
 }
 
+// Newton's method that cannot converge (one iteration allowed where friction needs more)
+// is bisected down to 1/16 of the step and then reported as NewtonFailure on every rank,
+// naming the load step; no rank is left waiting.
+TEST(FrictionalColumn, NewtonFailureIsReportedOnEveryRank) {
+  FrictionalColumnProblem p = silo(0.5, 0);
+  p.column.cells = {1, 1, 2};
+  p.newton.tolerance = 1e-12;
+  p.newton.max_iterations = 1;
+  try {
+    (void)solve_frictional_column(p, MPI_COMM_WORLD, "");
+    ADD_FAILURE() << "no NewtonFailure";
+  } catch (const NewtonFailure& e) {
+    EXPECT_NE(std::string(e.what()).find("load step 1"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("4 bisections"), std::string::npos) << e.what();
+  }
+}
+
 TEST(FrictionalColumn, BadInputNamesTheParameter) {
   const auto expect_refused = [](const FrictionalColumnProblem& p, const std::string& name) {
     try {
