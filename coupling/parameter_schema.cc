@@ -235,8 +235,9 @@ const std::vector<ParameterSpec>& parameter_schema() {
        "Must be in Stress/formulas."},
 
       {"Study", "compare with continuum", "true", K::boolean, 0, 0, "", "-",
-       "After the DEM run, solve the elastic column of the same container on a mesh matching the stress grid "
-       "and write the comparison tables, plots and report.md (docs/study.md). False: the DEM run only."},
+       "After the DEM run, solve the continua of the same container (Continuum/variants) on a mesh matching "
+       "the stress grid and write the comparison tables, plots and report.md (docs/study.md). False: the DEM "
+       "run only."},
       {"Study", "comparison formulas", "bagi, modified nicot, weber", K::multiple_selection, 0, 0,
        "weber|drescher|bagi|de saxce|nicot|modified nicot|modified de saxce", "-",
        "DEM stress formulas set beside the continuum; each must also be in Stress/formulas."},
@@ -248,15 +249,48 @@ const std::vector<ParameterSpec>& parameter_schema() {
        "Upper bound on the FIRE steps; the residual reached is reported."},
 
       {"Continuum", "youngs modulus", "1e8", K::real, 1.0, 1e13, "", "Pa",
-       "Young's modulus of the equivalent elastic continuum (the stresses of the confined column do not "
-       "depend on "
-       "it; the displacements do)."},
+       "Young's modulus of every continuum (the stresses of the confined column do not depend on it, nor, "
+       "without cohesion, those of the frictional continua; the displacements do)."},
       {"Continuum", "poisson ratio", "0.3", K::real, 0.0, 0.499, "", "-",
-       "Poisson's ratio of the continuum; it sets K0 = nu / (1 - nu)."},
+       "Poisson's ratio of every continuum; it sets K0 = nu / (1 - nu), and the lateral ratio of the Janssen "
+       "line."},
       {"Continuum", "refinements", "1", K::integer, 0, 6, "", "-",
        "Global refinements of the mesh whose coarse cells are the stress grid's cells."},
       {"Continuum", "degree", "2", K::integer, 1, 4, "", "-",
        "Polynomial degree of the displacement element (Q2 reproduces the analytic column exactly)."},
+      {"Continuum", "variants", "elastic friction, drucker prager", K::multiple_selection, 0, 0,
+       "elastic friction|drucker prager", "-",
+       "Continua solved beside the elastic column on frictionless rollers (which always runs), each in a "
+       "rigid box whose walls carry Coulomb friction ('wall friction', 'floor friction'): elastic friction "
+       "is linear elastic, drucker prager elastoplastic with the strength below (docs/fem.md). Empty: the "
+       "rollers column only."},
+      {"Continuum", "wall friction", "auto", K::text, 0, 0, "", "-",
+       "Coulomb coefficient of the frictional continua's side walls: auto = each wall's Container "
+       "coefficient "
+       "as the DEM applies it (0 when Effects/wall friction is off), or one number in [0, 10] for all four."},
+      {"Continuum", "floor friction", "auto", K::text, 0, 0, "", "-",
+       "Coulomb coefficient of the frictional continua's floor: auto = Container/floor friction as the DEM "
+       "applies it, or a number in [0, 10]; 0 makes the floor a roller, as for the elastic column."},
+      {"Continuum", "friction angle", "30", K::real, 0.1, 89.0, "", "degrees",
+       "Mohr–Coulomb friction angle phi of the Drucker–Prager continuum."},
+      {"Continuum", "dilatancy angle", "0", K::real, 0.0, 89.0, "", "degrees",
+       "Dilatancy angle psi of the Drucker–Prager continuum, at most the friction angle; psi = phi is "
+       "associated flow."},
+      {"Continuum", "cohesion", "0", K::real, 0.0, 1e9, "", "Pa",
+       "Cohesion c of the Drucker–Prager continuum (the DEM's grains have none)."},
+      {"Continuum", "cone matching", "outer cone", K::selection, 0, 0, "outer cone|inner cone|plane strain",
+       "-",
+       "How the Drucker–Prager cone is fitted to Mohr–Coulomb (phi, c): outer cone, through the "
+       "triaxial-compression corners (exact for a column compressed axially, as at rest); inner cone, "
+       "through "
+       "the extension corners; plane strain, the same plane-strain collapse load (docs/fem.md)."},
+      {"Continuum", "load steps", "1", K::integer, 1, 1000, "", "-",
+       "Steps in which gravity is raised on the frictional continua, with Newton's method in each. Without "
+       "cohesion the answer does not depend on them (the problem is homogeneous in g; docs/fem.md)."},
+      {"Continuum", "staged construction", "false", K::boolean, 0, 0, "", "-",
+       "Build the frictional continua layer by layer (one layer of fine cells per step, each placed "
+       "stress-free on the deformed column below) instead of raising gravity on the whole column; it changes "
+       "the lateral stresses near the walls (docs/fem.md)."},
   });
   return schema;
 }

@@ -274,10 +274,30 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   prm.leave_subsection();
 
   prm.enter_subsection("Continuum");
-  in.study.continuum.youngs_modulus = prm.get_double("youngs modulus");
-  in.study.continuum.poisson_ratio = prm.get_double("poisson ratio");
-  in.study.continuum.refinements = static_cast<unsigned>(prm.get_integer("refinements"));
-  in.study.continuum.degree = static_cast<unsigned>(prm.get_integer("degree"));
+  {
+    ContinuumOptions& c = in.study.continuum;
+    c.youngs_modulus = prm.get_double("youngs modulus");
+    c.poisson_ratio = prm.get_double("poisson ratio");
+    c.refinements = static_cast<unsigned>(prm.get_integer("refinements"));
+    c.degree = static_cast<unsigned>(prm.get_integer("degree"));
+    c.variants.clear();
+    for (const std::string& name : dealii::Utilities::split_string_list(prm.get("variants"), ',')) {
+      const ContinuumVariant v =
+          name == "drucker prager" ? ContinuumVariant::drucker_prager : ContinuumVariant::elastic_friction;
+      if (std::find(c.variants.begin(), c.variants.end(), v) == c.variants.end()) c.variants.push_back(v);
+    }
+    c.wall_friction_entry = prm.get("wall friction");
+    c.floor_friction_entry = prm.get("floor friction");
+    c.friction_angle_deg = prm.get_double("friction angle");
+    c.dilatancy_angle_deg = prm.get_double("dilatancy angle");
+    c.cohesion = prm.get_double("cohesion");
+    const std::string matching = prm.get("cone matching");
+    c.cone_matching = matching == "inner cone"     ? fem::ConeMatching::inner
+                      : matching == "plane strain" ? fem::ConeMatching::plane_strain
+                                                   : fem::ConeMatching::outer;
+    c.load_steps = static_cast<unsigned>(prm.get_integer("load steps"));
+    c.staged_construction = prm.get_bool("staged construction");
+  }
   prm.leave_subsection();
   // Every entry, one per line: what a checkpoint stores of the scene (docs/restart.md).
   std::ostringstream all;

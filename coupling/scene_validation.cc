@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 
 #include "coupling/scene_input.h"
@@ -87,6 +88,36 @@ void validate_collapse(const SceneInput& in, const std::string& where) {
     throw Error(where +
                 "Container/collapse = unconstrained removes the side walls that the continuum column "
                 "needs; set 'Study/compare with continuum = false'");
+}
+
+// Continuum/wall friction and floor friction: "auto" (empty optional) or a Coulomb
+// coefficient in [0, 10], the range of the Container's.
+std::optional<double> friction_entry(const std::string& entry, const std::string& name,
+                                     const std::string& where) {
+  std::string text = entry;
+  text.erase(0, text.find_first_not_of(" \t"));
+  text.erase(text.find_last_not_of(" \t") + 1);
+  if (text == "auto") return std::nullopt;
+  std::istringstream in(text);
+  double mu = 0.0;
+  std::string rest;
+  if (!(in >> mu) || (in >> rest) || !std::isfinite(mu) || mu < 0.0 || mu > 10.0)
+    throw Error(where + "Continuum/" + name + " = '" + entry +
+                "': give auto (the Container's coefficients) or a Coulomb coefficient in [0, 10]");
+  return mu;
+}
+
+// The frictional continua's entries, against each other.
+void validate_continuum(ContinuumOptions& c, const std::string& where) {
+  c.wall_friction = friction_entry(c.wall_friction_entry, "wall friction", where);
+  c.floor_friction = friction_entry(c.floor_friction_entry, "floor friction", where);
+  if (c.dilatancy_angle_deg > c.friction_angle_deg) {
+    std::ostringstream m;
+    m << where << "Continuum/dilatancy angle = " << c.dilatancy_angle_deg
+      << " degrees exceeds Continuum/friction angle = " << c.friction_angle_deg
+      << " degrees; a Drucker–Prager flow that dilates more than its friction allows is not admissible";
+    throw Error(m.str());
+  }
 }
 
 }  // namespace
@@ -182,6 +213,7 @@ void validate_scene(SceneInput& in) {
     }
   }
   if (in.study.compare_with_continuum) {
+    validate_continuum(in.study.continuum, where);
     if (in.study.formulas.empty())
       throw Error(where +
                   "Study/comparison formulas is empty; name at least one formula, or set "

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "coupling/report_format.h"
 #include "dem/io/atomic_file.h"
 #include "dem/io/grid_stress_output.h"
 #include "upscale/grid_mesh.h"
@@ -16,13 +17,6 @@
 namespace upgrain::coupling {
 
 namespace {
-
-std::string fmt(double v, int digits = 4) {
-  std::ostringstream s;
-  s.precision(digits);
-  s << v;
-  return s.str();
-}
 
 // Median, smallest and largest of the values of the cells marked valid; "-" when none.
 std::string spread(const std::vector<double>& v, const std::vector<upscale::StrainReason>& reason) {

@@ -14,11 +14,13 @@
 #include "coupling/dem_fem_comparison.h"
 #include "coupling/dem_run.h"
 #include "coupling/strain_report.h"
+#include "coupling/study_report.h"
 #include "dem/core/error.h"
 #include "dem/io/atomic_file.h"
 #include "dem/io/grid_stress_output.h"
 #include "dem/stress/asymmetry.h"
 #include "fem/elastic_column.h"
+#include "fem/frictional_column.h"
 #include "upscale/grid_fields.h"
 #include "upscale/grid_mesh.h"
 
@@ -32,15 +34,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-// What rank 0's DEM run hands to every rank.
-struct DemOutcome {
-  dem::RegularGrid grid;
-  dem::GridStress stress;
-  double total_mass = 0.0;
-  dem::Vec3 floor_force = dem::Vec3::Zero();
-  double side_wall_vertical = 0.0;  // sum of the grains' vertical force on the side walls (N, < 0 = carried)
-};
 
 void broadcast(DemOutcome& d, MPI_Comm comm) {
   int n[3] = {d.grid.n[0], d.grid.n[1], d.grid.n[2]};
@@ -66,18 +59,23 @@ void broadcast(DemOutcome& d, MPI_Comm comm) {
   MPI_Bcast(&d.side_wall_vertical, 1, MPI_DOUBLE, 0, comm);
 }
 
+// The one-mesh output: the DEM's formulas, each continuum's stress (the column on rollers
+// with the DEM's difference from it) and the hydrostatic sigma_zz.
 upscale::GridFields comparison_fields(const DemOutcome& d, const DemFemComparison& c,
                                       const std::vector<dem::StressFormula>& formulas) {
   upscale::GridFields f = upscale::grid_fields_from_stress(d.grid, d.stress, formulas);
   const int cells = d.grid.num_cells();
   const char* comp[9] = {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"};
   for (int e : {0, 4, 8, 1, 2, 5}) {
-    std::vector<double> v(cells);
-    for (int k = 0; k < cells; ++k) v[k] = c.fem[k][e];
-    f.add(std::string("fem_s_") + comp[e], v);
+    for (const ContinuumResult& r : c.continua) {
+      std::vector<double> v(cells);
+      for (int k = 0; k < cells; ++k) v[k] = r.cells[k][e];
+      f.add(r.key + "_s_" + comp[e], v);
+    }
+    const std::vector<Tensor9>& rollers = c.continua.front().cells;
     for (dem::StressFormula fm : formulas) {
       std::vector<double> diff(cells);
-      for (int k = 0; k < cells; ++k) diff[k] = d.stress[fm][k](e / 3, e % 3) - c.fem[k][e];
+      for (int k = 0; k < cells; ++k) diff[k] = d.stress[fm][k](e / 3, e % 3) - rollers[k][e];
       f.add("diff_" + dem::io::field_name(fm) + "_s_" + comp[e], diff);
     }
   }
@@ -85,130 +83,74 @@ upscale::GridFields comparison_fields(const DemOutcome& d, const DemFemCompariso
   return f;
 }
 
-std::string fmt(double v, int digits = 4) {
-  std::ostringstream s;
-  s.precision(digits);
-  s << v;
-  return s.str();
+ContinuumResult continuum_result(std::string key, std::string label,
+                                 const std::vector<std::array<double, 9>>& cell_average_stress,
+                                 double wall_share) {
+  return {std::move(key),
+          std::move(label),
+          {cell_average_stress.begin(), cell_average_stress.end()},
+          wall_share,
+          0.0,
+          {}};
 }
 
-void write_report(const std::filesystem::path& folder, const SceneInput& in, const RunResult& r,
-                  const DemOutcome& d, const fem::ColumnProblem& problem, const fem::ColumnSolution& sol,
-                  const DemFemComparison& c, const std::vector<std::pair<std::string, double>>& timings,
-                  const std::vector<std::string>& plots, const std::vector<std::string>& strain_plots,
-                  int ranks) {
+// The continua's wall friction: Continuum/wall friction and floor friction, or with auto
+// the coefficients the DEM applies (none when its wall friction is off). The container's
+// walls are the floor, then x min, x max, y min, y max; the continuum's side walls have the
+// same order.
+fem::WallFriction wall_friction(const SceneInput& in) {
+  const ContinuumOptions& o = in.study.continuum;
   const dem::SceneConfig& s = in.scene;
-  const double area = s.container.lx * s.container.ly;
-  const double weight = d.total_mass * s.gravity;
-  std::ostringstream m;
-  m << "# Upgrain study: DEM bed against the continuum column\n\n"
-    << "Scene: `" << in.source << "`. Written by `upgrain` on " << ranks << " MPI rank(s). "
-    << "How to read it: docs/study.md.\n\n## Parameters\n\n| quantity | value |\n|---|---|\n"
-    << "| grains | " << s.particles.count << " spheres, radius "
-    << (s.particles.gradation.empty() ? fmt(s.particles.radius) + " m" : std::string("by gradation curve"))
-    << ", density " << s.particles.material.density << " kg/m^3, E " << s.particles.material.youngs_modulus
-    << " Pa, nu " << s.particles.material.poisson_ratio << " |\n"
-    << "| contact | friction " << s.friction << ", damping ratio " << s.damping_ratio << ", wall friction "
-    << (s.effects.wall_friction ? "floor " + fmt(s.container.friction[0]) + ", sides " +
-                                      fmt(s.container.friction[1]) + " " + fmt(s.container.friction[2]) +
-                                      " " + fmt(s.container.friction[3]) + " " + fmt(s.container.friction[4])
-                                : std::string("off"))
-    << " |\n"
-    << "| container | " << s.container.lx << " m x " << s.container.ly << " m |\n"
-    << "| time step, end time | " << s.time_step << " s, " << s.end_time << " s |\n"
-    << "| stress grid | " << d.grid.n[0] << " x " << d.grid.n[1] << " x " << d.grid.n[2]
-    << " cells up to z = " << fmt(d.grid.hi.z())
-    << " m (top of the highest grain), V = " << fmt(d.stress.cell_volume) << " m^3 |\n"
-    << "| continuum | E " << problem.youngs_modulus << " Pa, nu " << problem.poisson_ratio
-    << " (K0 = " << fmt(c.k0) << "), Q" << problem.degree << ", " << problem.refinements << " refinement(s), "
-    << sol.n_dofs << " dofs, " << sol.cg_iterations << " CG iterations |\n"
-    << "| continuum load | bulk density " << fmt(problem.density) << " kg/m^3 = grain mass "
-    << fmt(d.total_mass) << " kg / (footprint x " << fmt(problem.height) << " m) |\n\n";
-
-  m << "## Headline figures\n\n";
-  m << "- DEM run: " << r.steps << " steps, " << fmt(r.simulated_time) << " s simulated";
-  if (r.relaxation)
-    m << "; relaxed by FIRE in " << r.relaxation->steps << " steps to residual force "
-      << fmt(r.relaxation->max_force_residual, 3) << " and torque "
-      << fmt(r.relaxation->max_torque_residual, 3) << " (of m g, m g r)";
-  m << ".\n- Weight over the floor area: " << fmt(weight / area)
-    << " Pa. Floor force over area: " << fmt(-d.floor_force.z() / area) << " Pa; the side walls carry "
-    << fmt(-d.side_wall_vertical / weight * 100 + 0.0, 3) << " % of the weight by friction.\n";
-  m << "- Continuum against its analytic solution: relative L2 error of the stress "
-    << fmt(sol.l2_error_stress / fem::analytic_solution(problem).stress_l2_norm(area), 3) << ".\n\n";
-  m << "| formula | ||Δσ_zz|| / ||σ_zz,FEM|| | ||Δσ_xx|| | ||Δσ_xz|| | mean (σ_xx+σ_yy)/(2σ_zz) | largest "
-       "level spread of σ_zz |\n|---|---|---|---|---|---|\n";
-  for (const FormulaComparison& fc : c.formulas) {
-    m << "| " << dem::name_of(fc.formula) << " | " << fmt(fc.relative_l2[8], 3) << " | "
-      << fmt(fc.relative_l2[0], 3) << " | " << fmt(fc.relative_l2[2], 3) << " | "
-      << fmt(fc.mean_lateral_ratio, 3) << " | "
-      << fmt(*std::max_element(fc.level_spread.begin(), fc.level_spread.end()), 3) << " |\n";
-  }
-  m << "| continuum (FEM) | 0 | 0 | 0 | " << fmt(c.fem_mean_lateral_ratio, 3) << " (K0 " << fmt(c.k0, 3)
-    << ") | " << fmt(*std::max_element(c.fem_level_spread.begin(), c.fem_level_spread.end()), 3) << " |\n\n"
-    << "A continuum with frictionless walls has a uniform σ_zz across each level (spread 0); the DEM bed "
-       "does not: walls and the packing carry the load unevenly (the paper's microstructural effect).\n\n";
-
-  m << "## σ_zz against height, centre and edge columns (Pa)\n\n| column | z (m) | FEM | analytic";
-  for (const FormulaComparison& fc : c.formulas) m << " | " << dem::name_of(fc.formula);
-  m << " |\n|---|---|---|---";
-  for (std::size_t k = 0; k < c.formulas.size(); ++k) m << "|---";
-  m << "|\n";
-  const dem::RegularGrid& g = d.grid;
-  for (auto [name, i, j] : {std::tuple<const char*, int, int>{"centre", c.centre_i, c.centre_j},
-                            std::tuple<const char*, int, int>{"edge", c.edge_i, c.edge_j}}) {
-    for (int k = g.n[2] - 1; k >= 0; --k) {
-      const int cell = (k * g.n[1] + j) * g.n[0] + i;
-      m << "| " << name << " | " << fmt(g.cell_centre(cell).z()) << " | " << fmt(c.fem[cell][8]) << " | "
-        << fmt(c.analytic_szz[cell]);
-      for (const FormulaComparison& fc : c.formulas) m << " | " << fmt(d.stress[fc.formula][cell](2, 2));
-      m << " |\n";
-    }
-  }
-  m << "\n## Plots\n\n";
-  if (plots.empty())
-    m << "No plots: /usr/bin/python3 with matplotlib was not available (the CSV tables hold the same "
-         "data).\n";
-  for (const std::string& p : plots) m << "![" << p << "](" << p << ")\n\n";
-  m << "\n## Files\n\n- `comparison_cells.csv`, `profiles.csv`, `relative_l2.csv`: the tables above, in "
-       "full.\n"
-    << "- `mesh/dem_fem.pvtu`: DEM (per formula), FEM and their difference as cell data on one mesh, with "
-       "Q1 projections (ParaView).\n- `fem/column.pvtu`: the continuum solution.\n"
-    << "- `grid_stress.xdmf`, `particles.xdmf`: the DEM grid stress and particles over time.\n\n";
-  if (r.final_strain) m << strain_section(in, *r.final_strain, folder, strain_plots);
-  m << "## Timings (wall clock, rank 0)\n\n| stage | s |\n|---|---|\n";
-  for (const auto& [stage, secs] : timings) m << "| " << stage << " | " << fmt(secs, 3) << " |\n";
-  dem::io::write_text_atomically(folder / "report.md", m.str());
+  const auto dem_friction = [&](int wall) {
+    return s.effects.wall_friction ? s.container.friction[wall] : 0.0;
+  };
+  fem::WallFriction walls;
+  for (int w = 0; w < 4; ++w) walls.side[w] = o.wall_friction.value_or(dem_friction(w + 1));
+  walls.floor = o.floor_friction.value_or(dem_friction(0));
+  return walls;
 }
 
-// The headline numbers in machine-readable form (tests/end_to_end/check_study.py).
-void write_study_json(const std::filesystem::path& folder, const SceneInput& in, const DemOutcome& d,
-                      const fem::ColumnProblem& problem, const fem::ColumnSolution& sol,
-                      const DemFemComparison& c, int ranks) {
-  const double area = in.scene.container.lx * in.scene.container.ly;
-  const fem::ConfinedColumn exact = fem::analytic_solution(problem);
-  std::ostringstream j;
-  j.precision(17);
-  j << "{\n  \"ranks\": " << ranks << ",\n  \"grid_cells\": [" << d.grid.n[0] << ", " << d.grid.n[1] << ", "
-    << d.grid.n[2] << "],\n  \"grid_top_m\": " << d.grid.hi.z()
-    << ",\n  \"cell_volume_m3\": " << d.stress.cell_volume << ",\n  \"grain_mass_kg\": " << d.total_mass
-    << ",\n  \"weight_N\": " << d.total_mass * in.scene.gravity
-    << ",\n  \"floor_force_z_N\": " << d.floor_force.z()
-    << ",\n  \"side_wall_force_z_N\": " << d.side_wall_vertical << ",\n  \"footprint_m2\": " << area
-    << ",\n  \"bulk_density\": " << problem.density << ",\n  \"k0\": " << c.k0
-    << ",\n  \"fem_dofs\": " << sol.n_dofs
-    << ",\n  \"fem_relative_l2_error_stress\": " << sol.l2_error_stress / exact.stress_l2_norm(area)
-    << ",\n  \"fem_relative_l2_error_displacement\": "
-    << sol.l2_error_displacement / exact.displacement_l2_norm(area)
-    << ",\n  \"fem_mean_lateral_ratio\": " << c.fem_mean_lateral_ratio << ",\n  \"formulas\": {";
-  for (std::size_t k = 0; k < c.formulas.size(); ++k) {
-    const FormulaComparison& fc = c.formulas[k];
-    j << (k ? "," : "") << "\n    \"" << dem::io::field_name(fc.formula)
-      << "\": {\"relative_l2_zz\": " << fc.relative_l2[8] << ", \"relative_l2_xx\": " << fc.relative_l2[0]
-      << ", \"mean_lateral_ratio\": " << fc.mean_lateral_ratio << "}";
+// The frictional continuum of one variant: the rollers column's box, mesh and elasticity, in
+// a box whose walls have the friction the scene asks for (docs/study.md).
+FrictionalRun frictional_run(const SceneInput& in, const fem::ColumnProblem& column,
+                             ContinuumVariant variant) {
+  const ContinuumOptions& o = in.study.continuum;
+  FrictionalRun run;
+  run.variant = variant;
+  const bool plastic = variant == ContinuumVariant::drucker_prager;
+  run.key = plastic ? "fem_drucker_prager" : "fem_elastic_friction";
+  run.label = plastic ? "Drucker-Prager with wall friction" : "elastic with wall friction";
+  fem::FrictionalColumnProblem& p = run.problem;
+  p.column = column;
+  p.material = plastic ? fem::ColumnMaterial::drucker_prager : fem::ColumnMaterial::elastic;
+  p.strength = {o.friction_angle_deg, o.dilatancy_angle_deg, o.cohesion, o.cone_matching};
+  p.walls = wall_friction(in);
+  p.loading.load_steps = o.load_steps;
+  p.loading.staged_construction = o.staged_construction;
+  return run;
+}
+
+// Janssen for the continua's box: K = nu / (1 - nu), and the friction perimeter of the
+// frictional continua's side walls (the walls x = const are Ly long, y = const Lx).
+fem::JanssenColumn janssen_line(const fem::ColumnProblem& column,
+                                const std::array<double, 4>& side_friction) {
+  const double perimeter = (side_friction[0] + side_friction[1]) * column.length_y +
+                           (side_friction[2] + side_friction[3]) * column.length_x;
+  return {column.density * column.gravity, column.length_x * column.length_y, perimeter,
+          fem::analytic_k0(column.poisson_ratio), column.height};
+}
+
+// Janssen's slab means on the grid: sigma_zz uniform over each level, sigma_xx = sigma_yy =
+// K sigma_zz, no shear.
+std::vector<std::array<double, 9>> janssen_cells(const fem::JanssenColumn& j, const dem::RegularGrid& g) {
+  std::vector<std::array<double, 9>> cells(g.num_cells());
+  const double dz = (g.hi.z() - g.lo.z()) / g.n[2];
+  for (int cell = 0; cell < g.num_cells(); ++cell) {
+    const int k = cell / (g.n[0] * g.n[1]);
+    const double szz = j.mean_vertical_stress(k * dz, (k + 1) * dz);
+    cells[cell] = {j.lateral_ratio * szz, 0, 0, 0, j.lateral_ratio * szz, 0, 0, 0, szz};
   }
-  j << "\n  }\n}\n";
-  dem::io::write_text_atomically(folder / "study.json", j.str());
+  return cells;
 }
 
 }  // namespace
@@ -245,7 +187,8 @@ int run_study(const SceneInput& in, MPI_Comm comm, const std::function<void(cons
                        since(t0));
   broadcast(d, comm);
 
-  // 2. The continuum column of the same container, filled to the grid's top.
+  // 2. The continua of the same container, filled to the grid's top: the elastic column on
+  // rollers, each frictional variant, and Janssen's line.
   t0 = Clock::now();
   fem::ColumnProblem problem;
   problem.length_x = in.scene.container.lx;
@@ -260,13 +203,40 @@ int run_study(const SceneInput& in, MPI_Comm comm, const std::function<void(cons
   problem.refinements = in.study.continuum.refinements;
   problem.degree = in.study.continuum.degree;
   const fem::ColumnSolution sol = fem::solve_column(problem, comm, (folder / "fem").string());
-  timings.emplace_back("continuum solve (FEM, output included)", since(t0));
+  timings.emplace_back("continuum: elastic on rollers (FEM, output included)", since(t0));
+  std::vector<ContinuumResult> continua = {
+      continuum_result("fem", "elastic on rollers", sol.cell_average_stress, 0.0)};
+  std::vector<FrictionalRun> frictional;
+  std::vector<std::pair<std::string, std::string>> failed;  // label, why
+  for (const ContinuumVariant variant : in.study.continuum.variants) {
+    t0 = Clock::now();
+    FrictionalRun run = frictional_run(in, problem, variant);
+    try {
+      run.solution = fem::solve_frictional_column(run.problem, comm, (folder / run.key).string());
+    } catch (const fem::NewtonFailure& e) {
+      // Every rank throws alike (the decision rests on reduced residuals). The DEM run and
+      // the other continua are kept; the report says what failed.
+      failed.emplace_back(run.label, e.what());
+      on_rank0(comm, [&] {
+        std::printf("  warning: %s left out of the study: %s\n", run.label.c_str(), e.what());
+      });
+      continue;
+    }
+    timings.emplace_back("continuum: " + run.label + " (FEM, output included)", since(t0));
+    continua.push_back(continuum_result(run.key, run.label, run.solution.cell_average_stress,
+                                        run.solution.side_wall_vertical_force / run.solution.weight));
+    frictional.push_back(std::move(run));
+  }
+  const fem::JanssenColumn janssen = janssen_line(problem, wall_friction(in).side);
+  continua.push_back(
+      continuum_result("janssen", "Janssen", janssen_cells(janssen, d.grid), janssen.wall_share()));
 
   // 3. Comparison and the one-mesh output.
   t0 = Clock::now();
-  std::vector<Tensor9> fem_cells(sol.cell_average_stress.begin(), sol.cell_average_stress.end());
+  const double weight = d.total_mass * in.scene.gravity;
   const DemFemComparison c =
-      compare_dem_fem(d.grid, d.stress, fem_cells, fem::analytic_solution(problem), in.study.formulas);
+      compare_dem_fem(d.grid, d.stress, std::move(continua), fem::analytic_solution(problem),
+                      -d.side_wall_vertical / weight + 0.0, in.study.formulas);
   upscale::UpscaleOptions uo;
   uo.refinements = 0;
   (void)upscale::upscale_to_mesh(comparison_fields(d, c, in.study.formulas), comm, folder / "mesh", "dem_fem",
@@ -283,7 +253,7 @@ int run_study(const SceneInput& in, MPI_Comm comm, const std::function<void(cons
       const std::string cmd = "/usr/bin/python3 '" + script + "' '" + folder.string() + "' > '" +
                               (folder / "plots.log").string() + "' 2>&1";
       if (std::system(cmd.c_str()) == 0)
-        for (const char* p : {"profiles_szz.png", "lateral_ratio.png", "level_spread.png"})
+        for (const char* p : {"profiles_szz.png", "lateral_ratio.png", "wall_share.png", "level_spread.png"})
           if (std::filesystem::exists(folder / p)) plots.emplace_back(p);
     }
     std::vector<std::string> strain_plots;
@@ -293,16 +263,27 @@ int run_study(const SceneInput& in, MPI_Comm comm, const std::function<void(cons
     }
     timings.emplace_back("tables and plots", since(t0));
     timings.emplace_back("whole study", since(t_all));
-    write_report(folder, in, r, d, problem, sol, c, timings, plots, strain_plots, ranks);
-    write_study_json(folder, in, d, problem, sol, c, ranks);
-    std::printf("  study: %d x %d x %d grid, continuum Q%u with %llu dofs (%.2f s), %d rank(s)\n",
+    const StudyRecord record{in,      r, d,       problem, sol,          frictional, failed,
+                             janssen, c, timings, plots,   strain_plots, ranks};
+    write_report(folder, record);
+    write_study_json(folder, record);
+    std::printf("  study: %d x %d x %d grid, continua Q%u with %llu dofs: elastic on rollers %.2f s",
                 d.grid.n[0], d.grid.n[1], d.grid.n[2], problem.degree,
-                static_cast<unsigned long long>(sol.n_dofs), sol.total_seconds, ranks);
+                static_cast<unsigned long long>(sol.n_dofs), sol.total_seconds);
+    for (const FrictionalRun& f : frictional)
+      std::printf(", %s %.2f s (%u Newton iterations)", f.label.c_str(), f.solution.total_seconds,
+                  f.solution.newton_iterations);
+    std::printf("; %d rank(s)\n", ranks);
     for (const FormulaComparison& fc : c.formulas)
-      std::printf("    %-18s ||d s_zz||/||s_zz,FEM|| %.3f, mean lateral ratio %.3f (K0 %.3f)\n",
-                  std::string(dem::name_of(fc.formula)).c_str(), fc.relative_l2[8], fc.mean_lateral_ratio,
-                  c.k0);
-    std::printf("  report: %s\n", (folder / "report.md").c_str());
+      std::printf(
+          "    %-18s closest continuum: %s, ||d s|| / ||s_zz,hydrostatic|| %.3f (elastic on rollers %.3f), "
+          "mean lateral ratio %.3f (K0 %.3f)\n",
+          std::string(dem::name_of(fc.formula)).c_str(), c.continua[fc.closest].label.c_str(),
+          fc.against[fc.closest].tensor, fc.against[0].tensor, fc.mean_lateral_ratio, c.k0);
+    std::printf("  side walls carry: DEM %.1f %%", 100.0 * c.dem_wall_share);
+    for (const ContinuumResult& cr : c.continua)
+      std::printf(", %s %.1f %%", cr.label.c_str(), 100.0 * cr.wall_share);
+    std::printf("\n  report: %s\n", (folder / "report.md").c_str());
   });
   return 0;
 }

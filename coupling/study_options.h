@@ -1,17 +1,43 @@
 #pragma once
-// What a DEM-vs-continuum study adds to a scene (docs/study.md): the continuum's material
+// What a DEM-vs-continuum study adds to a scene (docs/study.md): the continua's material
 // and discretisation, and the stress formulas to compare.
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "dem/stress/stress_formula.h"
+#include "fem/plasticity/cone_matching.h"
 
 namespace upgrain::coupling {
+
+// The continua solved beside the elastic column on frictionless rollers, which the study
+// always solves (docs/study.md).
+enum class ContinuumVariant {
+  elastic_friction,  // linear elastic, Coulomb friction at the walls
+  drucker_prager,    // Drucker–Prager elastoplastic, Coulomb friction at the walls
+};
 
 struct ContinuumOptions {
   double youngs_modulus = 1e8;  // Pa; the stresses of the confined column do not depend on it
   double poisson_ratio = 0.3;   // K0 = nu / (1 - nu)
   unsigned refinements = 1;     // global refinements of the mesh that matches the stress grid
   unsigned degree = 2;          // Q2 reproduces the analytic column exactly
+  std::vector<ContinuumVariant> variants = {ContinuumVariant::elastic_friction,
+                                            ContinuumVariant::drucker_prager};
+  // Mohr–Coulomb strength of the Drucker–Prager continuum.
+  double friction_angle_deg = 30.0;
+  double dilatancy_angle_deg = 0.0;
+  double cohesion = 0.0;  // Pa
+  fem::ConeMatching cone_matching = fem::ConeMatching::outer;
+  // Continuum/wall friction and floor friction as written: "auto" (the DEM container's
+  // coefficients) or a number; validate_scene turns them into the optionals below (empty =
+  // auto).
+  std::string wall_friction_entry = "auto";
+  std::string floor_friction_entry = "auto";
+  std::optional<double> wall_friction;
+  std::optional<double> floor_friction;
+  unsigned load_steps = 1;           // gravity raised in this many steps
+  bool staged_construction = false;  // built layer by layer instead
 };
 
 struct StudyOptions {

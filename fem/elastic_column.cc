@@ -34,19 +34,10 @@
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/vector_tools.h>
 
-#include <p4est_base.h>
-#include <sc.h>
-
-#include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <map>
-#include <memory>
-#include <mutex>
-#include <sstream>
-#include <stdexcept>
 
-#include "dem/io/atomic_file.h"
+#include "fem/column_mesh.h"
 #include "fem/elastic_column.h"
 
 namespace upgrain::fem {
@@ -56,21 +47,9 @@ namespace {
 using namespace dealii;
 namespace LA = dealii::LinearAlgebraTrilinos;
 
-constexpr int dim = 3;
-
-// Boundary ids set by GridGenerator::subdivided_hyper_rectangle(..., colorize = true):
-// 2d is the face x_d = min, 2d+1 the face x_d = max.
-constexpr types::boundary_id wall_x0 = 0, wall_x1 = 1, wall_y0 = 2, wall_y1 = 3, floor_z0 = 4;
-
-// deal.II's MPI_InitFinalize registers p4est with the log threshold SC_LP_SILENT. A caller
-// that uses plain MPI_Init (the upgrain driver, fem_tests) does not, and p4est then logs
-// every mesh operation to stdout. Do the same, once, unless someone already has.
-void silence_p4est() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    if (p4est_package_id < 0) p4est_init(nullptr, SC_LP_SILENT);
-  });
-}
+using column_mesh::dim;
+using column_mesh::floor_z0, column_mesh::wall_x0, column_mesh::wall_x1, column_mesh::wall_y0,
+    column_mesh::wall_y1;
 
 // The exact displacement (0, 0, u_z(z)), eq. (3) of confined_column.h, for
 // VectorTools::integrate_difference.
@@ -113,8 +92,6 @@ class ElasticColumn {
     sigma[2][2] = s;
     return sigma;
   }
-  unsigned int coarse_cell_of(const Point<dim>& centre) const;
-
   const ColumnProblem problem_;
   const ConfinedColumn exact_;
   const double lambda_, mu_;
@@ -153,13 +130,7 @@ ElasticColumn::ElasticColumn(const ColumnProblem& problem, MPI_Comm comm)
       // warning) while an exception thrown on all ranks unwinds the stack.
       timer_(std::cout, TimerOutput::never, TimerOutput::wall_times) {}
 
-void ElasticColumn::make_grid() {
-  const std::vector<unsigned int> repetitions(problem_.cells.begin(), problem_.cells.end());
-  GridGenerator::subdivided_hyper_rectangle(triangulation_, repetitions, Point<dim>(0.0, 0.0, 0.0),
-                                            Point<dim>(problem_.length_x, problem_.length_y, problem_.height),
-                                            /*colorize=*/true);
-  triangulation_.refine_global(problem_.refinements);
-}
+void ElasticColumn::make_grid() { column_mesh::make_grid(triangulation_, problem_); }
 
 void ElasticColumn::setup_system() {
   dof_handler_.distribute_dofs(fe_);
@@ -276,18 +247,6 @@ void ElasticColumn::solve() {
   result_.cg_iterations = control.last_step();
 }
 
-unsigned int ElasticColumn::coarse_cell_of(const Point<dim>& centre) const {
-  std::array<unsigned int, dim> index;
-  const double size[dim] = {problem_.length_x, problem_.length_y, problem_.height};
-  for (unsigned int d = 0; d < dim; ++d) {
-    // The centre of a fine cell lies strictly inside its coarse cell, so the floor is
-    // unambiguous; the clamp only guards against round-off at the far wall.
-    const double i = std::floor(centre[d] / size[d] * problem_.cells[d]);
-    index[d] = static_cast<unsigned int>(std::clamp(i, 0.0, problem_.cells[d] - 1.0));
-  }
-  return coarse_cell_index(problem_, index[0], index[1], index[2]);
-}
-
 // Errors against the exact solution and the coarse-cell stress averages that the DEM
 // comparison needs.
 void ElasticColumn::postprocess() {
@@ -311,8 +270,7 @@ void ElasticColumn::postprocess() {
   const FEValuesExtractors::Vector displacement(0);
   std::vector<SymmetricTensor<2, dim>> strains(quadrature.size());
 
-  const unsigned int n_coarse = n_coarse_cells(problem_);
-  std::vector<double> coarse_integral(9 * n_coarse, 0.0);  // int sigma dx per coarse cell
+  column_mesh::CoarseStressIntegrals coarse_integrals(problem_);
   double squared_stress_error = 0.0;
   for (auto& v : cell_stress_) v.reinit(triangulation_.n_active_cells());
 
@@ -329,88 +287,24 @@ void ElasticColumn::postprocess() {
       squared_stress_error += (error * error) * fe_values.JxW(q);
       cell_integral += sigma * fe_values.JxW(q);
     }
-    double* sum = &coarse_integral[9 * coarse_cell_of(cell->center())];
-    for (unsigned int i = 0; i < dim; ++i)
-      for (unsigned int j = 0; j < dim; ++j) sum[dim * i + j] += cell_integral[i][j];
+    coarse_integrals.add(cell->center(), cell_integral);
 
     const unsigned int c = cell->active_cell_index();
     const double volume = cell->measure();
-    const std::array<std::pair<unsigned int, unsigned int>, 6> components = {
-        {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}}};
-    for (unsigned int k = 0; k < 6; ++k)
-      cell_stress_[k][c] = cell_integral[components[k].first][components[k].second] / volume;
+    for (unsigned int k = 0; k < 6; ++k) {
+      const auto [i, j] = column_mesh::stress_components[k];
+      cell_stress_[k][c] = cell_integral[i][j] / volume;
+    }
   }
 
   result_.l2_error_stress = std::sqrt(Utilities::MPI::sum(squared_stress_error, comm_));
-  std::vector<double> global_integral(coarse_integral.size());
-  Utilities::MPI::sum(coarse_integral, comm_, global_integral);
-  const double coarse_volume = problem_.length_x / problem_.cells[0] * problem_.length_y / problem_.cells[1] *
-                               problem_.height / problem_.cells[2];
-  result_.cell_average_stress.assign(n_coarse, {});
-  for (unsigned int c = 0; c < n_coarse; ++c)
-    for (unsigned int k = 0; k < 9; ++k)
-      result_.cell_average_stress[c][k] = global_integral[9 * c + k] / coarse_volume;
+  result_.cell_average_stress = coarse_integrals.averages(comm_);
 }
 
-// One .vtu piece per rank and a .pvtu record, each written under a temporary name and
-// renamed (dem/io/atomic_file.h). The record is written last, after every rank reported
-// its piece complete, so a reader never finds a record that points at a missing piece.
+// Displacement, the cell averages of sigma and the subdomain, written by every rank
+// (column_mesh::write_column: atomic pieces, the .pvtu record last).
 void ElasticColumn::output_results(const std::string& folder) const {
-  const unsigned int rank = Utilities::MPI::this_mpi_process(comm_);
-  const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm_);
-  const auto piece_name = [](unsigned int r) {
-    return "column.proc" + Utilities::int_to_string(r, 4) + ".vtu";
-  };
-
-  DataOut<dim> data_out;
-  data_out.attach_dof_handler(dof_handler_);
-  const std::vector<std::string> names(dim, "displacement");
-  const std::vector<DataComponentInterpretation::DataComponentInterpretation> interpretation(
-      dim, DataComponentInterpretation::component_is_part_of_vector);
-  data_out.add_data_vector(locally_relevant_solution_, names, DataOut<dim>::type_dof_data, interpretation);
-  const char* stress_names[6] = {"sigma_xx", "sigma_yy", "sigma_zz", "sigma_xy", "sigma_xz", "sigma_yz"};
-  for (unsigned int k = 0; k < 6; ++k)
-    data_out.add_data_vector(cell_stress_[k], stress_names[k], DataOut<dim>::type_cell_data);
-  Vector<float> subdomain(triangulation_.n_active_cells());
-  for (auto& s : subdomain) s = static_cast<float>(triangulation_.locally_owned_subdomain());
-  data_out.add_data_vector(subdomain, "subdomain");
-  // Subdivide each cell degree times so that Q2 displacements are drawn as such.
-  data_out.build_patches(fe_.degree);
-
-  // Every rank reports failure through an all-reduce instead of throwing alone, which would
-  // leave the other ranks waiting in the next collective call.
-  const auto all_succeeded = [this](const std::string& local_error) {
-    return Utilities::MPI::min(local_error.empty() ? 1 : 0, comm_) == 1;
-  };
-  const std::filesystem::path dir(folder);
-  std::string error;
-  try {
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);  // concurrent creation by the ranks is fine
-    if (!std::filesystem::is_directory(dir)) throw std::runtime_error("cannot create folder " + folder);
-    std::ostringstream vtu;
-    data_out.write_vtu(vtu);
-    dem::io::write_text_atomically(dir / piece_name(rank), vtu.str());
-  } catch (const std::exception& e) {
-    error = e.what();
-  }
-  if (!all_succeeded(error))
-    throw std::runtime_error("fem output: " +
-                             (error.empty() ? "another rank failed to write its piece" : error));
-
-  if (rank == 0) {
-    try {
-      std::vector<std::string> pieces;
-      for (unsigned int r = 0; r < n_ranks; ++r) pieces.push_back(piece_name(r));
-      std::ostringstream pvtu;
-      data_out.write_pvtu_record(pvtu, pieces);
-      dem::io::write_text_atomically(dir / "column.pvtu", pvtu.str());
-    } catch (const std::exception& e) {
-      error = e.what();
-    }
-  }
-  if (!all_succeeded(error))
-    throw std::runtime_error("fem output: " + (error.empty() ? "rank 0 failed to write column.pvtu" : error));
+  column_mesh::write_column(dof_handler_, locally_relevant_solution_, cell_stress_, {}, folder, comm_);
 }
 
 ColumnSolution ElasticColumn::run(const std::string& vtu_folder) {
@@ -448,7 +342,7 @@ ColumnSolution ElasticColumn::run(const std::string& vtu_folder) {
 
 ColumnSolution solve_column(const ColumnProblem& problem, MPI_Comm comm, const std::string& vtu_folder) {
   validate(problem);  // before any communication, so every rank throws alike
-  silence_p4est();
+  column_mesh::silence_p4est();
   ColumnSolution solution = ElasticColumn(problem, comm).run(vtu_folder);
   // SolverCG takes its vectors from deal.II's static GrowingVectorMemory pool, which keeps
   // them (and their Epetra communicators) alive after this call. Release them now: freed

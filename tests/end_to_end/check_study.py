@@ -8,6 +8,8 @@
   frictionless (the floor's contacts have zero lever arm);
 - DEM sigma_zz, averaged over each level of cells, grows in magnitude with depth;
 - the continuum's sigma_zz is uniform across each level, its lateral ratio is K0;
+- with frictionless side walls every continuum (elastic on rollers, the frictional FEM
+  variants, Janssen) is the hydrostatic column, and none carries weight on its walls;
 - report, plots, tables and meshes are there, and no temporary file is left."""
 import csv
 import glob
@@ -54,15 +56,26 @@ nx, ny, nz = s["grid_cells"]
 level = bagi[:, 2, 2].reshape(nz, ny * nx).mean(axis=1)
 szz = list(level)
 assert all(a < b for a, b in zip(szz, szz[1:])), f"Bagi sigma_zz does not grow with depth: {szz}"
-fem = [float(row["fem_s_zz"]) for row in centre]
 exact = [float(row["analytic_s_zz"]) for row in centre]
-assert np.allclose(fem, exact, rtol=1e-8, atol=1e-9 * abs(exact[0])), (fem, exact)
+# tiny_study.prm's side walls are frictionless: then no continuum has a Janssen effect, and
+# each (the frictional FEM variants, the Janssen line) is the hydrostatic column with the
+# ratio K0: the floor's friction does not act on a column that settles straight down, and
+# the at-rest state K0 = 0.43 lies inside the Drucker-Prager cone (phi = 30 degrees).
+assert set(s["continua"]) == {"fem", "fem_elastic_friction", "fem_drucker_prager", "janssen"}, s["continua"].keys()
+for key, continuum in s["continua"].items():
+    assert abs(continuum["wall_share"]) < 1e-12, (key, continuum["wall_share"])
+    assert abs(continuum["mean_lateral_ratio"] - s["k0"]) < 1e-8, (key, continuum["mean_lateral_ratio"])
+    values = [float(row[key + "_s_zz"]) for row in centre]
+    assert np.allclose(values, exact, rtol=1e-8, atol=1e-9 * abs(exact[0])), (key, values, exact)
+for name, formula in s["formulas"].items():
+    assert formula["closest_continuum"] in s["continua"], (name, formula["closest_continuum"])
 
-for name in ("report.md", "comparison_cells.csv", "relative_l2.csv", "profiles_szz.png", "lateral_ratio.png",
-             "level_spread.png", "mesh/dem_fem.pvtu", "fem/column.pvtu"):
+for name in ("report.md", "comparison_cells.csv", "relative_l2.csv", "stress_summary.csv", "profiles_szz.png",
+             "lateral_ratio.png", "wall_share.png", "level_spread.png", "mesh/dem_fem.pvtu", "fem/column.pvtu",
+             "fem_elastic_friction/column.pvtu", "fem_drucker_prager/column.pvtu"):
     assert os.path.exists(name), name
 report = open("report.md").read()
-for needle in ("Headline figures", "Timings", "profiles_szz.png", "bagi"):
+for needle in ("Headline figures", "Timings", "profiles_szz.png", "bagi", "Closest to the DEM", "Janssen"):
     assert needle in report, needle
 # tiny_study.prm enables the strain: the report has its section and plots.
 sys.path.insert(0, HERE)

@@ -13,21 +13,14 @@
 #include <stdexcept>
 #include <string>
 
+#include "../common/world.h"
 #include "fem/elastic_column.h"
 
 namespace upgrain::fem {
 namespace {
 
-int world_rank() {
-  int rank = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  return rank;
-}
-int world_size() {
-  int size = 0;
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
-  return size;
-}
+using test::world_rank;
+using test::world_size;
 
 // The default DEM scene's box (4.5 cm square) filled 6 cm high with a bed of bulk density
 // 1600 kg/m^3, as a continuum with E = 50 MPa, nu = 0.3; the DEM stress grid is 3x3x4.

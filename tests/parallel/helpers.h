@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 
+#include "../common/world.h"
 #include "dem/engine/simulation.h"
 #include "dem/scene/fill.h"
 
@@ -19,17 +20,6 @@ inline dem::EngineOptions fast_summation() {
   dem::EngineOptions o;
   o.summation = dem::Summation::fast;
   return o;
-}
-
-inline int world_rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
-inline int world_size() {
-  int s = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &s);
-  return s;
 }
 
 // Bitwise equality of x, v and omega, and of the orientations when the stores have shapes,
