@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 
+#include "coupling/accuracy/accuracy_study.h"
 #include "coupling/dem_run.h"
 #include "coupling/run/scene_run.h"
 #include "coupling/run/stop_request.h"
@@ -42,6 +43,9 @@ constexpr const char* kUsage =
     "  --check                       read and validate the scene, print the time-step\n"
     "                                estimate, write nothing\n"
     "  --output DIR                  override Output/folder\n"
+    "  --study accuracy              run the accuracy study of the scene (its Accuracy section,\n"
+    "                                docs/accuracy.md): every knob's values against wall time,\n"
+    "                                into <Output/folder>/accuracy/\n"
     "  --restart DIR                 continue the run in DIR from its newest valid checkpoint\n"
     "                                (DIR/checkpoints/, docs/restart.md), with the scene it was\n"
     "                                started with; a scene file given as well may change only\n"
@@ -184,7 +188,7 @@ upgrain::coupling::SceneInput restart_input(const std::string& dir, const std::s
 
 int run(int argc, char** argv) {
   using namespace upgrain;
-  std::string file, output_override, restart_dir;
+  std::string file, output_override, restart_dir, study;
   bool check_only = false;
   for (int k = 1; k < argc; ++k) {
     const std::string a = argv[k];
@@ -199,6 +203,10 @@ int run(int argc, char** argv) {
       return 0;
     } else if (a == "--check") {
       check_only = true;
+    } else if (a == "--study") {
+      if (k + 1 >= argc) throw Error("--study needs the name of a study (accuracy)");
+      study = argv[++k];
+      if (study != "accuracy") throw Error("--study: unknown study '" + study + "' (known: accuracy)");
     } else if (a == "--restart") {
       if (k + 1 >= argc) throw Error("--restart needs the output folder of the run");
       restart_dir = argv[++k];
@@ -270,6 +278,7 @@ int run(int argc, char** argv) {
     if (rank == 0) print_progress(p);
   };
   try {
+    if (study == "accuracy") return coupling::run_accuracy_study(in, MPI_COMM_WORLD);
     if (in.study.compare_with_continuum) {
       return coupling::run_study(in, MPI_COMM_WORLD, progress,
                                  [&](const coupling::RunResult& r) { print_deposition(in, r); });

@@ -248,6 +248,36 @@ const std::vector<ParameterSpec>& parameter_schema() {
       {"Study", "max relaxation steps", "200000", K::integer, 0, 2147483647, "", "-",
        "Upper bound on the FIRE steps; the residual reached is reported."},
 
+      {"Accuracy", "knobs",
+       "time step, youngs modulus, skin, summation, ranks, shape, rotation, relaxation tolerance, grid, fem, "
+       "outputs",
+       K::multiple_selection, 0, 0,
+       "time step|youngs modulus|skin|summation|ranks|shape|rotation|rolling resistance|relaxation "
+       "tolerance|grid|fem|outputs",
+       "-",
+       "What `upgrain --study accuracy` turns, one at a time, every other setting as the scene gives it "
+       "(docs/accuracy.md). Knobs that do not apply to the scene are skipped with a note."},
+      {"Accuracy", "time step fractions", "0.1, 0.25, 0.5, 1.0", K::text, 0, 0, "", "-",
+       "Time steps to try, as fractions of the scene's safe step (the scene's own step is added)."},
+      {"Accuracy", "modulus factors", "1, 0.1, 0.01", K::text, 0, 0, "", "-",
+       "Young's modulus scaled by these factors, each with the safe step it allows (at the scene's own "
+       "fraction of it)."},
+      {"Accuracy", "skins", "0.1, 0.2, 0.5", K::text, 0, 0, "", "-",
+       "Neighbour skins to try, in largest diameters: every result must be the same bits."},
+      {"Accuracy", "relaxation tolerances", "1e-5, 1e-7, 1e-9", K::text, 0, 0, "", "-",
+       "FIRE tolerances to try (Study/relaxation tolerance)."},
+      {"Accuracy", "grids", "3 3 5; 5 5 9; 7 7 13", K::text, 0, 0, "", "-",
+       "Stress grids to try, cells along x y z, separated by ';' (the paper's grid-size study)."},
+      {"Accuracy", "fem degrees", "1, 2, 3", K::text, 0, 0, "", "-",
+       "Polynomial degrees of the continuum to try against its analytic solution."},
+      {"Accuracy", "fem refinements", "0, 1, 2", K::text, 0, 0, "", "-", "Global refinements to try with each degree."},
+      {"Accuracy", "replicas", "3", K::integer, 1, 20, "", "-",
+       "Runs of the scene as given that differ only in Fill/seed; their spread is the noise floor below "
+       "which a change is reported as no measurable change."},
+      {"Accuracy", "tolerance", "0.01", K::real, 0.0, 1.0, "", "-",
+       "Relative change a setting may make in every measure of the bed (or the noise floor, if larger) "
+       "for the report to call it within tolerance."},
+
       {"Continuum", "youngs modulus", "1e8", K::real, 1.0, 1e13, "", "Pa",
        "Young's modulus of every continuum (the stresses of the confined column do not depend on it, nor, "
        "without cohesion, those of the frictional continua; the displacements do)."},

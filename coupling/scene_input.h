@@ -8,6 +8,7 @@
 
 #include "coupling/run/output_options.h"
 #include "coupling/run/scene_run.h"
+#include "coupling/accuracy/accuracy_options.h"
 #include "coupling/study_options.h"
 #include "dem/scene/effect_choice.h"
 #include "dem/scene/scene_config.h"
@@ -36,6 +37,7 @@ struct SceneInput {
   std::string stress_box = "auto";  // Stress/box as written; applied by validate_scene
   std::string collapse = "none";    // Container/collapse: none, constrained or unconstrained
   StudyOptions study;
+  AccuracyOptions accuracy;  // the Accuracy section (upgrain --study accuracy)
   ParallelInput parallel;
   // A restart (upgrain --restart): the run continues from `resume` (rank 0's; null elsewhere)
   // in its own output folder, which then holds results by design.

@@ -5,6 +5,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -119,6 +120,35 @@ std::vector<dem::GrainShape> parse_shapes(const std::string& text) {
   return shapes;
 }
 
+// The items of a list separated by `separator`, trimmed; empty items left out.
+std::vector<std::string> split_list(const std::string& text, char separator = ',') {
+  std::vector<std::string> out;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, separator)) {
+    const auto b = item.find_first_not_of(" \t"), e = item.find_last_not_of(" \t");
+    if (b != std::string::npos) out.push_back(item.substr(b, e - b + 1));
+  }
+  return out;
+}
+
+// Numbers of a list; throws upgrain::Error naming `entry` and the item that is not a finite number.
+std::vector<double> numbers_of(const std::string& text, const std::string& entry, char separator = ',') {
+  std::vector<double> out;
+  for (const std::string& item : split_list(text, separator)) {
+    std::size_t used = 0;
+    double v = 0.0;
+    try {
+      v = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size() || !std::isfinite(v)) throw Error(entry + ": '" + item + "' is not a number");
+    out.push_back(v);
+  }
+  return out;
+}
+
 SceneInput extract(ParameterHandler& prm, const std::string& source) {
   SceneInput in;
   in.source = source;
@@ -208,6 +238,28 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   in.output.snapshot_interval = prm.get_double("snapshot interval");
   in.output.series_interval = prm.get_double("time series interval");
   in.output.energy_balance = prm.get_bool("energy balance");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Accuracy");
+  {
+    AccuracyOptions& a = in.accuracy;
+    a.knobs = split_list(prm.get("knobs"));
+    a.time_step_fractions = numbers_of(prm.get("time step fractions"), "Accuracy/time step fractions");
+    a.modulus_factors = numbers_of(prm.get("modulus factors"), "Accuracy/modulus factors");
+    a.skins = numbers_of(prm.get("skins"), "Accuracy/skins");
+    a.relaxation_tolerances = numbers_of(prm.get("relaxation tolerances"), "Accuracy/relaxation tolerances");
+    for (const std::string& g : split_list(prm.get("grids"), ';')) {
+      const std::vector<double> n = numbers_of(g, "Accuracy/grids", ' ');
+      if (n.size() != 3) throw Error("Accuracy/grids: '" + g + "' is not three cell counts");
+      a.grids.push_back({static_cast<int>(n[0]), static_cast<int>(n[1]), static_cast<int>(n[2])});
+    }
+    for (double d : numbers_of(prm.get("fem degrees"), "Accuracy/fem degrees"))
+      a.fem_degrees.push_back(static_cast<unsigned>(d));
+    for (double r : numbers_of(prm.get("fem refinements"), "Accuracy/fem refinements"))
+      a.fem_refinements.push_back(static_cast<unsigned>(r));
+    a.replicas = static_cast<int>(prm.get_integer("replicas"));
+    a.tolerance = prm.get_double("tolerance");
+  }
   prm.leave_subsection();
 
   prm.enter_subsection("Checkpoint");

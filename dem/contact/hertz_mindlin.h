@@ -44,7 +44,10 @@ inline double damping_coefficient(double zeta, double m_star, double k_n) {
 // Duration of an undamped Hertz impact at relative normal speed v
 // (Johnson 1985, eq. 11.24): t = 2.868 (m*^2 / (R* E*^2 v))^(1/5).
 inline double contact_duration(double e_star, double r_star, double m_star, double v) {
-  return 2.8683 * std::pow(m_star * m_star / (r_star * e_star * e_star * v), 0.2);
+  // 2 I (15/16)^(2/5) with I = integral_0^1 (1 - x^(5/2))^(-1/2) dx = (2/5) B(2/5, 1/2): Johnson's
+  // 2.87 to 16 digits (2.8683 left an error of 1.2e-5, which the time-step study resolves).
+  constexpr double kHertzDuration = 2.8682656991953315;
+  return kHertzDuration * std::pow(m_star * m_star / (r_star * e_star * e_star * v), 0.2);
 }
 
 // Static overlap of a Hertz contact carrying the force F: inverse of normal_force.

@@ -42,6 +42,9 @@ struct EnergyBalance {
 inline double balance_error(const EnergyBalance& e0, const EnergyBalance& e) {
   const double reference =
       e0.kinetic() + std::abs(e0.potential - e.potential) + e0.elastic_normal + e0.elastic_tangential;
+  // Not tracked (NaN channels): unknown, not zero.
+  if (!std::isfinite(reference) || !std::isfinite(e.total()) || !std::isfinite(e0.total()))
+    return std::numeric_limits<double>::quiet_NaN();
   return reference > 0.0 ? (e.total() - e0.total()) / reference : 0.0;
 }
 

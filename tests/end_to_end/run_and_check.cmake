@@ -1,14 +1,16 @@
 # Runs the driver on one scene (under LAUNCHER, e.g. "mpiexec -n 2", when given), then the
 # CHECK script on its output folder; the scripts of EXTRA (optional) are called with the
-# folder, RANKS and COUNT. A second run into the same folder must be refused.
+# folder, RANKS and COUNT; ARGS (optional) are further options of the driver. A second run into the
+# same folder must be refused.
 separate_arguments(launcher UNIX_COMMAND "${LAUNCHER}")
+separate_arguments(args UNIX_COMMAND "${ARGS}")
 if(NOT RANKS)
   set(RANKS 1)
 endif()
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
-execute_process(COMMAND ${launcher} ${UPGRAIN} ${PRM} --output ${WORK}/out RESULT_VARIABLE code OUTPUT_VARIABLE out
-                ERROR_VARIABLE err)
+execute_process(COMMAND ${launcher} ${UPGRAIN} ${args} ${PRM} --output ${WORK}/out RESULT_VARIABLE code
+                OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT code EQUAL 0)
   message(FATAL_ERROR "upgrain failed:\n${out}\n${err}")
 endif()
@@ -25,7 +27,8 @@ foreach(script ${EXTRA})
   message(STATUS "${check}")
 endforeach()
 # A second run into the same folder is refused: nothing the first run wrote is lost.
-execute_process(COMMAND ${launcher} ${UPGRAIN} ${PRM} --output ${WORK}/out RESULT_VARIABLE code ERROR_VARIABLE err)
+execute_process(COMMAND ${launcher} ${UPGRAIN} ${args} ${PRM} --output ${WORK}/out RESULT_VARIABLE code
+                ERROR_VARIABLE err)
 if(code EQUAL 0 OR NOT err MATCHES "already holds results")
   message(FATAL_ERROR "a second run into a folder with results was not refused: ${err}")
 endif()
