@@ -126,14 +126,6 @@ void validate_continuum(ContinuumOptions& c, const std::string& where) {
 void validate_scene(SceneInput& in) {
   const dem::SceneConfig& s = in.scene;
   const std::string where = in.source + ": ";
-  // The Accuracy section's knobs and values (upgrain --study accuracy), refused here with the
-  // entry named, before any run.
-  try {
-    std::vector<std::string> skipped;
-    (void)knob_settings(in, in.accuracy, 1, skipped);
-  } catch (const Error& e) {
-    throw Error(where + e.what());
-  }
   // The effect set first: the time-step estimate below depends on it (gravity).
   try {
     dem::ChosenEffects chosen = dem::choose_effects(s, in.effect_switches, {in.output.energy_balance});
@@ -253,6 +245,14 @@ void validate_scene(SceneInput& in) {
     if (!fs::is_empty(folder, ec) && !in.overwrite && !in.restarting)
       throw Error(where + "Output/folder = '" + folder.string() +
                   "' already holds results; choose another folder or set 'Output/overwrite = true'");
+  }
+  // Last, once the scene itself is known sound: the Accuracy section's knobs and values (upgrain --study
+  // accuracy), refused here with the entry named, before any run.
+  try {
+    std::vector<std::string> skipped;
+    (void)knob_settings(in, in.accuracy, 1, skipped);
+  } catch (const Error& e) {
+    throw Error(where + e.what());
   }
 }
 
