@@ -4,7 +4,10 @@
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="$1"; shift
+# ccache across build folders and checkouts: paths below the checkout are hashed relative to
+# it, and the build folder's name is not hashed (deal.II's flags include -g).
 export CCACHE_NOHASHDIR=1
+export CCACHE_BASEDIR="$here"
 if [ ! -f "$build/build.ninja" ]; then
   cmake -S "$here" -B "$build" -G Ninja "$@"
 fi
