@@ -1,0 +1,115 @@
+#pragma once
+// Independent numbers for the coarse-graining tests: Gauss-Legendre quadrature, the line
+// integral by quadrature, small granular states built by hand.
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "upscale/cg/grain_state.h"
+
+namespace upgrain::upscale::cg::test {
+
+// Nodes and weights of n-point Gauss-Legendre on [-1, 1] (Newton on P_n).
+inline void legendre_rule(int n, std::vector<double>& x, std::vector<double>& w) {
+  x.resize(n);
+  w.resize(n);
+  for (int i = 0; i < n; ++i) {
+    double z = std::cos(M_PI * (i + 0.75) / (n + 0.5));
+    for (int it = 0; it < 100; ++it) {
+      double p0 = 1.0, p1 = z;
+      for (int k = 2; k <= n; ++k) {
+        const double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
+        p0 = p1;
+        p1 = p2;
+      }
+      const double dp = n * (z * p1 - p0) / (z * z - 1.0);
+      const double dz = p1 / dp;
+      z -= dz;
+      if (std::abs(dz) < 1e-16) {
+        x[i] = z;
+        w[i] = 2.0 / ((1.0 - z * z) * dp * dp);
+        break;
+      }
+    }
+    // The last iterate's derivative, for the weight.
+    double p0 = 1.0, p1 = z;
+    for (int k = 2; k <= n; ++k) {
+      const double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
+      p0 = p1;
+      p1 = p2;
+    }
+    const double dp = n * (z * p1 - p0) / (z * z - 1.0);
+    x[i] = z;
+    w[i] = 2.0 / ((1.0 - z * z) * dp * dp);
+  }
+}
+
+// Composite Gauss-Legendre, 20 points on each of `panels` equal panels of [a, b].
+template <class F>
+double gauss_legendre(double a, double b, F&& f, int panels) {
+  static std::vector<double> x, w;
+  if (x.empty()) legendre_rule(20, x, w);
+  double sum = 0.0;
+  const double h = (b - a) / panels;
+  for (int p = 0; p < panels; ++p) {
+    const double m = a + (p + 0.5) * h;
+    for (std::size_t i = 0; i < x.size(); ++i) sum += w[i] * 0.5 * h * f(m + 0.5 * h * x[i]);
+  }
+  return sum;
+}
+
+// int_0^1 phi(|d - s l|) ds by quadrature, the interval split where |d - s l| = cut-off, so
+// that each piece is smooth.
+template <class K>
+double line_integral_by_quadrature(const K& k, const Vec3& d, const Vec3& l) {
+  std::vector<double> cuts{0.0, 1.0};
+  const double a = l.squaredNorm(), b = -2.0 * d.dot(l), c = d.squaredNorm() - k.cutoff() * k.cutoff();
+  const double disc = b * b - 4 * a * c;
+  if (a > 0 && disc > 0)
+    for (double s : {(-b - std::sqrt(disc)) / (2 * a), (-b + std::sqrt(disc)) / (2 * a)})
+      if (s > 0 && s < 1) cuts.push_back(s);
+  // The foot of the point (where |d - s l| is least: Lucy's r^3 term is not smooth there).
+  if (a > 0) {
+    const double s = d.dot(l) / a;
+    if (s > 0 && s < 1) cuts.push_back(s);
+  }
+  std::sort(cuts.begin(), cuts.end());
+  double sum = 0.0;
+  for (std::size_t i = 0; i + 1 < cuts.size(); ++i)
+    sum += gauss_legendre(
+        cuts[i], cuts[i + 1], [&](double s) { return k.value((d - s * l).squaredNorm()); }, 40);
+  return sum;
+}
+
+// Adds a grain at rest with the given mass and volume.
+inline void add_grain(GrainState& s, GlobalId id, const Vec3& x, double mass, double volume,
+                      const Vec3& v = Vec3::Zero(), const Vec3& a = Vec3::Zero()) {
+  s.id.push_back(id);
+  s.x.push_back(x);
+  s.v.push_back(v);
+  s.acceleration.push_back(a);
+  s.mass.push_back(mass);
+  s.volume.push_back(volume);
+}
+
+// A contact between grains a and b (indices) at `point`, force f on a: its two branches.
+inline void add_contact(GrainState& s, std::size_t a, std::size_t b, const Vec3& point, const Vec3& f) {
+  for (auto [from, force] : {std::pair{s.x[a], f}, std::pair{s.x[b], Vec3(-f)}}) {
+    s.branch_from.push_back(from);
+    s.branch_to.push_back(point);
+    s.branch_force.push_back(force);
+    s.longest_branch = std::max(s.longest_branch, (point - from).norm());
+  }
+}
+
+// A wall contact of grain a at `point`, force f of the wall on a.
+inline void add_wall_contact(GrainState& s, std::size_t a, const Vec3& point, const Vec3& f) {
+  s.branch_from.push_back(s.x[a]);
+  s.branch_to.push_back(point);
+  s.branch_force.push_back(f);
+  s.longest_branch = std::max(s.longest_branch, (point - s.x[a]).norm());
+  s.wall_point.push_back(point);
+  s.wall_force.push_back(f);
+}
+
+}  // namespace upgrain::upscale::cg::test
