@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "coupling/coarse_graining_study.h"
 #include "coupling/dem_fem_comparison.h"
 #include "coupling/dem_run.h"
 #include "coupling/strain_report.h"
@@ -94,7 +95,8 @@ std::string fmt(double v, int digits = 4) {
 
 void write_report(const std::filesystem::path& folder, const SceneInput& in, const RunResult& r,
                   const DemOutcome& d, const fem::ColumnProblem& problem, const fem::ColumnSolution& sol,
-                  const DemFemComparison& c, const std::vector<std::pair<std::string, double>>& timings,
+                  const DemFemComparison& c, const CoarseGrainingOutcome& cg,
+                  const std::vector<std::pair<std::string, double>>& timings,
                   const std::vector<std::string>& plots, const std::vector<std::string>& strain_plots,
                   int ranks) {
   const dem::SceneConfig& s = in.scene;
@@ -144,11 +146,42 @@ void write_report(const std::filesystem::path& folder, const SceneInput& in, con
       << fmt(fc.mean_lateral_ratio, 3) << " | "
       << fmt(*std::max_element(fc.level_spread.begin(), fc.level_spread.end()), 3) << " |\n";
   }
+  if (cg.done) {
+    const double norm = cg.comparison.l2_continuum_zz;
+    m << "| coarse-grained field (" << cg.kernel << ", w = " << fmt(cg.width_in_diameters, 3)
+      << " d), over the mesh | " << fmt(cg.comparison.l2_difference[8] / norm, 3) << " | "
+      << fmt(cg.comparison.l2_difference[0] / norm, 3) << " | "
+      << fmt(cg.comparison.l2_difference[2] / norm, 3) << " | " << fmt(cg.comparison.lateral_ratio, 3)
+      << " | " << fmt(cg.largest_level_spread(), 3) << " |\n";
+  }
   m << "| continuum (FEM) | 0 | 0 | 0 | " << fmt(c.fem_mean_lateral_ratio, 3) << " (K0 " << fmt(c.k0, 3)
     << ") | " << fmt(*std::max_element(c.fem_level_spread.begin(), c.fem_level_spread.end()), 3) << " |\n\n"
     << "A continuum with frictionless walls has a uniform σ_zz across each level (spread 0); the DEM bed "
        "does not: walls and the packing carry the load unevenly (the paper's microstructural effect).\n\n";
 
+  if (cg.done) {
+    m << "## Coarse-grained fields on the mesh\n\n"
+      << "Each grain and contact smoothed by a " << cg.kernel
+      << " kernel of width w = " << fmt(cg.width_in_diameters, 3) << " d = " << fmt(cg.width, 3)
+      << " m (d = " << fmt(cg.diameter, 4) << " m the mean grain diameter, cut-off " << fmt(cg.cutoff, 3)
+      << " m), " << cg.grains << " grains, " << cg.branches << " branches, " << cg.wall_contacts
+      << " wall contacts, evaluated at " << cg.comparison.points << " " << cg.points
+      << " of the continuum's mesh (docs/coarse-graining.md). The row above compares the field's stress with "
+         "the "
+         "continuum's in the L2 norm over the mesh (Gauss points of the continuum); its level spread is over "
+         "the "
+         "levels of Gauss points a cut-off below the bed's top ("
+      << fmt(cg.bed_top, 4) << " m).\n\n"
+      << "- Momentum balance: largest |d(ρv)/dt + ∇·(ρvv) − ∇·σ − ρg − b| over the points = "
+      << fmt(cg.residual, 3) << " of the largest |ρg| (d(ρv)/dt from the grains' accelerations)";
+    if (std::isfinite(cg.residual_by_differences))
+      m << "; with d(ρv)/dt by differences over " << fmt(cg.sampling_interval, 3)
+        << " s: " << fmt(cg.residual_by_differences, 3);
+    m << ".\n- The bed's own d(ρv)/dt (its distance from rest): " << fmt(cg.momentum_rate, 3) << " of ρg.\n"
+      << "- Cost: " << fmt(cg.seconds, 3) << " s (distribution, evaluation, comparison and output).\n"
+      << "- File: `mesh/cg_fields.pvtu` (fields `cg_*`, the continuum's `fem_s_*` and `diff_s_*` as cell "
+         "means).\n\n";
+  }
   m << "## σ_zz against height, centre and edge columns (Pa)\n\n| column | z (m) | FEM | analytic";
   for (const FormulaComparison& fc : c.formulas) m << " | " << dem::name_of(fc.formula);
   m << " |\n|---|---|---|---";
@@ -184,7 +217,7 @@ void write_report(const std::filesystem::path& folder, const SceneInput& in, con
 // The headline numbers in machine-readable form (tests/end_to_end/check_study.py).
 void write_study_json(const std::filesystem::path& folder, const SceneInput& in, const DemOutcome& d,
                       const fem::ColumnProblem& problem, const fem::ColumnSolution& sol,
-                      const DemFemComparison& c, int ranks) {
+                      const DemFemComparison& c, const CoarseGrainingOutcome& cg, int ranks) {
   const double area = in.scene.container.lx * in.scene.container.ly;
   const fem::ConfinedColumn exact = fem::analytic_solution(problem);
   std::ostringstream j;
@@ -207,7 +240,23 @@ void write_study_json(const std::filesystem::path& folder, const SceneInput& in,
       << "\": {\"relative_l2_zz\": " << fc.relative_l2[8] << ", \"relative_l2_xx\": " << fc.relative_l2[0]
       << ", \"mean_lateral_ratio\": " << fc.mean_lateral_ratio << "}";
   }
-  j << "\n  }\n}\n";
+  j << "\n  }";
+  if (cg.done) {
+    const double norm = cg.comparison.l2_continuum_zz;
+    j << ",\n  \"coarse_graining\": {\"kernel\": \"" << cg.kernel << "\", \"width_m\": " << cg.width
+      << ", \"width_diameters\": " << cg.width_in_diameters << ", \"mean_diameter_m\": " << cg.diameter
+      << ", \"points\": " << cg.comparison.points << ", \"evaluation_points\": \"" << cg.points
+      << "\", \"relative_l2_zz\": " << cg.comparison.l2_difference[8] / norm
+      << ", \"relative_l2_xx\": " << cg.comparison.l2_difference[0] / norm
+      << ", \"lateral_ratio\": " << cg.comparison.lateral_ratio
+      << ", \"largest_level_spread\": " << cg.largest_level_spread()
+      << ", \"momentum_residual\": " << cg.residual << ", \"momentum_rate\": " << cg.momentum_rate
+      << ", \"momentum_residual_by_differences\": "
+      << (std::isfinite(cg.residual_by_differences) ? fmt(cg.residual_by_differences, 17)
+                                                    : std::string("null"))
+      << ", \"seconds\": " << cg.seconds << "}";
+  }
+  j << "\n}\n";
   dem::io::write_text_atomically(folder / "study.json", j.str());
 }
 
@@ -259,6 +308,7 @@ int run_study(const SceneInput& in, MPI_Comm comm, const std::function<void(cons
                    static_cast<unsigned>(d.grid.n[2])};
   problem.refinements = in.study.continuum.refinements;
   problem.degree = in.study.continuum.degree;
+  problem.keep_quadrature_stress = in.output.coarse_graining.enabled;
   const fem::ColumnSolution sol = fem::solve_column(problem, comm, (folder / "fem").string());
   timings.emplace_back("continuum solve (FEM, output included)", since(t0));
 
@@ -272,6 +322,12 @@ int run_study(const SceneInput& in, MPI_Comm comm, const std::function<void(cons
   (void)upscale::upscale_to_mesh(comparison_fields(d, c, in.study.formulas), comm, folder / "mesh", "dem_fem",
                                  uo);
   timings.emplace_back("comparison and upscaling to the mesh", since(t0));
+  CoarseGrainingOutcome cg;
+  if (in.output.coarse_graining.enabled) {
+    t0 = Clock::now();
+    cg = coarse_grain_on_mesh(in, r, problem, sol, comm, folder);
+    timings.emplace_back("coarse-grained fields on the mesh", since(t0));
+  }
 
   // 4. Tables, plots and the report (rank 0).
   on_rank0(comm, [&] {
@@ -293,8 +349,8 @@ int run_study(const SceneInput& in, MPI_Comm comm, const std::function<void(cons
     }
     timings.emplace_back("tables and plots", since(t0));
     timings.emplace_back("whole study", since(t_all));
-    write_report(folder, in, r, d, problem, sol, c, timings, plots, strain_plots, ranks);
-    write_study_json(folder, in, d, problem, sol, c, ranks);
+    write_report(folder, in, r, d, problem, sol, c, cg, timings, plots, strain_plots, ranks);
+    write_study_json(folder, in, d, problem, sol, c, cg, ranks);
     std::printf("  study: %d x %d x %d grid, continuum Q%u with %llu dofs (%.2f s), %d rank(s)\n",
                 d.grid.n[0], d.grid.n[1], d.grid.n[2], problem.degree,
                 static_cast<unsigned long long>(sol.n_dofs), sol.total_seconds, ranks);
@@ -302,6 +358,13 @@ int run_study(const SceneInput& in, MPI_Comm comm, const std::function<void(cons
       std::printf("    %-18s ||d s_zz||/||s_zz,FEM|| %.3f, mean lateral ratio %.3f (K0 %.3f)\n",
                   std::string(dem::name_of(fc.formula)).c_str(), fc.relative_l2[8], fc.mean_lateral_ratio,
                   c.k0);
+    if (cg.done)
+      std::printf(
+          "    coarse-grained (%s, w = %.3g d) ||d s_zz||/||s_zz,FEM|| %.3f over the mesh; momentum balance "
+          "residual %.2e of rho g (d(rho v)/dt %.2e), %lu %s, %.2f s\n",
+          cg.kernel.c_str(), cg.width_in_diameters,
+          cg.comparison.l2_difference[8] / cg.comparison.l2_continuum_zz, cg.residual, cg.momentum_rate,
+          cg.comparison.points, cg.points.c_str(), cg.seconds);
     std::printf("  report: %s\n", (folder / "report.md").c_str());
   });
   return 0;

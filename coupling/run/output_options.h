@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "coupling/run/cg_capture.h"
 #include "dem/io/grid_stress_output.h"
 #include "dem/scene/effect_choice.h"
 #include "upscale/strain/grid_strain_output.h"
@@ -22,6 +23,8 @@ struct OutputOptions {
   bool energy_balance = true;
   // The effect set and its reasons, for summary.json; empty: the scene's set as given.
   std::vector<dem::EffectChoice> effect_choices;
+  // The states kept for the coarse-grained fields (docs/coarse-graining.md).
+  CoarseGrainingCapture coarse_graining;
 };
 
 }  // namespace upgrain::coupling
