@@ -1,8 +1,10 @@
 #pragma once
 // Independent numbers for the coarse-graining tests: Gauss-Legendre quadrature, the line
 // integral by quadrature, small granular states built by hand.
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "upscale/cg/grain_state.h"
@@ -110,6 +112,35 @@ inline void add_wall_contact(GrainState& s, std::size_t a, const Vec3& point, co
   s.longest_branch = std::max(s.longest_branch, (point - s.x[a]).norm());
   s.wall_point.push_back(point);
   s.wall_force.push_back(f);
+}
+
+// Grains at random in a box, contacts between close pairs with random forces (not in
+// balance), wall contacts at the floor; random velocities and accelerations.
+inline GrainState random_state(unsigned seed, int grains = 300) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0), f(-1.0, 1.0);
+  GrainState s;
+  s.gravity = Vec3(0.3, -0.2, -9.81);
+  for (int i = 0; i < grains; ++i)
+    add_grain(s, i, Vec3(u(rng), u(rng), 0.6 * u(rng)) * 0.02, 1e-4 * (1 + u(rng)), 4e-8 * (1 + u(rng)),
+              Vec3(f(rng), f(rng), f(rng)) * 0.1, Vec3(f(rng), f(rng), f(rng)) * 5);
+  for (std::size_t a = 0; a < s.grains(); ++a) {
+    for (std::size_t b = a + 1; b < s.grains(); ++b)
+      if ((s.x[a] - s.x[b]).norm() < 3e-3)
+        add_contact(s, a, b, 0.5 * (s.x[a] + s.x[b]) + Vec3(f(rng), f(rng), f(rng)) * 2e-4,
+                    Vec3(f(rng), f(rng), f(rng)) * 1e-3);
+    if (s.x[a].z() < 1.5e-3)
+      add_wall_contact(s, a, Vec3(s.x[a].x(), s.x[a].y(), 0.0), Vec3(f(rng), f(rng), 2) * 1e-3);
+  }
+  return s;
+}
+
+inline std::vector<Vec3> random_points(unsigned seed, int n) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-0.1, 1.1);
+  std::vector<Vec3> p;
+  for (int i = 0; i < n; ++i) p.emplace_back(Vec3(u(rng), u(rng), 0.6 * u(rng)) * 0.02);
+  return p;
 }
 
 }  // namespace upgrain::upscale::cg::test

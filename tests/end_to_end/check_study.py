@@ -8,6 +8,8 @@
   frictionless (the floor's contacts have zero lever arm);
 - DEM sigma_zz, averaged over each level of cells, grows in magnitude with depth;
 - the continuum's sigma_zz is uniform across each level, its lateral ratio is K0;
+- the coarse-grained fields on the mesh satisfy the momentum balance to round-off, the bed's
+  d(rho v)/dt is that of a bed at rest, and their stress is compared with the continuum's;
 - report, plots, tables and meshes are there, and no temporary file is left."""
 import csv
 import glob
@@ -58,11 +60,18 @@ fem = [float(row["fem_s_zz"]) for row in centre]
 exact = [float(row["analytic_s_zz"]) for row in centre]
 assert np.allclose(fem, exact, rtol=1e-8, atol=1e-9 * abs(exact[0])), (fem, exact)
 
+# Coarse-grained fields (docs/coarse-graining.md), on by default.
+cg = s["coarse_graining"]
+assert cg["momentum_residual"] < 1e-12, cg
+assert cg["momentum_rate"] < 1e-6, cg
+assert cg["points"] > 1000 and 0.0 < cg["relative_l2_zz"] < 1.0, cg
+assert abs(cg["width_m"] - 2 * 1.5e-3) < 1e-12, cg  # w = 1 d, monodisperse r = 1.5 mm
 for name in ("report.md", "comparison_cells.csv", "relative_l2.csv", "profiles_szz.png", "lateral_ratio.png",
-             "level_spread.png", "mesh/dem_fem.pvtu", "fem/column.pvtu"):
+             "level_spread.png", "mesh/dem_fem.pvtu", "fem/column.pvtu", "mesh/cg_fields.pvtu"):
     assert os.path.exists(name), name
 report = open("report.md").read()
-for needle in ("Headline figures", "Timings", "profiles_szz.png", "bagi"):
+for needle in ("Headline figures", "Timings", "profiles_szz.png", "bagi", "Coarse-grained fields on the mesh",
+               "coarse-grained field (gaussian"):
     assert needle in report, needle
 # tiny_study.prm enables the strain: the report has its section and plots.
 sys.path.insert(0, HERE)
@@ -72,5 +81,7 @@ strain_outputs = check_strain_report()
 leftovers = [f for root, _, files in os.walk(".") for f in files if ".tmp" in f]
 assert not leftovers, f"temporary files left: {leftovers}"
 print(f"strain report ok: {strain_outputs} outputs")
+print(f"coarse-grained fields ok: residual {cg['momentum_residual']:.2e} of rho g, ||d s_zz|| "
+      f"{cg['relative_l2_zz']:.3f} over {cg['points']} points")
 print(f"study ok: floor carries {100 * floor_share:.2f} % of the weight, sum V s_zz = {total:.6g} vs "
       f"-M g z_mean = {moment:.6g}, level means of s_zz {['%.4g' % v for v in szz]}")
