@@ -33,7 +33,8 @@ CoarseGrainedFields coarse_grain(const GrainState& s, std::span<const Vec3> poin
   // Branches are binned by their midpoints: a branch reaches at most c + half its length.
   std::vector<Vec3> midpoints(s.branches());
   for (std::size_t k = 0; k < s.branches(); ++k) midpoints[k] = 0.5 * (s.branch_from[k] + s.branch_to[k]);
-  const CellBins grains(s.x, c), branches(midpoints, c + 0.5 * s.longest_branch), walls(s.wall_point, c);
+  const double reach = c + 0.5 * s.longest_branch, reach2 = reach * reach;
+  const CellBins grains(s.x, c), branches(midpoints, reach), walls(s.wall_point, c);
   const bool displaced = s.has_displacement();
 
   CoarseGrainedFields f;
@@ -80,25 +81,29 @@ CoarseGrainedFields coarse_grain(const GrainState& s, std::span<const Vec3> poin
       sigma_k -= (m * n.phi * dv) * dv.transpose();
       div_sigma_k -= (m * dv.dot(n.grad)) * dv;
     }
-    // Contact stress and its divergence along each branch.
+    // Contact stress and its divergence along each branch. A branch whose midpoint is
+    // farther than c + half the longest branch cannot reach the point. The contact point's
+    // term f phi(r - c) of a pair's two branches cancels (their forces are opposite), so only
+    // a wall branch takes it: there it is the wall force density.
     Mat3 sigma_c = Mat3::Zero();
     Vec3 div_sigma_c = Vec3::Zero();
     branches.for_each_near(r, [&](int k) {
+      if ((r - midpoints[k]).squaredNorm() >= reach2) return;
       const Vec3 d = r - s.branch_from[k];
       const Vec3 l = s.branch_to[k] - s.branch_from[k];
       const double psi = kernel.line_integral(d, l);
       const double phi_from = kernel.value(d.squaredNorm());
-      const double phi_to = kernel.value((r - s.branch_to[k]).squaredNorm());
-      if (psi == 0.0 && phi_from == 0.0 && phi_to == 0.0) return;
+      if (psi == 0.0 && phi_from == 0.0) return;
       const Vec3& force = s.branch_force[k];
       sigma_c += (psi * force) * l.transpose();
-      div_sigma_c += (phi_from - phi_to) * force;
+      div_sigma_c += phi_from * force;
     });
     Vec3 b = Vec3::Zero();
     walls.for_each_near(r, [&](int k) {
       const double phi = kernel.value((r - s.wall_point[k]).squaredNorm());
       if (phi != 0.0) b += phi * s.wall_force[k];
     });
+    div_sigma_c -= b;
 
     f.density[q] = rho;
     f.volume_fraction[q] = nu;

@@ -16,7 +16,8 @@
 // with d(rho V)/dt = sum m a_i phi_i - sum m v_i (v_i . grad phi_i) from the grains'
 // accelerations (the exact time derivative of p at the instant of the state), and
 // div sigma_c = sum over branches f (phi(r - x_from) - phi(r - x_to)) (the kernel's gradient
-// integrated along the branch). residual_by_differences() takes d(rho V)/dt from two states
+// integrated along the branch), in which the contact points' terms of a pair's two branches
+// cancel and a wall contact's is -b. residual_by_differences() takes d(rho V)/dt from two states
 // instead.
 #include <span>
 #include <vector>
