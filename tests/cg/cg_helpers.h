@@ -7,40 +7,35 @@
 #include <random>
 #include <vector>
 
+#include "upscale/cg/coarse_grained_fields.h"
 #include "upscale/cg/grain_state.h"
 
 namespace upgrain::upscale::cg::test {
 
 // Nodes and weights of n-point Gauss-Legendre on [-1, 1] (Newton on P_n).
 inline void legendre_rule(int n, std::vector<double>& x, std::vector<double>& w) {
-  x.resize(n);
-  w.resize(n);
-  for (int i = 0; i < n; ++i) {
-    double z = std::cos(M_PI * (i + 0.75) / (n + 0.5));
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1.0, p1 = z;
-      for (int k = 2; k <= n; ++k) {
-        const double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      const double dp = n * (z * p1 - p0) / (z * z - 1.0);
-      const double dz = p1 / dp;
-      z -= dz;
-      if (std::abs(dz) < 1e-16) {
-        x[i] = z;
-        w[i] = 2.0 / ((1.0 - z * z) * dp * dp);
-        break;
-      }
-    }
-    // The last iterate's derivative, for the weight.
+  // P_n(z) and P_n'(z) by the three-term recurrence.
+  auto legendre = [n](double z, double& p, double& dp) {
     double p0 = 1.0, p1 = z;
     for (int k = 2; k <= n; ++k) {
       const double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
       p0 = p1;
       p1 = p2;
     }
-    const double dp = n * (z * p1 - p0) / (z * z - 1.0);
+    p = p1;
+    dp = n * (z * p1 - p0) / (z * z - 1.0);
+  };
+  x.resize(n);
+  w.resize(n);
+  for (int i = 0; i < n; ++i) {
+    double z = std::cos(M_PI * (i + 0.75) / (n + 0.5)), p = 0.0, dp = 1.0;
+    for (int it = 0; it < 100; ++it) {
+      legendre(z, p, dp);
+      const double dz = p / dp;
+      z -= dz;
+      if (std::abs(dz) < 1e-16) break;
+    }
+    legendre(z, p, dp);
     x[i] = z;
     w[i] = 2.0 / ((1.0 - z * z) * dp * dp);
   }
@@ -100,6 +95,7 @@ inline void add_contact(GrainState& s, std::size_t a, std::size_t b, const Vec3&
     s.branch_from.push_back(from);
     s.branch_to.push_back(point);
     s.branch_force.push_back(force);
+    s.ends_at_grain.push_back(0);
     s.longest_branch = std::max(s.longest_branch, (point - from).norm());
   }
 }
@@ -109,6 +105,7 @@ inline void add_wall_contact(GrainState& s, std::size_t a, const Vec3& point, co
   s.branch_from.push_back(s.x[a]);
   s.branch_to.push_back(point);
   s.branch_force.push_back(f);
+  s.ends_at_grain.push_back(0);
   s.longest_branch = std::max(s.longest_branch, (point - s.x[a]).norm());
   s.wall_point.push_back(point);
   s.wall_force.push_back(f);
@@ -141,6 +138,31 @@ inline std::vector<Vec3> random_points(unsigned seed, int n) {
   std::vector<Vec3> p;
   for (int i = 0; i < n; ++i) p.emplace_back(Vec3(u(rng), u(rng), 0.6 * u(rng)) * 0.02);
   return p;
+}
+
+// Whether x lies within `band` of the cut-off sphere around an end of a branch (where the
+// cut Gaussian's stress has a kink, so central differences across it lose their order).
+template <class K>
+bool near_a_kink(const GrainState& s, const K& kernel, const Vec3& x, double band) {
+  if (!std::is_same_v<K, GaussianKernel>) return false;
+  for (std::size_t k = 0; k < s.branches(); ++k)
+    for (const Vec3& end : {s.branch_from[k], s.branch_to[k]})
+      if (std::abs((x - end).norm() - kernel.cutoff()) < band) return true;
+  return false;
+}
+
+// div of a stress field (member `stress` of the fields) at x by central differences of step h.
+template <class K>
+Vec3 divergence_by_differences(const GrainState& s, const K& kernel, const Vec3& x, double h,
+                               std::vector<Mat3> CoarseGrainedFields::*stress) {
+  Vec3 div = Vec3::Zero();
+  for (int j = 0; j < 3; ++j) {
+    Vec3 e = Vec3::Zero();
+    e[j] = h;
+    const CoarseGrainedFields g = coarse_grain(s, std::vector<Vec3>{x + e, x - e}, kernel);
+    div += ((g.*stress)[0] - (g.*stress)[1]).col(j) / (2 * h);
+  }
+  return div;
 }
 
 }  // namespace upgrain::upscale::cg::test

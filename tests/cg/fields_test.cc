@@ -221,19 +221,9 @@ TYPED_TEST(FieldsTest, MomentumBalanceAtRestNearWallsAndAwayFromThem) {
     const double h_fd = 1e-4;
     double worst_fd = 0.0;
     for (std::size_t q = 0; q < 300; ++q) {
-      bool near_jump = false;
-      for (std::size_t k = 0; k < s.branches() && std::is_same_v<TypeParam, GaussianKernel>; ++k)
-        for (const Vec3& end : {s.branch_from[k], s.branch_to[k]})
-          if (std::abs((points[q] - end).norm() - kernel.cutoff()) < 10 * h_fd) near_jump = true;
-      if (near_jump) continue;
-      Vec3 div = Vec3::Zero();
-      for (int j = 0; j < 3; ++j) {
-        Vec3 e = Vec3::Zero();
-        e[j] = h_fd;
-        const CoarseGrainedFields g =
-            coarse_grain(s, std::vector<Vec3>{points[q] + e, points[q] - e}, kernel);
-        div += (g.stress[0] - g.stress[1]).col(j) / (2 * h_fd);
-      }
+      if (test::near_a_kink(s, kernel, points[q], 10 * h_fd)) continue;
+      const Vec3 div =
+          test::divergence_by_differences(s, kernel, points[q], h_fd, &CoarseGrainedFields::stress);
       worst_fd = std::max(worst_fd, (div + f.density[q] * s.gravity + f.wall_force_density[q]).norm());
     }
     EXPECT_LE(worst_fd, 1e-6 * weight) << TypeParam::name << " w " << w;
@@ -312,19 +302,9 @@ TYPED_TEST(FieldsTest, ContactStressDivergenceIsTheDerivativeOfTheStress) {
   for (const Vec3& d : f.net_force_density) scale = std::max(scale, d.norm());
   int compared = 0;
   for (std::size_t q = 0; q < points.size(); ++q) {
-    bool near_jump = false;
-    for (std::size_t k = 0; k < s.branches(); ++k)
-      for (const Vec3& end : {s.branch_from[k], s.branch_to[k]})
-        if (std::abs((points[q] - end).norm() - kernel.cutoff()) < 10 * h) near_jump = true;
-    if (near_jump) continue;
-    Vec3 div = Vec3::Zero();
-    for (int j = 0; j < 3; ++j) {
-      Vec3 e = Vec3::Zero();
-      e[j] = h;
-      const std::vector<Vec3> pm{points[q] + e, points[q] - e};
-      const CoarseGrainedFields g = coarse_grain(s, pm, kernel);
-      div += (g.contact_stress[0] - g.contact_stress[1]).col(j) / (2 * h);
-    }
+    if (test::near_a_kink(s, kernel, points[q], 10 * h)) continue;
+    const Vec3 div =
+        test::divergence_by_differences(s, kernel, points[q], h, &CoarseGrainedFields::contact_stress);
     // The divergence of sigma_c the fields use: at rest (no kinetic stress, no flux) the net
     // force density less rho g and b.
     GrainState still = s;
@@ -377,6 +357,54 @@ TYPED_TEST(FieldsTest, DisplacementGradientIsTheDerivativeOfTheDisplacement) {
     ++compared;
   }
   EXPECT_GT(compared, 50);
+}
+
+}  // namespace
+}  // namespace upgrain::upscale::cg
+
+namespace upgrain::upscale::cg {
+namespace {
+
+// A contact of two spheres becomes one centre-to-centre branch (its point lies between the
+// centres), with the stress and balance of the two halves through the point; a contact point
+// off the line of centres (ellipsoids) keeps two branches.
+TEST(GrainStateFrom, SpherePairIsOneBranchWithTheStressOfItsTwoHalves) {
+  dem::ParticleStore p;
+  p.add_sphere(4, 1.5e-3, 2650, Vec3(0.010, 0.010, 0.002), Vec3(0.1, 0, 0), Vec3::Zero());
+  p.add_sphere(9, 1.5e-3, 2650, Vec3(0.0125, 0.011, 0.0035), Vec3::Zero(), Vec3::Zero());
+  p.force = {Vec3(-1e-3, -4e-4, 5e-4), Vec3(1e-3, 4e-4, -6e-4)};
+  const Vec3 n = (p.x[1] - p.x[0]).normalized();
+  const double overlap = 2 * 1.5e-3 - (p.x[1] - p.x[0]).norm();
+  dem::ContactRecord pair{4, 9, {}, {}}, wall{4, -1, {}, {}};
+  dem::put(pair.point, p.x[0] + (1.5e-3 - 0.5 * overlap) * n);
+  dem::put(pair.force, Vec3(-1e-3, -4e-4, 6e-4));
+  dem::put(wall.point, Vec3(0.010, 0.010, 0.0));
+  dem::put(wall.force, Vec3(0, 0, -1e-4));
+  const GrainState merged = state_from(p, {pair, wall}, Vec3(0, 0, -9.81), 0.0);
+  ASSERT_EQ(merged.branches(), 2u);  // the pair's one and the wall's
+  EXPECT_EQ(merged.ends_at_grain, (std::vector<std::uint8_t>{1, 0}));
+  GrainState halves = merged;
+  halves.branch_from.clear(), halves.branch_to.clear(), halves.branch_force.clear(),
+      halves.ends_at_grain.clear();
+  halves.longest_branch = 0;
+  test::add_contact(halves, 0, 1, dem::get(pair.point), dem::get(pair.force));
+  test::add_wall_contact(halves, 0, dem::get(wall.point), dem::get(wall.force));
+  halves.wall_point.resize(1), halves.wall_force.resize(1);
+  const std::vector<Vec3> points = test::random_points(51, 300);
+  for (double w : {1e-3, 3e-3}) {
+    const CoarseGrainedFields a = coarse_grain(merged, points, GaussianKernel(w));
+    const CoarseGrainedFields b = coarse_grain(halves, points, GaussianKernel(w));
+    const double scale = largest(a.contact_stress);
+    ASSERT_GT(scale, 0.0);
+    for (std::size_t q = 0; q < points.size(); ++q) {
+      EXPECT_LE((a.contact_stress[q] - b.contact_stress[q]).cwiseAbs().maxCoeff(), 1e-12 * scale) << q;
+      EXPECT_LE((a.net_force_density[q] - b.net_force_density[q]).norm(),
+                1e-12 * (a.net_force_density[q].norm() + b.net_force_density[q].norm() + 1e-300))
+          << q;
+    }
+  }
+  dem::put(pair.point, p.x[0] + (1.5e-3 - 0.5 * overlap) * n + Vec3(0, 0, 2e-4));
+  EXPECT_EQ(state_from(p, {pair}, Vec3(0, 0, -9.81), 0.0).branches(), 2u);
 }
 
 }  // namespace

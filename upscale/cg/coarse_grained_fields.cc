@@ -83,8 +83,8 @@ CoarseGrainedFields coarse_grain(const GrainState& s, std::span<const Vec3> poin
     }
     // Contact stress and its divergence along each branch. A branch whose midpoint is
     // farther than c + half the longest branch cannot reach the point. The contact point's
-    // term f phi(r - c) of a pair's two branches cancels (their forces are opposite), so only
-    // a wall branch takes it: there it is the wall force density.
+    // term -f phi(r - c) of a pair's two branches cancels (their forces are opposite), so only
+    // a branch that ends at a grain takes its far end's term, and a wall contact's is -b.
     Mat3 sigma_c = Mat3::Zero();
     Vec3 div_sigma_c = Vec3::Zero();
     branches.for_each_near(r, [&](int k) {
@@ -93,10 +93,11 @@ CoarseGrainedFields coarse_grain(const GrainState& s, std::span<const Vec3> poin
       const Vec3 l = s.branch_to[k] - s.branch_from[k];
       const double psi = kernel.line_integral(d, l);
       const double phi_from = kernel.value(d.squaredNorm());
-      if (psi == 0.0 && phi_from == 0.0) return;
+      const double phi_to = s.ends_at_grain[k] ? kernel.value((d - l).squaredNorm()) : 0.0;
+      if (psi == 0.0 && phi_from == 0.0 && phi_to == 0.0) return;
       const Vec3& force = s.branch_force[k];
       sigma_c += (psi * force) * l.transpose();
-      div_sigma_c += phi_from * force;
+      div_sigma_c += (phi_from - phi_to) * force;
     });
     Vec3 b = Vec3::Zero();
     walls.for_each_near(r, [&](int k) {

@@ -17,11 +17,23 @@ ReferencePositions reference_from(const dem::ParticleStore& p, double time) {
 
 namespace {
 
-void add_branch(GrainState& s, const Vec3& from, const Vec3& to, const Vec3& force) {
+void add_branch(GrainState& s, const Vec3& from, const Vec3& to, const Vec3& force,
+                bool ends_at_grain = false) {
   s.branch_from.push_back(from);
   s.branch_to.push_back(to);
   s.branch_force.push_back(force);
+  s.ends_at_grain.push_back(ends_at_grain ? 1 : 0);
   s.longest_branch = std::max(s.longest_branch, (to - from).norm());
+}
+
+// Whether the contact point c lies on the segment from a to b, to round-off (spheres: the
+// point is a + (r_a - overlap / 2) n with n along b - a).
+bool on_segment(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 l = b - a, d = c - a;
+  const double l2 = l.squaredNorm();
+  if (l2 == 0.0) return false;
+  const double s = d.dot(l) / l2;
+  return s >= 0.0 && s <= 1.0 && (d - s * l).squaredNorm() <= 1e-24 * l2;
 }
 
 }  // namespace
@@ -66,10 +78,17 @@ GrainState state_from(const dem::ParticleStore& p, const std::vector<dem::Contac
   s.branch_force.reserve(2 * contacts.size());
   for (const dem::ContactRecord& c : contacts) {
     const Vec3 point = dem::get(c.point), force = dem::get(c.force);
-    add_branch(s, p.x[index(c.a)], point, force);
+    const Vec3& xa = p.x[index(c.a)];
     if (c.b >= 0) {
-      add_branch(s, p.x[index(c.b)], point, -force);
+      const Vec3& xb = p.x[index(c.b)];
+      if (on_segment(xa, xb, point)) {
+        add_branch(s, xa, xb, force, true);
+      } else {
+        add_branch(s, xa, point, force);
+        add_branch(s, xb, point, -force);
+      }
     } else {
+      add_branch(s, xa, point, force);
       s.wall_point.push_back(point);
       s.wall_force.push_back(force);
     }
@@ -114,6 +133,7 @@ GrainState part_near(const GrainState& s, const dem::Box& box, double range) {
     out.branch_from.push_back(s.branch_from[k]);
     out.branch_to.push_back(s.branch_to[k]);
     out.branch_force.push_back(s.branch_force[k]);
+    out.ends_at_grain.push_back(s.ends_at_grain[k]);
   }
   for (std::size_t k = 0; k < s.wall_contacts(); ++k) {
     if (!near(s.wall_point[k], box, range)) continue;

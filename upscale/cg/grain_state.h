@@ -3,6 +3,7 @@
 // grains (in id order) with their masses, volumes, velocities, accelerations and, against a
 // reference state, displacements; the branches of the contact stress; the wall contacts.
 // Built from a gathered DEM state (state_from) or by hand in tests.
+#include <cstdint>
 #include <vector>
 
 #include "dem/core/box.h"
@@ -26,12 +27,15 @@ struct GrainState {
   bool with_displacement = false;
   std::vector<double> mass, volume;
 
-  // Branches of the contact stress, from a grain's centre to a contact point, with the force
-  // on that grain: a contact between grains a and b gives (x_a -> c, f) and (x_b -> c, -f),
-  // a wall contact (x_a -> c, f); in the order of the contacts' keys (lower id first). The
-  // path through the contact point makes the stress Bagi's per-grain sum when smoothed by a
-  // box (docs/stress.md); for spheres it is the centre-to-centre branch split at c.
+  // Branches of the contact stress, with the force on the grain they start from: a contact
+  // between grains a and b at c gives (x_a -> c, f) and (x_b -> c, -f), a wall contact
+  // (x_a -> c, f); in the order of the contacts' keys (lower id first). The path through the
+  // contact point makes the stress Bagi's per-grain sum when smoothed by a box
+  // (docs/stress.md). When c lies on the segment between the centres (spheres), the two
+  // halves are one branch x_a -> x_b with f, which ends at a grain (ends_at_grain): the same
+  // stress for half the line integrals.
   std::vector<Vec3> branch_from, branch_to, branch_force;
+  std::vector<std::uint8_t> ends_at_grain;
 
   // Wall contacts: the point on the wall and the force of the wall on the grain.
   std::vector<Vec3> wall_point, wall_force;

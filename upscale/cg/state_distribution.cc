@@ -49,6 +49,7 @@ std::vector<char> pack(const GrainState& s) {
   put(out, s.volume);
   for (const auto* v : {&s.branch_from, &s.branch_to, &s.branch_force, &s.wall_point, &s.wall_force})
     put(out, *v);
+  put(out, s.ends_at_grain);
   return out;
 }
 
@@ -69,6 +70,7 @@ GrainState unpack(const std::vector<char>& in) {
   take(in, at, s.volume, h.grains);
   for (auto* v : {&s.branch_from, &s.branch_to, &s.branch_force}) take(in, at, *v, h.branches);
   for (auto* v : {&s.wall_point, &s.wall_force}) take(in, at, *v, h.walls);
+  take(in, at, s.ends_at_grain, h.branches);
   if (at != in.size()) throw Error("coarse graining: a state message has trailing bytes");
   return s;
 }
