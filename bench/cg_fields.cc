@@ -2,7 +2,7 @@
 // momentum balance in motion against the sampling interval, on one bed built here. Prints
 // Markdown tables; every ratio is measured in the same run. Never timed in CI.
 //
-//   bench_cg_fields [grains=20000] [all|cost|dynamic|widths]
+//   bench_cg_fields [grains=20000] [all|dynamic|cost|widths]
 //
 // The bed: monodisperse spheres of the paper's size (r = 1.5 mm, 2,650 kg/m^3), friction 0.5
 // between grains and at the walls, damping ratio 0.5, deposited into a 9 cm square box (30
@@ -248,15 +248,18 @@ void widths(dem::Simulation& sim) {
 
 void run(int argc, char** argv) {
   const long grains = argc > 1 ? std::atol(argv[1]) : 20000;
+  const std::string part = argc > 2 ? argv[2] : "all";
   const dem::SceneConfig scene = bed_scene(grains);
   std::printf("# Coarse-grained fields: cost, width study, balance in motion (%ld grains)\n", grains);
-  dynamic(scene);
+  if (part == "all" || part == "dynamic") dynamic(scene);
+  if (part == "dynamic") return;
   dem::Simulation sim(scene, dem::fill_container(scene));
   for (long steps = 0; steps < 400000; steps += 2000) {
     sim.run(2000);
     if (steps > 20000 && sim.kinetic_to_released() < 1e-6) break;
   }
-  cost(sim, grains);
+  if (part == "all" || part == "cost") cost(sim, grains);
+  if (part == "cost") return;
   const dem::RelaxationResult relaxed = dem::relax_to_equilibrium(sim, {});
   std::printf("\n(relaxed by FIRE in %ld steps to %.1e of m g)\n", relaxed.steps, relaxed.max_force_residual);
   widths(sim);
