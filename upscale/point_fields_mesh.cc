@@ -145,8 +145,7 @@ class PointFieldsOnMesh {
 
   // The fields' values at the continuum's quadrature points of one cell (from the nodal
   // fields, or the points' own values).
-  void values_at_quadrature(const DoFHandler<3>::active_cell_iterator& cell, FEValues<3>& fe_values,
-                            long first, std::vector<std::vector<double>>& out) {
+  void values_at_quadrature(FEValues<3>& fe_values, long first, std::vector<std::vector<double>>& out) {
     const unsigned nq = quadrature_.size();
     out.resize(values_.names.size());
     for (std::size_t f = 0; f < values_.names.size(); ++f) {
@@ -157,7 +156,6 @@ class PointFieldsOnMesh {
         for (unsigned q = 0; q < nq; ++q) out[f][q] = values_.values[f][first + q];
       }
     }
-    (void)cell;
   }
 
   void compare(const StressAtPoints& c) {
@@ -181,7 +179,7 @@ class PointFieldsOnMesh {
       if (!cell->is_locally_owned()) continue;
       fe_values.reinit(cell);
       const long first = first_[cell->active_cell_index()];
-      values_at_quadrature(cell, fe_values, first, at_q);
+      values_at_quadrature(fe_values, first, at_q);
       double volume = 0.0;
       for (unsigned q = 0; q < nq; ++q) {
         const auto& x = c.x[first + q];
