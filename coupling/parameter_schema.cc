@@ -277,6 +277,37 @@ const std::vector<ParameterSpec>& parameter_schema() {
       {"Accuracy", "tolerance", "0.01", K::real, 0.0, 1.0, "", "-",
        "Relative change a setting may make in every measure of the bed (or the noise floor, if larger) "
        "for the report to call it within tolerance."},
+      {"CoarseGraining", "fields",
+       "density, velocity, stress, wall force density, displacement, momentum balance", K::multiple_selection,
+       0, 0, "density|velocity|stress|wall force density|displacement|momentum balance", "-",
+       "Coarse-grained fields written on the study's mesh beside the continuum (docs/coarse-graining.md), "
+       "comma-separated: density (and volume fraction), velocity (and momentum), stress (total and kinetic; "
+       "the contact stress by the line integral along each branch), wall force density, displacement (and "
+       "its "
+       "gradient, against the state at 'reference time'), momentum balance (its residual and d(rho v)/dt). "
+       "The stress is always compared with the continuum's. Empty: none. Needs 'Study/compare with "
+       "continuum'."},
+      {"CoarseGraining", "kernel", "gaussian", K::selection, 0, 0, "gaussian|lucy", "-",
+       "Smoothing kernel: gaussian (cut at 3 w and renormalised, as MercuryCG) or lucy (Lucy's polynomial, "
+       "cut-off 2 sqrt(3) w)."},
+      {"CoarseGraining", "width", "1", K::real, 0.05, 20.0, "", "mean grain diameters",
+       "Kernel width w, the standard deviation of the kernel along each axis, in mean grain diameters d "
+       "(of the grains' volume-equivalent spheres)."},
+      {"CoarseGraining", "evaluation points", "support points", K::selection, 0, 0,
+       "support points|quadrature points", "-",
+       "Where the fields are evaluated: the support points of the continuum's Q_k elements (written as "
+       "continuous finite-element fields), or its quadrature points (written as cell means). The comparison "
+       "with the continuum's stress is at its quadrature points either way."},
+      {"CoarseGraining", "time derivative", "accelerations", K::selection, 0, 0, "accelerations|differences",
+       "-",
+       "d(rho v)/dt in the momentum balance: from the grains' accelerations of the final force evaluation "
+       "(exact), or by differences of the final state and one 'sampling interval' later (trapezoidal)."},
+      {"CoarseGraining", "sampling interval", "0", K::real, 0.0, 1e3, "", "s",
+       "Time between the two states of 'time derivative = differences'; 0 = one time step. Rounded to whole "
+       "time steps."},
+      {"CoarseGraining", "reference time", "0", K::real, 0.0, 1e6, "", "s",
+       "The reference state of the displacement field: the first step at or after this time (0 = the initial "
+       "state)."},
 
       {"Continuum", "youngs modulus", "1e8", K::real, 1.0, 1e13, "", "Pa",
        "Young's modulus of every continuum (the stresses of the confined column do not depend on it, nor, "

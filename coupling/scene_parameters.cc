@@ -325,6 +325,28 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   in.control.relaxation.max_steps = prm.get_integer("max relaxation steps");
   prm.leave_subsection();
 
+  prm.enter_subsection("CoarseGraining");
+  {
+    CoarseGrainingOptions& cg = in.study.coarse_graining;
+    cg.density = cg.velocity = cg.stress = cg.wall_force_density = cg.displacement = cg.momentum_balance =
+        false;
+    for (const std::string& name : dealii::Utilities::split_string_list(prm.get("fields"), ',')) {
+      cg.density |= name == "density";
+      cg.velocity |= name == "velocity";
+      cg.stress |= name == "stress";
+      cg.wall_force_density |= name == "wall force density";
+      cg.displacement |= name == "displacement";
+      cg.momentum_balance |= name == "momentum balance";
+    }
+    cg.kernel = upscale::cg::kernel_from_name(prm.get("kernel")).value_or(upscale::cg::KernelKind::gaussian);
+    cg.width = prm.get_double("width");
+    cg.at_quadrature_points = prm.get("evaluation points") == "quadrature points";
+    cg.by_differences = prm.get("time derivative") == "differences";
+    cg.sampling_interval = prm.get_double("sampling interval");
+    cg.reference_time = prm.get_double("reference time");
+  }
+  prm.leave_subsection();
+
   prm.enter_subsection("Continuum");
   {
     ContinuumOptions& c = in.study.continuum;

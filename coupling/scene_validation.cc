@@ -227,6 +227,29 @@ void validate_scene(SceneInput& in) {
     }
   }
   {
+    // The coarse-grained fields live on the study's mesh; what the run keeps for them.
+    const CoarseGrainingOptions& cg = in.study.coarse_graining;
+    if (cg.reference_time > s.end_time) {
+      std::ostringstream m;
+      m << where << "CoarseGraining/reference time = " << cg.reference_time
+        << " s is after Simulation/end time = " << s.end_time
+        << " s: the displacement would have no reference";
+      throw Error(m.str());
+    }
+    if (cg.by_differences && cg.sampling_interval > 0.0 && cg.sampling_interval < 0.5 * s.time_step) {
+      std::ostringstream m;
+      m << where << "CoarseGraining/sampling interval = " << cg.sampling_interval
+        << " s is shorter than half a time step (" << s.time_step << " s); give at least one time step, or 0";
+      throw Error(m.str());
+    }
+    CoarseGrainingCapture& capture = in.output.coarse_graining;
+    capture.enabled = in.study.compare_with_continuum && cg.any();
+    capture.displacement = cg.displacement;
+    capture.reference_time = cg.reference_time;
+    capture.later_steps =
+        cg.by_differences ? std::max(1L, std::lround(cg.sampling_interval / s.time_step)) : 0L;
+  }
+  {
     const auto& b = in.parallel.blocks;
     const bool chosen = b[0] == 0 && b[1] == 0 && b[2] == 0;
     if (!chosen && (b[0] == 0 || b[1] == 0 || b[2] == 0)) {

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "coupling/coarse_graining_study.h"
 #include "coupling/dem_fem_comparison.h"
 #include "coupling/dem_run.h"
 #include "coupling/strain_report.h"
@@ -202,6 +203,7 @@ int run_study(const SceneInput& in, MPI_Comm comm, const std::function<void(cons
                    static_cast<unsigned>(d.grid.n[2])};
   problem.refinements = in.study.continuum.refinements;
   problem.degree = in.study.continuum.degree;
+  problem.keep_quadrature_stress = in.output.coarse_graining.enabled;
   const fem::ColumnSolution sol = fem::solve_column(problem, comm, (folder / "fem").string());
   timings.emplace_back("continuum: elastic on rollers (FEM, output included)", since(t0));
   std::vector<ContinuumResult> continua = {
@@ -242,6 +244,12 @@ int run_study(const SceneInput& in, MPI_Comm comm, const std::function<void(cons
   (void)upscale::upscale_to_mesh(comparison_fields(d, c, in.study.formulas), comm, folder / "mesh", "dem_fem",
                                  uo);
   timings.emplace_back("comparison and upscaling to the mesh", since(t0));
+  CoarseGrainingOutcome cg;
+  if (in.output.coarse_graining.enabled) {
+    t0 = Clock::now();
+    cg = coarse_grain_on_mesh(in, r, problem, sol, comm, folder);
+    timings.emplace_back("coarse-grained fields on the mesh", since(t0));
+  }
 
   // 4. Tables, plots and the report (rank 0).
   on_rank0(comm, [&] {
@@ -264,7 +272,7 @@ int run_study(const SceneInput& in, MPI_Comm comm, const std::function<void(cons
     timings.emplace_back("tables and plots", since(t0));
     timings.emplace_back("whole study", since(t_all));
     const StudyRecord record{in,      r, d,       problem, sol,          frictional, failed,
-                             janssen, c, timings, plots,   strain_plots, ranks};
+                             janssen, c, timings, plots,   strain_plots, ranks, cg};
     write_report(folder, record);
     write_study_json(folder, record);
     std::printf("  study: %d x %d x %d grid, continua Q%u with %llu dofs: elastic on rollers %.2f s",
@@ -283,7 +291,15 @@ int run_study(const SceneInput& in, MPI_Comm comm, const std::function<void(cons
     std::printf("  side walls carry: DEM %.1f %%", 100.0 * c.dem_wall_share);
     for (const ContinuumResult& cr : c.continua)
       std::printf(", %s %.1f %%", cr.label.c_str(), 100.0 * cr.wall_share);
-    std::printf("\n  report: %s\n", (folder / "report.md").c_str());
+    std::printf("\n");
+    if (cg.done)
+      std::printf(
+          "    coarse-grained (%s, w = %.3g d) ||d s_zz||/||s_zz,FEM|| %.3f over the mesh; momentum balance "
+          "residual %.2e of rho g (d(rho v)/dt %.2e), %lu %s, %.2f s\n",
+          cg.kernel.c_str(), cg.width_in_diameters,
+          cg.comparison.l2_difference[8] / cg.comparison.l2_continuum_zz, cg.residual, cg.momentum_rate,
+          cg.comparison.points, cg.points.c_str(), cg.seconds);
+    std::printf("  report: %s\n", (folder / "report.md").c_str());
   });
   return 0;
 }

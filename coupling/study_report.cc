@@ -1,6 +1,7 @@
 #include "coupling/study_report.h"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <tuple>
 
@@ -161,11 +162,43 @@ void comparison_section(std::ostringstream& m, const StudyRecord& s) {
   for (const ContinuumResult& cr : c.continua)
     m << "| " << cr.label << " | " << percent(cr.wall_share) << " | " << fmt(cr.mean_lateral_ratio, 3)
       << " | " << fmt(largest(cr.level_spread), 3) << " |\n";
+  if (s.cg.done)
+    m << "| coarse-grained field (" << s.cg.kernel << ", w = " << fmt(s.cg.width_in_diameters, 3)
+      << " d), over the mesh | - | " << fmt(s.cg.comparison.lateral_ratio, 3) << " | "
+      << fmt(s.cg.largest_level_spread(), 3) << " |\n";
   m << "\nThe column on frictionless rollers has a uniform σ_zz across each level (spread 0) and the ratio "
        "K0; "
        "walls with friction carry part of the weight (Janssen's effect), most near the walls, which spreads "
        "each "
        "level; the DEM bed adds the packing's own unevenness (the paper's microstructural effect).\n\n";
+}
+
+// The coarse-grained fields against the column on rollers, on its mesh (docs/coarse-graining.md).
+void coarse_graining_section(std::ostringstream& m, const StudyRecord& s) {
+  const CoarseGrainingOutcome& cg = s.cg;
+  if (!cg.done) return;
+  const double norm = cg.comparison.l2_continuum_zz;
+  m << "## Coarse-grained fields on the mesh\n\n"
+    << "Each grain and contact smoothed by a " << cg.kernel << " kernel of width w = "
+    << fmt(cg.width_in_diameters, 3) << " d = " << fmt(cg.width, 3) << " m (d = " << fmt(cg.diameter, 4)
+    << " m the mean grain diameter, cut-off " << fmt(cg.cutoff, 3) << " m), " << cg.grains << " grains, "
+    << cg.branches << " branches, " << cg.wall_contacts << " wall contacts, evaluated at "
+    << cg.comparison.points << " " << cg.points
+    << " of the continuum's mesh (docs/coarse-graining.md). Against the elastic column on rollers, in the L2 "
+       "norm over the mesh (its Gauss points), divided by its ||σ_zz||: σ_zz "
+    << fmt(cg.comparison.l2_difference[8] / norm, 3) << ", σ_xx " << fmt(cg.comparison.l2_difference[0] / norm, 3)
+    << ", σ_xz " << fmt(cg.comparison.l2_difference[2] / norm, 3)
+    << ". Its level spread is over the levels of Gauss points a cut-off below the bed's top ("
+    << fmt(cg.bed_top, 4) << " m).\n\n"
+    << "- Momentum balance: largest |d(ρv)/dt + ∇·(ρvv) − ∇·σ − ρg − b| over the points = "
+    << fmt(cg.residual, 3) << " of the largest |ρg| (d(ρv)/dt from the grains' accelerations)";
+  if (std::isfinite(cg.residual_by_differences))
+    m << "; with d(ρv)/dt by differences over " << fmt(cg.sampling_interval, 3)
+      << " s: " << fmt(cg.residual_by_differences, 3);
+  m << ".\n- The bed's own d(ρv)/dt (its distance from rest): " << fmt(cg.momentum_rate, 3) << " of ρg.\n"
+    << "- Cost: " << fmt(cg.seconds, 3) << " s (distribution, evaluation, comparison and output).\n"
+    << "- File: `mesh/cg_fields.pvtu` (fields `cg_*`, the continuum's `fem_s_*` and `diff_s_*` as cell "
+       "means).\n\n";
 }
 
 // One table of a quantity against height, centre and edge columns: the continua, then the
@@ -212,6 +245,7 @@ void write_report(const std::filesystem::path& folder, const StudyRecord& s) {
   parameters_section(m, s);
   headline_section(m, s);
   comparison_section(m, s);
+  coarse_graining_section(m, s);
   profile_table(m, s, "σ_zz (Pa) against height", true, [](const Tensor9& t) { return t[8]; });
   profile_table(m, s, "Lateral ratio (σ_xx+σ_yy)/(2σ_zz) against height", false,
                 [](const Tensor9& t) { return t[8] != 0.0 ? 0.5 * (t[0] + t[4]) / t[8] : 0.0; });
@@ -225,6 +259,7 @@ void write_report(const std::filesystem::path& folder, const StudyRecord& s) {
     << "- `mesh/dem_fem.pvtu`: DEM (per formula), the continua and the DEM's difference from the column on "
        "rollers as cell data on one mesh, with Q1 projections (ParaView).\n"
     << "- `fem/column.pvtu`, `fem_<variant>/column.pvtu`: each continuum's solution.\n"
+    << (s.cg.done ? "- `mesh/cg_fields.pvtu`: the coarse-grained fields on the continuum's mesh.\n" : "")
     << "- `grid_stress.xdmf`, `particles.xdmf`: the DEM grid stress and particles over time.\n\n";
   if (s.run.final_strain) m << strain_section(s.in, *s.run.final_strain, folder, s.strain_plots);
   m << "## Timings (wall clock, rank 0)\n\n| stage | s |\n|---|---|\n";
@@ -284,7 +319,26 @@ void write_study_json(const std::filesystem::path& folder, const StudyRecord& s)
         << ", \"zz\": " << fc.against[m].component[8] << "}";
     j << "}}";
   }
-  j << "\n  }\n}\n";
+  j << "\n  }";
+  if (s.cg.done) {
+    const CoarseGrainingOutcome& cg = s.cg;
+    const double norm = cg.comparison.l2_continuum_zz;
+    j << ",\n  \"coarse_graining\": {\"kernel\": \"" << cg.kernel << "\", \"width_m\": " << cg.width
+      << ", \"width_diameters\": " << cg.width_in_diameters << ", \"mean_diameter_m\": " << cg.diameter
+      << ", \"points\": " << cg.comparison.points << ", \"evaluation_points\": \"" << cg.points
+      << "\", \"relative_l2_zz\": " << cg.comparison.l2_difference[8] / norm
+      << ", \"relative_l2_xx\": " << cg.comparison.l2_difference[0] / norm
+      << ", \"lateral_ratio\": " << cg.comparison.lateral_ratio
+      << ", \"largest_level_spread\": " << cg.largest_level_spread()
+      << ", \"momentum_residual\": " << cg.residual << ", \"momentum_rate\": " << cg.momentum_rate
+      << ", \"momentum_residual_by_differences\": ";
+    if (std::isfinite(cg.residual_by_differences))
+      j << cg.residual_by_differences;
+    else
+      j << "null";
+    j << ", \"seconds\": " << cg.seconds << "}";
+  }
+  j << "\n}\n";
   dem::io::write_text_atomically(folder / "study.json", j.str());
 }
 

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "coupling/coarse_graining_study.h"
 #include "coupling/dem_fem_comparison.h"
 #include "coupling/scene_input.h"
 #include "fem/analytic/janssen.h"
@@ -44,6 +45,7 @@ struct StudyRecord {
   std::vector<std::pair<std::string, double>> timings;  // stage, wall seconds on rank 0
   std::vector<std::string> plots, strain_plots;
   int ranks = 1;
+  CoarseGrainingOutcome cg;  // the coarse-grained fields on the mesh, when the scene asks for them
 };
 
 void write_report(const std::filesystem::path& folder, const StudyRecord& s);

@@ -92,6 +92,16 @@ class ElasticColumn {
     sigma[2][2] = s;
     return sigma;
   }
+  void keep_point_stress(const Point<dim>& x, double weight, const SymmetricTensor<2, dim>& sigma) {
+    QuadratureStress& out = result_.quadrature_stress;
+    out.x.push_back({x[0], x[1], x[2]});
+    out.weight.push_back(weight);
+    std::array<double, 9> s{};
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = 0; j < dim; ++j) s[dim * i + j] = sigma[i][j];
+    out.sigma.push_back(s);
+  }
+
   const ColumnProblem problem_;
   const ConfinedColumn exact_;
   const double lambda_, mu_;
@@ -286,6 +296,8 @@ void ElasticColumn::postprocess() {
       // the Frobenius norm of the full 3x3 tensor.
       squared_stress_error += (error * error) * fe_values.JxW(q);
       cell_integral += sigma * fe_values.JxW(q);
+      if (problem_.keep_quadrature_stress)
+        keep_point_stress(fe_values.quadrature_point(q), fe_values.JxW(q), sigma);
     }
     coarse_integrals.add(cell->center(), cell_integral);
 

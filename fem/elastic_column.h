@@ -28,6 +28,17 @@ struct ColumnProblem {
   std::array<unsigned, 3> cells = {3, 3, 4};
   unsigned refinements = 1;  // global refinements of the coarse mesh (each halves h)
   unsigned degree = 1;       // polynomial degree of the FE_Q displacement element, 1 to 4
+  // Keep sigma_h at the quadrature points of this rank's cells (ColumnSolution::
+  // quadrature_stress), for comparisons with fields at points (docs/coarse-graining.md).
+  bool keep_quadrature_stress = false;
+};
+
+// The continuum's stress at the Gauss points (degree + 1 per direction) of the locally owned
+// cells, cell by cell in the mesh's order: position, weight (JxW) and sigma_h row-major.
+struct QuadratureStress {
+  std::vector<std::array<double, 3>> x;
+  std::vector<double> weight;
+  std::vector<std::array<double, 9>> sigma;
 };
 
 // Every field holds the same value on every rank (reduced over the communicator), except the
@@ -48,6 +59,8 @@ struct ColumnSolution {
   double assemble_seconds = 0.0;  // matrix and right-hand side
   double solve_seconds = 0.0;     // AMG setup plus CG
   double total_seconds = 0.0;     // the whole solve_column call, output included
+  // This rank's, when ColumnProblem::keep_quadrature_stress (not reduced over the ranks).
+  QuadratureStress quadrature_stress;
 };
 
 // Throws std::invalid_argument naming the first bad parameter.

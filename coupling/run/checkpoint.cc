@@ -107,6 +107,13 @@ fs::path write_checkpoint(const fs::path& folder, const Checkpoint& c, int keep)
     hdf5::write_attribute(run, "series_rows", static_cast<double>(c.run.files.series_rows));
     dem::io::write_snapshot_list(run, "snapshots", c.run.files.snapshots);
     if (c.run.grids) write_grid_state(run, c.run.grid_state);
+    if (c.run.cg_reference) {
+      const upscale::cg::ReferencePositions& ref = *c.run.cg_reference;
+      hdf5::Handle g(hdf5::create_group(run, "cg_reference"), H5Gclose, "create group cg_reference");
+      hdf5::write_attribute(g, "time", ref.time);
+      hdf5::write_dataset(g, "id", ref.id.data(), ref.id.size());
+      hdf5::write_vectors(g, "position", ref.x);
+    }
     hdf5::flush(file, target.final_path().string());
   }
   target.commit();
@@ -161,6 +168,16 @@ Checkpoint read_checkpoint(const fs::path& file) {
             ? static_cast<dem::StressFormula>(static_cast<int>(in.attribute("formula", "/run/grids/rates")))
             : dem::StressFormula::bagi;
     r.grid_state = read_grid_state(in, "/run/grids", formula);
+  }
+  if (in.exists("/run/cg_reference")) {
+    upscale::cg::ReferencePositions ref;
+    ref.time = in.attribute("time", "/run/cg_reference");
+    ref.id = in.read_all<upscale::cg::GlobalId>("/run/cg_reference/id");
+    ref.x = in.read_vectors("/run/cg_reference/position");
+    if (ref.x.size() != ref.id.size())
+      throw Error(in.where() + "/run/cg_reference: " + std::to_string(ref.id.size()) + " ids but " +
+                  std::to_string(ref.x.size()) + " positions");
+    r.cg_reference = std::move(ref);
   }
   return c;
 }

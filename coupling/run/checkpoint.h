@@ -5,6 +5,7 @@
 // <folder>/checkpoints/checkpoint_<step>.h5, written atomically (temporary name, flushed, then
 // renamed); the newest `keep` are kept. A restart reads the newest one that is valid.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "coupling/run/run_schedule.h"
 #include "dem/engine/engine_state.h"
 #include "dem/io/run_recorder.h"
+#include "upscale/cg/grain_state.h"
 
 namespace upgrain::coupling {
 
@@ -23,6 +25,8 @@ struct RunState {
   dem::io::RunRecorder::State files;
   bool grids = false;  // the run evaluates grids
   GridEvaluationState grid_state;
+  // The coarse-grained displacement's reference, once taken (docs/coarse-graining.md).
+  std::optional<upscale::cg::ReferencePositions> cg_reference;
 };
 
 struct Checkpoint {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "coupling/run/cg_capture.h"
 #include "dem/io/grid_stress_output.h"
 #include "dem/scene/effect_choice.h"
 #include "upscale/strain/grid_strain_output.h"
@@ -35,6 +36,8 @@ struct OutputOptions {
   // The effect set and its reasons, for summary.json; empty: the scene's set as given.
   std::vector<dem::EffectChoice> effect_choices;
   CheckpointOptions checkpoint;
+  // The states kept for the coarse-grained fields (docs/coarse-graining.md).
+  CoarseGrainingCapture coarse_graining;
 };
 
 }  // namespace upgrain::coupling

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "coupling/run/cg_capture.h"
 #include "coupling/run/output_options.h"
 #include "dem/analysis/bed_state.h"
 #include "dem/engine/diagnostics.h"
@@ -39,6 +40,8 @@ struct RunResult {
   // The last grid-strain evaluation, when the output asked for one (rank 0).
   std::optional<upscale::GridStrain> final_strain;
   dem::EngineLoad load;  // how the ranks shared the work (one rank: the defaults)
+  // The states for the coarse-grained fields, when the output asked for them (rank 0).
+  CapturedStates coarse_graining;
 };
 
 // The figures of the engine's final state into `r` (collective; the bed and the mass on rank

@@ -126,9 +126,11 @@ class SceneRun {
         schedule_(make_schedule(sim.scene(), output)),
         files_(sim, output),
         checkpoints_(output ? output->checkpoint : no_checkpoints_, sim.time_step(), output.has_value()),
-        clock_(sim, on_progress, resume ? resume->schedule.step : 0) {
+        clock_(sim, on_progress, resume ? resume->schedule.step : 0),
+        states_(output ? output->coarse_graining : CoarseGrainingCapture{}) {
     if (resume) {
       files_.resume(sim, resume->files);
+      states_.resume(sim, resume->cg_reference);
       if (schedule_.evaluation_every > 0) grids_.emplace(sim, *output, &resume->grid_state);
       // The schedule's state is rank 0's (the checkpoint is read there).
       long where[3] = {resume->schedule.step, static_cast<long>(resume->schedule.next_release),
@@ -144,6 +146,7 @@ class SceneRun {
     // before the step that computes them (Simulation::request_contacts()).
     if (schedule_.evaluation_every > 0) grids_.emplace(sim, *output);
     state_.rest_check_from = schedule_.total / 10;
+    states_.at_step(sim);
   }
 
   RunResult run() {
@@ -151,6 +154,7 @@ class SceneRun {
     first_step_ = sim_.step_count();
     for (long s = state_.step + 1; s <= schedule_.total; ++s) {
       state_.step = s;
+      states_.at_step(sim_);
       release_walls(sim_, schedule_, state_);
       const bool walls_pending = state_.next_release < schedule_.releases.size();
       const bool evaluate = schedule_.evaluation_due(s);
@@ -191,6 +195,8 @@ class SceneRun {
       r.final_grid = grids_->final_grid();
       r.final_strain = grids_->final_strain();
     }
+    // After the figures of the final state: a later state for differences moves the engine on.
+    r.coarse_graining = states_.at_end(sim_);
     files_.write_summary(sim_, r);
     return r;
   }
@@ -219,6 +225,7 @@ class SceneRun {
       c.run.files = files_.state();
       c.run.grids = grids_.has_value();
       if (grids_) c.run.grid_state = grids_->state();
+      c.run.cg_reference = states_.reference();
       written = write_checkpoint(output_->folder, c, output_->checkpoint.keep);
     });
     checkpoints_.written();
@@ -234,6 +241,7 @@ class SceneRun {
   std::optional<GridEvaluation> grids_;
   CheckpointClock checkpoints_;
   ProgressClock clock_;
+  StateCapture states_;
   ScheduleState state_;
   long first_step_ = 0;  // the engine's step when this run began (a resumed run's checkpoint)
 };

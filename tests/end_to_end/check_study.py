@@ -10,6 +10,8 @@
 - the continuum's sigma_zz is uniform across each level, its lateral ratio is K0;
 - with frictionless side walls every continuum (elastic on rollers, the frictional FEM
   variants, Janssen) is the hydrostatic column, and none carries weight on its walls;
+- the coarse-grained fields on the mesh satisfy the momentum balance to round-off, the bed's
+  d(rho v)/dt is that of a bed at rest, and their stress is compared with the continuum's;
 - report, plots, tables and meshes are there, and no temporary file is left."""
 import csv
 import glob
@@ -70,12 +72,23 @@ for key, continuum in s["continua"].items():
 for name, formula in s["formulas"].items():
     assert formula["closest_continuum"] in s["continua"], (name, formula["closest_continuum"])
 
+# Coarse-grained fields (docs/coarse-graining.md), on by default.
+cg = s["coarse_graining"]
+assert cg["momentum_residual"] < 1e-12, cg
+assert cg["momentum_rate"] < 1e-6, cg
+assert cg["points"] > 1000 and 0.0 < cg["relative_l2_zz"] < 1.0, cg
+assert abs(cg["width_m"] - 2 * 1.5e-3) < 1e-12, cg  # w = 1 d, monodisperse r = 1.5 mm
+if cg["momentum_residual_by_differences"] is not None:
+    # A bed at rest: the balance by differences over a few steps is as small as the bed's own
+    # d(rho v)/dt (tiny_study_lucy.prm: Lucy's kernel, no cut-off jump).
+    assert cg["momentum_residual_by_differences"] <= 10 * cg["momentum_rate"] + 1e-12, cg
 for name in ("report.md", "comparison_cells.csv", "relative_l2.csv", "stress_summary.csv", "profiles_szz.png",
              "lateral_ratio.png", "wall_share.png", "level_spread.png", "mesh/dem_fem.pvtu", "fem/column.pvtu",
-             "fem_elastic_friction/column.pvtu", "fem_drucker_prager/column.pvtu"):
+             "fem_elastic_friction/column.pvtu", "fem_drucker_prager/column.pvtu", "mesh/cg_fields.pvtu"):
     assert os.path.exists(name), name
 report = open("report.md").read()
-for needle in ("Headline figures", "Timings", "profiles_szz.png", "bagi", "Closest to the DEM", "Janssen"):
+for needle in ("Headline figures", "Timings", "profiles_szz.png", "bagi", "Closest to the DEM", "Janssen",
+               "Coarse-grained fields on the mesh", f"coarse-grained field ({cg['kernel']}"):
     assert needle in report, needle
 # tiny_study.prm enables the strain: the report has its section and plots.
 sys.path.insert(0, HERE)
@@ -85,5 +98,7 @@ strain_outputs = check_strain_report()
 leftovers = [f for root, _, files in os.walk(".") for f in files if ".tmp" in f]
 assert not leftovers, f"temporary files left: {leftovers}"
 print(f"strain report ok: {strain_outputs} outputs")
+print(f"coarse-grained fields ok: residual {cg['momentum_residual']:.2e} of rho g, ||d s_zz|| "
+      f"{cg['relative_l2_zz']:.3f} over {cg['points']} points")
 print(f"study ok: floor carries {100 * floor_share:.2f} % of the weight, sum V s_zz = {total:.6g} vs "
       f"-M g z_mean = {moment:.6g}, level means of s_zz {['%.4g' % v for v in szz]}")
