@@ -101,7 +101,10 @@ void headline_section(std::ostringstream& m, const StudyRecord& s) {
   if (r.relaxation)
     m << "; relaxed by FIRE in " << r.relaxation->steps << " steps to residual force "
       << fmt(r.relaxation->max_force_residual, 3) << " and torque "
-      << fmt(r.relaxation->max_torque_residual, 3) << " (of m g, m g r)";
+      << fmt(r.relaxation->max_torque_residual, 3) << " (of m g, m g r)"
+      << (r.relaxation->converged ? std::string()
+                                  : "; **not converged**: the step limit (`Study/max relaxation steps`) ended it "
+                                    "above `Study/relaxation tolerance`");
   m << ".\n- Weight over the floor area: " << fmt(weight / area)
     << " Pa. Floor force over area: " << fmt(-s.dem.floor_force.z() / area) << " Pa.\n";
   m << "- Share of the weight the side walls carry: DEM " << percent(c.dem_wall_share);

@@ -43,6 +43,10 @@ struct Row {
   double exact_error = kNaN;   // against the exact answer, when one exists
   std::string exact_name;
   double point_szz = kNaN;  // grid knob: sigma_zz at the centre of the bed
+  // Steps of the run: the dynamics (to the end time or rest) and FIRE's, which a relaxation
+  // that does not reach its tolerance ends at its step limit.
+  long steps = 0, fire_steps = 0;
+  bool fire_converged = true;
 };
 
 std::string slug(const std::string& s) {
@@ -139,6 +143,9 @@ class Study {
       row.bed = measure(r, in.scene.particles.count, in.scene.effects.gravity ? in.scene.gravity : 0.0);
       row.has_bed = true;
       row.point_szz = centre_szz(r, in, row.bed.height);
+      row.fire_steps = r.relaxation ? r.relaxation->steps : 0;
+      row.fire_converged = !r.relaxation || r.relaxation->converged;
+      row.steps = r.steps - row.fire_steps;
     }
     done_seconds_ += seconds;
     ++done_runs_;
@@ -225,6 +232,8 @@ class Study {
   }
   std::string change_text(const Row& r, int m) const {
     if (!std::isfinite(r.change[m])) return "-";
+    // The balance error is a quality of the run: its own value, not its change.
+    if (m == kMeasures - 1) return fmt(r.bed.balance_error, "%.2e");
     if (r.change[m] <= noise_[m]) return r.change[m] == 0.0 ? "0" : "no measurable change";
     return m == kMeasures - 1 ? fmt(r.change[m], "%.2e") : fmt(100.0 * r.change[m], "%.2f %%");
   }
@@ -237,12 +246,14 @@ class Study {
            "to the scene as given (balance_error: absolute), noise = the largest change among replicas that "
            "differ "
            "only in the fill's seed\n";
-    csv << "knob,setting,value,default,wall_s,time_ratio,worst_change,within_tolerance,exact_error";
+    csv << "knob,setting,value,default,wall_s,time_ratio,steps,fire_steps,fire_converged,worst_change,"
+           "within_tolerance,exact_error";
     for (const char* n : kMeasureNames) csv << ',' << n << ',' << n << "_change";
     csv << ",centre_szz\n";
     auto csv_row = [&](const Row& r, double value) {
       csv << r.knob << ",\"" << r.label << "\"," << value << ',' << (r.is_default ? 1 : 0) << ','
-          << r.wall_seconds << ',' << r.wall_seconds / reference_.wall_seconds << ',' << worst_change(r)
+          << r.wall_seconds << ',' << r.wall_seconds / reference_.wall_seconds << ',' << r.steps << ','
+          << r.fire_steps << ',' << (r.fire_converged ? 1 : 0) << ',' << worst_change(r)
           << ',' << (r.has_bed ? (within(r) ? 1 : 0) : 1) << ',' << r.exact_error;
       const std::vector<double> v = r.has_bed ? values(r.bed) : std::vector<double>(kMeasures, kNaN);
       for (int m = 0; m < kMeasures; ++m)
@@ -270,7 +281,23 @@ class Study {
     for (int m = 0; m < kMeasures; ++m)
       md << "| " << kMeasureNames[m] << " | "
          << (m == kMeasures - 1 ? fmt(noise_[m], "%.2e") : fmt(100.0 * noise_[m], "%.3f %%")) << " |\n";
-    md << "\nThe scene as given took " << fmt(reference_.wall_seconds, "%.1f") << " s.\n";
+    md << "\nThe scene as given took " << fmt(reference_.wall_seconds, "%.1f") << " s ("
+       << reference_.steps << " steps, FIRE " << reference_.fire_steps
+       << (reference_.fire_converged ? "" : ", not converged") << ")";
+    if (!replicas_.empty()) {
+      md << "; its replicas";
+      for (const Row& r : replicas_)
+        md << (&r == &replicas_.front() ? " " : ", ") << fmt(r.wall_seconds, "%.1f") << " s (FIRE " << r.fire_steps
+           << (r.fire_converged ? "" : ", not converged") << ")";
+      const bool fire_differs = std::any_of(replicas_.begin(), replicas_.end(), [&](const Row& r) {
+        return r.fire_steps != reference_.fire_steps;
+      });
+      if (fire_differs)
+        md << ". The replicas' relaxations took different step counts, and their wall times follow: a "
+              "setting's time ratio means something only beyond this spread; compare its steps and FIRE "
+              "steps with the replicas'";
+    }
+    md << ".\n";
     for (const std::string& knob : knob_names()) {
       std::vector<const Row*> rows;
       for (const Row& r : rows_)
@@ -278,15 +305,17 @@ class Study {
       if (rows.empty()) continue;
       md << "\n## " << knob << "\n\n| setting | wall (s) | time ratio |";
       const bool bed = std::any_of(rows.begin(), rows.end(), [](const Row* r) { return r->has_bed; });
-      if (bed)
+      if (bed) {
+        md << " steps | FIRE steps |";
         for (const char* n : kMeasureNames) md << ' ' << n << " |";
+      }
       const bool exact =
           std::any_of(rows.begin(), rows.end(), [](const Row* r) { return std::isfinite(r->exact_error); });
       if (exact) md << " exact error |";
       if (knob == "grid") md << " centre sigma_zz (Pa) |";
       md << "\n|---|---|---|";
       if (bed)
-        for (int m = 0; m < kMeasures; ++m) md << "---|";
+        for (int m = 0; m < kMeasures + 2; ++m) md << "---|";
       if (exact) md << "---|";
       if (knob == "grid") md << "---|";
       md << '\n';
@@ -294,8 +323,12 @@ class Study {
       for (const Row* r : rows) {
         md << "| " << r->label << (r->is_default ? " (default)" : "") << " | " << fmt(r->wall_seconds, "%.2f")
            << " | " << fmt(r->wall_seconds / reference_.wall_seconds, "%.2f") << " |";
-        if (bed)
+        if (bed) {
+          md << ' ' << (r->has_bed ? std::to_string(r->steps) : "-") << " | "
+             << (r->has_bed ? std::to_string(r->fire_steps) + (r->fire_converged ? "" : " (not converged)") : "-")
+             << " |";
           for (int m = 0; m < kMeasures; ++m) md << ' ' << (r->has_bed ? change_text(*r, m) : "-") << " |";
+        }
         if (exact) md << ' ' << fmt(r->exact_error, "%.2e") << " |";
         if (knob == "grid") md << ' ' << fmt(r->point_szz, "%.5g") << " |";
         md << '\n';
