@@ -37,6 +37,9 @@ struct ContactEnergy {
   double elastic_rolling = 0.0;
   double dissipated_rolling = 0.0;
   double rolling_stiffness_change = 0.0;
+  // Work a moving wall did on the grain through this contact in the step (F . v_wall dt): energy
+  // put into the system, with a minus sign in the balance.
+  double wall_work = 0.0;
 };
 
 // A particle's share of the contact energies (the deterministic summation books each contact on
@@ -47,6 +50,7 @@ struct ElasticEnergy {
 };
 struct DissipatedEnergy {
   double damping = 0.0, friction = 0.0, stiffness_change = 0.0, rolling = 0.0, rolling_stiffness_change = 0.0;
+  double wall_work = 0.0;  // work done by moving walls (energy put in)
 };
 inline void book(const ContactEnergy& ce, ElasticEnergy& e) {
   e.normal += ce.elastic_normal;
@@ -59,6 +63,7 @@ inline void book(const ContactEnergy& ce, DissipatedEnergy& d) {
   d.stiffness_change += ce.tangential_stiffness_change;
   d.rolling += ce.dissipated_rolling;
   d.rolling_stiffness_change += ce.rolling_stiffness_change;
+  d.wall_work += ce.wall_work;
 }
 
 // An incremental spring's stored vector (a tangential force, a rolling torque) carried into

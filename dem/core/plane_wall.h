@@ -12,6 +12,9 @@ struct PlaneWall {
   Vec3 point;       // a point on the plane
   Vec3 normal;      // unit normal pointing into the granular domain
   double friction;  // Coulomb coefficient particle-wall
+  // Rigid translation of the wall (m/s): the engine moves `point` by it at every step, and the
+  // contacts see it as the wall's velocity (docs/scenes.md, "Moving walls").
+  Vec3 velocity = Vec3::Zero();
 
   // Signed distance of a point from the plane, positive inside the domain.
   [[nodiscard]] double distance(const Vec3& p) const { return (p - point).dot(normal); }

@@ -27,21 +27,24 @@ struct EnergyBalance {
   double rolling_stiffness_change = 0.0;
   // Kinetic energy taken out by a relaxation to equilibrium (dem/relaxation.h).
   double removed_by_relaxation = 0.0;
+  // Cumulative work of moving walls on the grains (sum of F . v_wall dt): energy put in, with a
+  // minus sign in the balance.
+  double work_by_walls = 0.0;
 
   [[nodiscard]] double kinetic() const { return kinetic_translational + kinetic_rotational; }
   [[nodiscard]] double total() const {
     return kinetic() + potential + elastic_normal + elastic_tangential + dissipated_damping +
            dissipated_friction + removed_by_relaxation - tangential_stiffness_change + elastic_rolling +
-           dissipated_rolling - rolling_stiffness_change;
+           dissipated_rolling - rolling_stiffness_change - work_by_walls;
   }
 };
 
 // The relative drift of the total energy since e0, over the energy put into play (initial
-// kinetic and elastic energy and the potential energy released): the balance error of
-// docs/integrator.md.
+// kinetic and elastic energy, the potential energy released and the work of moving walls):
+// the balance error of docs/integrator.md.
 inline double balance_error(const EnergyBalance& e0, const EnergyBalance& e) {
-  const double reference =
-      e0.kinetic() + std::abs(e0.potential - e.potential) + e0.elastic_normal + e0.elastic_tangential;
+  const double reference = e0.kinetic() + std::abs(e0.potential - e.potential) + e0.elastic_normal +
+                           e0.elastic_tangential + std::abs(e.work_by_walls - e0.work_by_walls);
   // Not tracked (NaN channels): unknown, not zero.
   if (!std::isfinite(reference) || !std::isfinite(e.total()) || !std::isfinite(e0.total()))
     return std::numeric_limits<double>::quiet_NaN();

@@ -10,7 +10,7 @@
 //    half kick uses them), and the last evaluation's damping forces and torques (the second
 //    half of their work) and each grain's share of its energies, and its dissipation since the
 //    last rebuild (added to the exact sums at the next one);
-//  - the positions at the last neighbour-list build: the restored lists are built from them,
+//  - the positions at the last neighbour-list build (the walls' too): the restored lists are built from them,
 //    so they hold the same pairs as the interrupted run's, and the next rebuild comes at the
 //    same step (the skin test is against them);
 //  - every contact history, separation budgets of ellipsoid pairs included;
@@ -33,7 +33,7 @@
 namespace upgrain::dem {
 
 struct EngineState {
-  static constexpr int kVersion = 1;
+  static constexpr int kVersion = 2;  // 2: moving walls, the work of walls
 
   // Per particle, sorted by global id.
   ParticleStore particles;
@@ -45,12 +45,14 @@ struct EngineState {
   std::vector<DissipatedEnergy> dissipation_share;
 
   std::vector<ContactHistoryRecord> history;  // sorted by key, separation budgets kept
-  std::vector<PlaneWall> walls;
+  std::vector<PlaneWall> walls;              // with their velocities
+  std::vector<Vec3> wall_points_at_build;  // the walls' points at the last list build
 
   // What the last evaluation counted and exerted (StepDiagnostics, Simulation::wall_forces()),
   // over every rank, for a restart that asks before its first step.
   long pair_contacts = 0, wall_contacts = 0;
   std::vector<Vec3> wall_forces;
+  std::vector<Vec3> wall_damping_forces;  // the dashpot's part of wall_forces
 
   long step = 0;
   long rebuilds = 0;
@@ -60,7 +62,7 @@ struct EngineState {
   Vec3 gravity = Vec3::Zero();
   EnergyBalance initial_energy;
   double removed_by_relaxation = 0.0;
-  static constexpr int kDissipationChannels = 5;
+  static constexpr int kDissipationChannels = 6;
   std::array<std::array<std::int64_t, ExactSum::kDigits + 1>, kDissipationChannels> dissipated{};
   ContactSolverStats solver_stats;  // over every rank
   double reference_mass = -1.0;     // of the first checked gather (the lost-particle guard)

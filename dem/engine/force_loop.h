@@ -44,6 +44,9 @@ struct ForceOutput {
   // Fast: the force of the particles on each wall. Deterministic: the force on the particle of
   // each wall entry (zero when apart), summed per wall in global-id order for the output.
   std::vector<Vec3> wall_force;
+  // Energy tracking with damping: the dashpot's part of wall_force, in the same layout (the
+  // wall's part of the dashpot's work, docs/integrator.md "Moving walls").
+  std::vector<Vec3> wall_damping;
   // Recording loops: every contact evaluated (a = the slot's first particle or the particle
   // at a wall, b = the partner or -(w + 1); the force on a, the contact point).
   std::vector<ContactSample> contacts;

@@ -77,6 +77,7 @@ void compute(const ForceInput& in) {
   if constexpr (kEnergyPerParticle) out.particle_elastic.assign(n, ElasticEnergy{});
   DissipatedEnergy* const dissipation = in.dissipation;
   out.wall_force.assign(kDeterministic ? wl.size() : walls.size(), Vec3::Zero());
+  if constexpr (kDampingWork) out.wall_damping.assign(out.wall_force.size(), Vec3::Zero());
   if constexpr (Shapes) in.posed->update(p);
   if constexpr (Record) out.contacts.clear();
   ContactEnergy energy;  // this rank's running sums (fast summation)
@@ -129,7 +130,7 @@ void compute(const ForceInput& in) {
       }
       kin.lever_j = Vec3::Zero();
       kin.v_i = p.v[i];
-      kin.v_j = Vec3::Zero();
+      kin.v_j = wall.velocity;  // a rigid translation: every point of the wall moves with it
       if constexpr (kRotation) {
         kin.omega_i = p.omega[i];
         kin.omega_j = Vec3::Zero();
@@ -141,6 +142,16 @@ void compute(const ForceInput& in) {
       TangentialSpring& spring = kWallTangential ? h.wall_spring[e] : dummy_spring;
       const ContactForce cf =
           contact_response<kWallTangential, E::damping, kRotation, kEnergy, Law>(wp, kin, spring, sink);
+      if constexpr (kEnergy) {
+        // A moving wall's work on the grain, F . v_wall dt, and the wall's part of the second
+        // half of the dashpot's work, which step() books with the grain's own velocity: the
+        // dashpot dissipates with the relative one. Both book the coming step's half ahead, at
+        // the wall's present velocity (Simulation::energy() and set_wall_velocity() settle it;
+        // docs/integrator.md "Moving walls").
+        sink.wall_work += wp.dt * cf.on_i.dot(wall.velocity);
+        if constexpr (E::damping)
+          sink.dissipated_damping -= 0.5 * wp.dt * cf.damping * kin.normal.dot(wall.velocity);
+      }
       p.force[i] += cf.on_i;
       if constexpr (kDeterministic)
         out.wall_force[e] = cf.on_i;
@@ -150,6 +161,10 @@ void compute(const ForceInput& in) {
       if constexpr (kDampingWork) {
         out.damping_force[i] -= cf.damping * kin.normal;
         if constexpr (Shapes) out.damping_torque[i] -= kin.lever_i.cross(cf.damping * kin.normal);
+        if constexpr (kDeterministic)
+          out.wall_damping[e] = -cf.damping * kin.normal;
+        else
+          out.wall_damping[w] += cf.damping * kin.normal;
       }
       if constexpr (kRotation) {
         if (shaped)
@@ -158,7 +173,7 @@ void compute(const ForceInput& in) {
           p.torque[i] += gap * kin.normal.cross(cf.on_i);
       }
       if constexpr (kRolling) {
-        // The wall neither turns nor moves: omega_j = 0, and the grain's own inertia.
+        // The wall does not turn (it may translate): omega_j = 0, and the grain's own inertia.
         const RollingContact rc{kin.normal,   kin.omega_i, wp.r_star,
                                 cf.stiffness, cf.normal,   rolling_inertia(p, i, kin.lever_i),
                                 wp.dt};

@@ -100,6 +100,9 @@ Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, std::v
   if (!scene.effects.wall_friction) {
     for (auto& w : walls_) w.friction = 0.0;
   }
+  for (const PlaneWall& w : walls_)
+    if (!w.velocity.allFinite()) throw Error("the velocity of wall '" + w.name + "' is not finite");
+  note_wall_motion();
   // Every rank holds the whole scene for a moment: rank 0's store on one rank, flat records
   // of it on more (each then keeps the particles of its block).
   int size = 1;
@@ -131,6 +134,12 @@ Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, std::v
   n_owned_ = static_cast<int>(p_.size());
   rebuild();
   evaluate_forces();
+  // The force loop books a moving wall's work for the step that brought it to the evaluation
+  // and for the next one, half each; there was no step before the first.
+  if (walls_move_ && scene_.effects.energy_tracking) {
+    const double in_half = wall_work_ahead(wall_loads()).work;
+    if (is_root()) dissipated_[kWallWork].add(-in_half);
+  }
   e0_ = energy();
   timings_ = {};  // step() only
 }
@@ -169,6 +178,14 @@ void Simulation::step() {
     moved = moved || (p_.x[i] - x_built[i]).squaredNorm() > limit2;
   }
   if (rotation_) rotation_first_half(p_, static_cast<std::size_t>(n), half, dt_);
+  // Moving walls drift with the grains; a wall that has moved half a skin since the lists were
+  // built rebuilds them, as a grain does (its entries reach a skin: verlet_list.h). The walls
+  // are the same on every rank, so is this decision.
+  if (walls_move_)
+    for (std::size_t w = 0; w < walls_.size(); ++w) {
+      walls_[w].point += dt_ * walls_[w].velocity;
+      moved = moved || (walls_[w].point - wall_points_at_build_[w]).squaredNorm() > limit2;
+    }
   // Second half of the work of the previous step's damping forces, with v(k+1/2); the owned
   // particles are still those of that evaluation. Damping acts along the normal through the
   // centroids of spheres: no torque; ellipsoids' normal misses the centroid.
@@ -276,6 +293,8 @@ void Simulation::rebuild() {
   sort_by_cell(p_, range_);
   domain_->build_ghosts(p_, n_owned_);
   lists_->build(p_, n_owned_, walls_);
+  wall_points_at_build_.clear();
+  for (const PlaneWall& w : walls_) wall_points_at_build_.push_back(w.point);
   history_.restore(lists_->pairs(), lists_->walls(), p_.id, records);
   if (dissipation_per_grain())
     dissipation_share_.assign(static_cast<std::size_t>(n_owned_), DissipatedEnergy{});
@@ -300,7 +319,7 @@ void Simulation::evaluate_forces() {
   in.solver_stats = &solver_stats_;
   in.out = &out_;
   recorded_ = record_next_;
-  restored_wall_forces_.clear();
+  restored_wall_loads_.reset();
   (record_next_ ? loops_.recording : loops_.plain)(in);
   if (!record_next_) out_.contacts.clear();
   record_next_ = false;
@@ -319,6 +338,7 @@ void Simulation::add_to(std::array<ExactSum, kChannels>& sums, const DissipatedE
   sums[kStiffnessChange].add(d.stiffness_change);
   sums[kRolling].add(d.rolling);
   sums[kRollingStiffnessChange].add(d.rolling_stiffness_change);
+  sums[kWallWork].add(d.wall_work);
 }
 
 void Simulation::settle_dissipation() {
@@ -331,6 +351,7 @@ void Simulation::remove_wall(const std::string& name) {
     if (w.name != name) continue;
     // Far along its own normal's opposite side: every grain is then at a distance of order
     // 1e100 inside the domain, and no contact can form (distance() stays finite).
+    set_wall_velocity(static_cast<std::size_t>(&w - walls_.data()), Vec3::Zero());
     w.point -= 1e100 * w.normal;
     // Its wall entries go at the next step's rebuild: rebuilding now would reorder the
     // particles under the last evaluation's per-particle output, whose damping work the next
@@ -339,6 +360,47 @@ void Simulation::remove_wall(const std::string& name) {
     return;
   }
   throw Error("no wall named '" + name + "' to remove");
+}
+
+void Simulation::add_wall(const PlaneWall& wall) {
+  for (const PlaneWall& w : walls_)
+    if (w.name == wall.name) throw Error("a wall named '" + wall.name + "' is already in the scene");
+  walls_.push_back(wall);
+  if (!scene_.effects.wall_friction) walls_.back().friction = 0.0;
+  // Its point at build: far enough that the next step rebuilds (the entries come with it).
+  wall_points_at_build_.push_back(wall.point);
+  note_wall_motion();
+  rebuild_pending_ = true;
+}
+
+std::size_t Simulation::wall_index(const std::string& name) const {
+  for (std::size_t w = 0; w < walls_.size(); ++w)
+    if (walls_[w].name == name) return w;
+  throw Error("no wall named '" + name + "'");
+}
+
+void Simulation::set_wall_velocity(std::size_t wall, const Vec3& velocity) {
+  if (wall >= walls_.size()) throw Error("no wall " + std::to_string(wall) + " to move");
+  if (!velocity.allFinite())
+    throw Error("the velocity of wall '" + walls_[wall].name + "' is not finite");
+  if (velocity == walls_[wall].velocity) return;
+  // The last evaluation booked its wall's work for the coming step with the old velocity
+  // (force_loop_body.h): the half that belongs to the coming step is the new velocity's.
+  if (scene_.effects.energy_tracking) {
+    const WallLoads loads = wall_loads();
+    const Vec3 change = velocity - walls_[wall].velocity;
+    if (is_root()) {
+      dissipated_[kWallWork].add(-0.5 * dt_ * loads.force[wall].dot(change));
+      dissipated_[kDamping].add(-0.5 * dt_ * loads.damping[wall].dot(change));
+    }
+  }
+  walls_[wall].velocity = velocity;
+  note_wall_motion();
+}
+
+void Simulation::note_wall_motion() {
+  walls_move_ = std::any_of(walls_.begin(), walls_.end(),
+                            [](const PlaneWall& w) { return w.velocity != Vec3::Zero(); });
 }
 
 void Simulation::set_gravity(const Vec3& g) {
@@ -500,7 +562,7 @@ EnergyBalance Simulation::energy() const {
     e[4] = elastic_per_particle ? out_.particle_elastic[k].tangential : 0.0;
     e[5] = elastic_per_particle ? out_.particle_elastic[k].rolling : 0.0;
   };
-  double sums[kTerms + kChannels] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  double sums[kTerms + kChannels] = {};
   // The dissipation: exact sums over the ranks (the same bits on every rank), with the grains'
   // shares since the last rebuild (added to a copy: asking changes nothing).
   std::array<ExactSum, kChannels> total = dissipated_;
@@ -548,6 +610,13 @@ EnergyBalance Simulation::energy() const {
   b.tangential_stiffness_change = sums[8];
   b.dissipated_rolling = sums[9];
   b.rolling_stiffness_change = sums[10];
+  b.work_by_walls = sums[11];
+  if (walls_move_) {
+    // Less what the last evaluation booked ahead for the coming step.
+    const WallWorkAhead ahead = wall_work_ahead(wall_loads());
+    b.work_by_walls -= ahead.work;
+    b.dissipated_damping -= ahead.damping;
+  }
   b.removed_by_relaxation = removed_by_relaxation_;
   if (!scene_.effects.energy_tracking) {
     // Not tracked: the contacts' channels are unknown, not zero, and so are the total and the
@@ -555,46 +624,59 @@ EnergyBalance Simulation::energy() const {
     const double unknown = std::numeric_limits<double>::quiet_NaN();
     for (double* c : {&b.elastic_normal, &b.elastic_tangential, &b.elastic_rolling, &b.dissipated_damping,
                       &b.dissipated_friction, &b.tangential_stiffness_change, &b.dissipated_rolling,
-                      &b.rolling_stiffness_change})
+                      &b.rolling_stiffness_change, &b.work_by_walls})
       *c = unknown;
   }
   return b;
 }
 
-std::vector<Vec3> Simulation::wall_forces() const {
-  if (!restored_wall_forces_.empty()) return restored_wall_forces_;
-  std::vector<double> total(3 * walls_.size(), 0.0);
+std::vector<Vec3> Simulation::wall_forces() const { return wall_loads().force; }
+
+Simulation::WallLoads Simulation::wall_loads() const {
+  if (restored_wall_loads_) return *restored_wall_loads_;
+  // The force, then the dashpot's part of it, three components per wall each.
+  const std::size_t k = 3 * walls_.size();
+  const bool damping = !out_.wall_damping.empty();
+  std::vector<double> total(2 * k, 0.0);
   if (summation_ == Summation::deterministic) {
-    // Per wall, the entries' forces in global-id order (bitwise rank-independent).
-    struct Record {
-      long wall;
-      GlobalId gid;
-      double f[3];
-    };
+    // Per wall, the exact sum of its entries' forces (exact_sum.h): the same bits on any rank
+    // count, one message of every wall's digits.
+    std::vector<ExactSum> sums(2 * k);
     const WallList& entries = lists_->walls();
-    std::vector<Record> mine;
     for (std::size_t e = 0; e < entries.size(); ++e) {
-      const Vec3& f = out_.wall_force[e];
-      if (f == Vec3::Zero()) continue;
-      Record r{entries.wall[e], p_.id[entries.particle[e]], {}};
-      put(r.f, f);
-      mine.push_back(r);
+      const std::size_t w = 3 * static_cast<std::size_t>(entries.wall[e]);
+      for (int d = 0; d < 3; ++d) {
+        sums[w + d].add(-out_.wall_force[e][d]);
+        if (damping) sums[k + w + d].add(-out_.wall_damping[e][d]);
+      }
     }
-    std::vector<Record> all = gather_to_root(mine, comm());
-    std::sort(all.begin(), all.end(), [](const Record& a, const Record& b) {
-      return a.wall < b.wall || (a.wall == b.wall && a.gid < b.gid);
-    });
-    for (const Record& r : all)
-      for (int d = 0; d < 3; ++d) total[3 * r.wall + d] -= r.f[d];
-    MPI_Bcast(total.data(), static_cast<int>(total.size()), MPI_DOUBLE, 0, comm());
+    ExactSum::reduce(sums, comm());
+    for (std::size_t c = 0; c < sums.size(); ++c) total[c] = sums[c].value();
   } else {
-    for (std::size_t w = 0; w < walls_.size(); ++w) put(total.data() + 3 * w, out_.wall_force[w]);
+    for (std::size_t w = 0; w < walls_.size(); ++w) {
+      put(total.data() + 3 * w, out_.wall_force[w]);
+      if (damping) put(total.data() + k + 3 * w, out_.wall_damping[w]);
+    }
     if (ranks() > 1)
       MPI_Allreduce(MPI_IN_PLACE, total.data(), static_cast<int>(total.size()), MPI_DOUBLE, MPI_SUM, comm());
   }
-  std::vector<Vec3> out(walls_.size());
-  for (std::size_t w = 0; w < walls_.size(); ++w) out[w] = get(total.data() + 3 * w);
+  WallLoads out{std::vector<Vec3>(walls_.size()), std::vector<Vec3>(walls_.size())};
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    out.force[w] = get(total.data() + 3 * w);
+    out.damping[w] = get(total.data() + k + 3 * w);
+  }
   return out;
+}
+
+Simulation::WallWorkAhead Simulation::wall_work_ahead(const WallLoads& loads) const {
+  // The force loop books, at each evaluation, the coming step's half of the walls' work and of
+  // the dashpot's wall part at the walls' present velocities (force_loop_body.h).
+  WallWorkAhead ahead;
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    ahead.work -= 0.5 * dt_ * loads.force[w].dot(walls_[w].velocity);
+    ahead.damping -= 0.5 * dt_ * loads.damping[w].dot(walls_[w].velocity);
+  }
+  return ahead;
 }
 
 StepDiagnostics Simulation::diagnostics() const {

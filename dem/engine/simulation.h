@@ -101,7 +101,8 @@ class Simulation {
   // The compute grids, block r of rank r, clipped to the decomposition box. Not collective.
   [[nodiscard]] std::vector<Box> compute_grid_blocks() const;
 
-  // --- The scene. Not collective, except set_gravity() and remove_wall().
+  // --- The scene. Not collective, except set_gravity(), add_wall(), remove_wall() and
+  // set_wall_velocity(), which every rank calls alike.
   [[nodiscard]] const SceneConfig& scene() const { return scene_; }
   [[nodiscard]] Summation summation() const { return summation_; }
   // The effects the chosen force loop was compiled with (dem/engine/force_loop.h).
@@ -121,6 +122,16 @@ class Simulation {
   // behind its own plane, and the next step() rebuilds the lists before it evaluates forces,
   // so no contact with it remains. Throws when no wall has that name.
   void remove_wall(const std::string& name);
+  // Puts a wall into the scene (a lid, a piston); its entries come with the next step's
+  // rebuild. Names are unique: throws when the name is taken.
+  void add_wall(const PlaneWall& wall);
+  // The index of the wall of that name in walls() and wall_forces(); throws when there is none.
+  [[nodiscard]] std::size_t wall_index(const std::string& name) const;
+  // Sets a wall's rigid translation (m/s) from the next step on: step() moves its point by
+  // dt v, the contacts see v as the wall's velocity, and its work enters the energy balance
+  // (EnergyBalance::work_by_walls, by the trapezoidal rule of velocity Verlet). A wall that has
+  // moved half a skin since the last build rebuilds the lists, as a particle does. Collective.
+  void set_wall_velocity(std::size_t wall, const Vec3& velocity);
 
   // --- Contacts and stress.
   // Asks the next force evaluation (the next step()) to record its contacts (ForceOutput::
@@ -203,6 +214,21 @@ class Simulation {
 
   SceneConfig scene_;
   std::vector<PlaneWall> walls_;
+  std::vector<Vec3> wall_points_at_build_;  // the walls' points when the lists were last built
+  bool walls_move_ = false;                 // some wall has a velocity
+  void note_wall_motion();                  // sets walls_move_ from the walls' velocities
+  // The last evaluation's force on each wall and the dashpot's part of it: the same bits on
+  // every rank. Collective.
+  struct WallLoads {
+    std::vector<Vec3> force, damping;
+  };
+  [[nodiscard]] WallLoads wall_loads() const;
+  // Half a step of the walls' work on the grains and of the dashpot's wall part, at the walls'
+  // present velocities: what an evaluation books ahead for the coming step.
+  struct WallWorkAhead {
+    double work = 0.0, damping = 0.0;
+  };
+  [[nodiscard]] WallWorkAhead wall_work_ahead(const WallLoads& loads) const;
   Summation summation_;
   Vec3 g_ = Vec3::Zero();
   double dt_ = 0.0;
@@ -230,7 +256,7 @@ class Simulation {
   bool record_next_ = false;
   bool recorded_ = false;
   double last_overlap_ratio_ = 0.0;
-  std::vector<Vec3> restored_wall_forces_;  // after a restore, until the first evaluation
+  std::optional<WallLoads> restored_wall_loads_;  // after a restore, until the first evaluation
   long last_overlap_step_ = 0;
 
   // Cumulative dissipation (docs/integrator.md), each channel the exact sum of its terms on this
@@ -239,7 +265,15 @@ class Simulation {
   // local index), and adds it to the exact sums at the next rebuild, before grains change index
   // or rank; the totals over the ranks then do not depend on how many there are. Fast: each
   // evaluation's running sums go straight into the exact sums.
-  enum Channel { kDamping, kFriction, kStiffnessChange, kRolling, kRollingStiffnessChange, kChannels };
+  enum Channel {
+    kDamping,
+    kFriction,
+    kStiffnessChange,
+    kRolling,
+    kRollingStiffnessChange,
+    kWallWork,
+    kChannels
+  };
   std::array<ExactSum, kChannels> dissipated_;
   std::vector<DissipatedEnergy> dissipation_share_;
   // Adds shares to the exact sums: the grains' at a rebuild, the rank's of an evaluation (fast).

@@ -65,11 +65,15 @@ std::vector<char> to_bytes(const EngineState& s) {
     w.put(wall.point);
     w.put(wall.normal);
     w.put(wall.friction);
+    w.put(wall.velocity);
   }
   w.put(s.pair_contacts);
   w.put(s.wall_contacts);
+  w.put(static_cast<std::uint64_t>(s.wall_points_at_build.size()));
+  for (const Vec3& x : s.wall_points_at_build) w.put(x);
   w.put(static_cast<std::uint64_t>(s.wall_forces.size()));
   for (const Vec3& f : s.wall_forces) w.put(f);
+  for (const Vec3& f : s.wall_damping_forces) w.put(f);
   w.put(s.step);
   w.put(s.rebuilds);
   w.put(s.rebuild_pending);
@@ -118,13 +122,20 @@ EngineState from_bytes(const std::vector<char>& bytes) {
     r.get(wall.point);
     r.get(wall.normal);
     r.get(wall.friction);
+    r.get(wall.velocity);
   }
   r.get(s.pair_contacts);
   r.get(s.wall_contacts);
+  std::uint64_t points = 0;
+  r.get(points);
+  s.wall_points_at_build.resize(points);
+  for (Vec3& x : s.wall_points_at_build) r.get(x);
   std::uint64_t forces = 0;
   r.get(forces);
   s.wall_forces.resize(forces);
   for (Vec3& f : s.wall_forces) r.get(f);
+  s.wall_damping_forces.resize(forces);
+  for (Vec3& f : s.wall_damping_forces) r.get(f);
   r.get(s.step);
   r.get(s.rebuilds);
   r.get(s.rebuild_pending);
@@ -191,7 +202,7 @@ EngineState Simulation::capture_state() const {
   MPI_Allreduce(MPI_IN_PLACE, contacts, 2, MPI_LONG, MPI_SUM, comm());
   double overlap = last_overlap_ratio_;
   MPI_Allreduce(MPI_IN_PLACE, &overlap, 1, MPI_DOUBLE, MPI_MAX, comm());
-  const std::vector<Vec3> wall_force = wall_forces();
+  WallLoads loads = wall_loads();
   ContactSolverStats stats = solver_stats_;
   static_assert(sizeof(ContactSolverStats) % sizeof(std::int64_t) == 0);
   static_assert(kChannels == EngineState::kDissipationChannels);
@@ -214,13 +225,15 @@ EngineState Simulation::capture_state() const {
   sort_unique(history);
   s.history = std::move(history);
   s.walls = walls_;
+  s.wall_points_at_build = wall_points_at_build_;
   s.step = step_;
   s.rebuilds = rebuilds_;
   s.rebuild_pending = rebuild_pending_;
   s.last_overlap_ratio = overlap;
   s.pair_contacts = contacts[0];
   s.wall_contacts = contacts[1];
-  s.wall_forces = wall_force;
+  s.wall_forces = std::move(loads.force);
+  s.wall_damping_forces = std::move(loads.damping);
   s.last_overlap_step = last_overlap_step_;
   s.gravity = g_;
   s.initial_energy = e0_;
@@ -251,6 +264,11 @@ Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_roo
   bytes = {};
   if (s.particles.size() == 0) throw Error("restore: the state holds no particles");
   walls_ = s.walls;
+  note_wall_motion();
+  if (s.wall_points_at_build.size() != walls_.size())
+    throw Error("restore: " + std::to_string(s.wall_points_at_build.size()) + " wall points at build for " +
+                std::to_string(walls_.size()) + " walls");
+  wall_points_at_build_ = s.wall_points_at_build;
   g_ = s.gravity;
   double max_radius = 0.0;
   for (double r : s.particles.radius) max_radius = std::max(max_radius, r);
@@ -273,7 +291,10 @@ Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_roo
   n_owned_ = static_cast<int>(p_.size());
   sort_by_cell(p_, range_);
   domain_->build_ghosts(p_, n_owned_);
-  lists_->build(p_, n_owned_, walls_);
+  // The walls where the lists were last built, too.
+  std::vector<PlaneWall> walls_at_build = walls_;
+  for (std::size_t w = 0; w < walls_.size(); ++w) walls_at_build[w].point = wall_points_at_build_[w];
+  lists_->build(p_, n_owned_, walls_at_build);
   history_.restore(lists_->pairs(), lists_->walls(), p_.id, s.history);
   // Back to the positions of the state, and the ghosts with them.
   for (int i = 0; i < n_owned_; ++i) p_.x[i] = s.particles.x[index_of(s.particles, p_.id[i])];
@@ -310,7 +331,9 @@ Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_roo
   last_overlap_step_ = s.last_overlap_step;
   e0_ = s.initial_energy;
   removed_by_relaxation_ = s.removed_by_relaxation;
-  restored_wall_forces_ = s.wall_forces;
+  if (s.wall_forces.size() != walls_.size() || s.wall_damping_forces.size() != walls_.size())
+    throw Error("restore: the state's wall forces do not match its walls");
+  restored_wall_loads_ = WallLoads{s.wall_forces, s.wall_damping_forces};
   // The global sums and counts are rank 0's to continue; the other ranks add from zero.
   if (is_root()) {
     out_.pair_contacts = s.pair_contacts;

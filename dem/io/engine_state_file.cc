@@ -32,6 +32,7 @@ constexpr EnergyTerm kEnergyTerms[] = {
     {"dissipated_rolling", &EnergyBalance::dissipated_rolling},
     {"rolling_stiffness_change", &EnergyBalance::rolling_stiffness_change},
     {"removed_by_relaxation", &EnergyBalance::removed_by_relaxation},
+    {"work_by_walls", &EnergyBalance::work_by_walls},
 };
 
 std::vector<double> flat(const std::vector<ElasticEnergy>& e) {
@@ -42,7 +43,8 @@ std::vector<double> flat(const std::vector<ElasticEnergy>& e) {
 std::vector<double> flat(const std::vector<DissipatedEnergy>& d) {
   std::vector<double> out;
   for (const DissipatedEnergy& x : d)
-    out.insert(out.end(), {x.damping, x.friction, x.stiffness_change, x.rolling, x.rolling_stiffness_change});
+    out.insert(out.end(),
+               {x.damping, x.friction, x.stiffness_change, x.rolling, x.rolling_stiffness_change, x.wall_work});
   return out;
 }
 
@@ -78,7 +80,7 @@ void write_particles(hid_t parent, const EngineState& s) {
   if (!s.rolling_damping_torque.empty()) write_vectors(g, "rolling_damping_torque", s.rolling_damping_torque);
   if (!s.particle_elastic.empty()) {
     write_dataset(g, "elastic", flat(s.particle_elastic).data(), n, 3);
-    write_dataset(g, "dissipation_share", flat(s.dissipation_share).data(), n, 5);
+    write_dataset(g, "dissipation_share", flat(s.dissipation_share).data(), n, 6);
   }
 }
 
@@ -105,21 +107,24 @@ void write_history(hid_t parent, const std::vector<ContactHistoryRecord>& record
   write_dataset(g, "values", v.data(), n, kHistoryValues);
 }
 
-void write_walls(hid_t parent, const std::vector<PlaneWall>& walls) {
+void write_walls(hid_t parent, const EngineState& s) {
   Handle g(hdf5::create_group(parent, "walls"), H5Gclose, "create group walls");
   std::vector<std::string> names;
-  std::vector<Vec3> point, normal;
+  std::vector<Vec3> point, normal, velocity;
   std::vector<double> friction;
-  for (const PlaneWall& w : walls) {
+  for (const PlaneWall& w : s.walls) {
     names.push_back(w.name);
     point.push_back(w.point);
     normal.push_back(w.normal);
     friction.push_back(w.friction);
+    velocity.push_back(w.velocity);
   }
   write_attribute(g, "names", names);
   write_vectors(g, "point", point);
   write_vectors(g, "normal", normal);
   write_dataset(g, "friction", friction.data(), friction.size());
+  write_vectors(g, "velocity", velocity);
+  write_vectors(g, "point_at_build", s.wall_points_at_build);
 }
 
 void write_domain(hid_t parent, const DomainState& d) {
@@ -144,6 +149,7 @@ void write_engine_state(hid_t parent, const std::string& group, const EngineStat
   write_attribute(g, "pair_contacts", static_cast<double>(s.pair_contacts));
   write_attribute(g, "wall_contacts", static_cast<double>(s.wall_contacts));
   write_vectors(g, "wall_forces", s.wall_forces);
+  write_vectors(g, "wall_damping_forces", s.wall_damping_forces);
   write_attribute(g, "rebuilds", static_cast<double>(s.rebuilds));
   write_attribute(g, "rebuild_pending", s.rebuild_pending ? 1.0 : 0.0);
   write_attribute(g, "last_overlap_ratio", s.last_overlap_ratio);
@@ -161,7 +167,7 @@ void write_engine_state(hid_t parent, const std::string& group, const EngineStat
   write_dataset(g, "solver_stats", reinterpret_cast<const std::int64_t*>(&s.solver_stats), 9);
   write_particles(g, s);
   write_history(g, s.history);
-  write_walls(g, s.walls);
+  write_walls(g, s);
   write_domain(g, s.domain);
 }
 
@@ -178,6 +184,7 @@ EngineState read_engine_state(const hdf5::Reader& in, const std::string& group) 
   s.pair_contacts = whole("pair_contacts");
   s.wall_contacts = whole("wall_contacts");
   s.wall_forces = in.read_vectors(group + "/wall_forces");
+  s.wall_damping_forces = in.read_vectors(group + "/wall_damping_forces");
   s.rebuilds = whole("rebuilds");
   s.rebuild_pending = in.attribute("rebuild_pending", group) != 0.0;
   s.last_overlap_ratio = in.attribute("last_overlap_ratio", group);
@@ -234,10 +241,10 @@ EngineState read_engine_state(const hdf5::Reader& in, const std::string& group) 
   s.rolling_damping_torque = in.read_vectors(pg + "rolling_damping_torque", true);
   if (in.exists(pg + "elastic")) {
     const std::vector<double> e = in.read<double>(pg + "elastic", H5T_NATIVE_DOUBLE, n, 3);
-    const std::vector<double> d = in.read<double>(pg + "dissipation_share", H5T_NATIVE_DOUBLE, n, 5);
+    const std::vector<double> d = in.read<double>(pg + "dissipation_share", H5T_NATIVE_DOUBLE, n, 6);
     for (std::size_t i = 0; i < n; ++i) {
       s.particle_elastic.push_back({e[3 * i], e[3 * i + 1], e[3 * i + 2]});
-      s.dissipation_share.push_back({d[5 * i], d[5 * i + 1], d[5 * i + 2], d[5 * i + 3], d[5 * i + 4]});
+      s.dissipation_share.push_back({d[6 * i], d[6 * i + 1], d[6 * i + 2], d[6 * i + 3], d[6 * i + 4], d[6 * i + 5]});
     }
   }
   if (!std::is_sorted(p.id.begin(), p.id.end()) || std::adjacent_find(p.id.begin(), p.id.end()) != p.id.end())
@@ -270,10 +277,13 @@ EngineState read_engine_state(const hdf5::Reader& in, const std::string& group) 
   const std::vector<std::string> names = in.text_list_attribute("names", wg);
   const std::vector<Vec3> point = in.read_vectors(wg + "/point"), normal = in.read_vectors(wg + "/normal");
   const std::vector<double> friction = in.read<double>(wg + "/friction", H5T_NATIVE_DOUBLE, names.size());
-  if (point.size() != names.size() || normal.size() != names.size())
+  const std::vector<Vec3> velocity = in.read_vectors(wg + "/velocity");
+  s.wall_points_at_build = in.read_vectors(wg + "/point_at_build");
+  if (point.size() != names.size() || normal.size() != names.size() || velocity.size() != names.size() ||
+      s.wall_points_at_build.size() != names.size())
     throw Error(in.where() + "walls differ in count");
   for (std::size_t w = 0; w < names.size(); ++w)
-    s.walls.push_back({names[w], point[w], normal[w], friction[w]});
+    s.walls.push_back({names[w], point[w], normal[w], friction[w], velocity[w]});
 
   // Domain.
   const std::string dg = group + "/domain/";

@@ -1,6 +1,8 @@
 #include "dem/parallel/exact_sum.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 #include <limits>
 
 namespace upgrain::dem {
@@ -54,6 +56,23 @@ ExactSum ExactSum::reduced(MPI_Comm comm) const {
   out.non_finite_ = out.non_finite_ != 0 ? 1 : 0;
   out.carry();
   return out;
+}
+
+void ExactSum::reduce(std::span<ExactSum> sums, MPI_Comm comm) {
+  std::vector<std::int64_t> words;
+  words.reserve(sums.size() * (kDigits + 1));
+  for (const ExactSum& s : sums) {
+    const std::array<std::int64_t, kDigits + 1> w = s.state();  // carried: no overflow over ranks
+    words.insert(words.end(), w.begin(), w.end());
+  }
+  MPI_Allreduce(MPI_IN_PLACE, words.data(), static_cast<int>(words.size()), MPI_INT64_T, MPI_SUM, comm);
+  for (std::size_t k = 0; k < sums.size(); ++k) {
+    std::array<std::int64_t, kDigits + 1> w;
+    std::copy_n(words.begin() + static_cast<std::ptrdiff_t>(k * (kDigits + 1)), kDigits + 1, w.begin());
+    sums[k] = from_state(w);
+    sums[k].non_finite_ = sums[k].non_finite_ != 0 ? 1 : 0;
+    sums[k].carry();
+  }
 }
 
 std::array<std::int64_t, ExactSum::kDigits + 1> ExactSum::state() const {

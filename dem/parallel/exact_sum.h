@@ -17,6 +17,7 @@
 #include <array>
 #include <bit>
 #include <cstdint>
+#include <span>
 
 namespace upgrain::dem {
 
@@ -63,6 +64,8 @@ class ExactSum {
 
   // The sum of every rank's terms, on every rank (collective).
   [[nodiscard]] ExactSum reduced(MPI_Comm comm) const;
+  // Every accumulator of `sums` replaced by its sum over the ranks, in one message (collective).
+  static void reduce(std::span<ExactSum> sums, MPI_Comm comm);
   // Adds another accumulator's terms.
   void add(const ExactSum& other);
 

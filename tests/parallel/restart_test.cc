@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
@@ -50,7 +51,8 @@ void expect_same(const Outcome& a, const Outcome& b, const std::string& what) {
         {x.dissipated_damping, y.dissipated_damping, "damping"},
         {x.dissipated_friction, y.dissipated_friction, "friction"},
         {x.tangential_stiffness_change, y.tangential_stiffness_change, "stiffness change"},
-        {x.dissipated_rolling, y.dissipated_rolling, "rolling"}})
+        {x.dissipated_rolling, y.dissipated_rolling, "rolling"},
+        {x.work_by_walls, y.work_by_walls, "walls' work"}})
     EXPECT_EQ(u, v) << what << ": " << name << " energy";
   EXPECT_EQ(a.wall_forces, b.wall_forces) << what;
   EXPECT_EQ(a.diagnostics.particle_contacts, b.diagnostics.particle_contacts) << what;
@@ -64,9 +66,10 @@ void expect_same(const Outcome& a, const Outcome& b, const std::string& what) {
 // rank 0 alone; (4) captured on all ranks but the last and continued on all of them (one rank
 // more: 1 -> 2, 2 -> 3, ...). Every continuation must give the bits of (1).
 void expect_restart_is_bitwise(const SceneConfig& s, long first, long then, const std::string& what,
-                               bool one_rank_more = true) {
+                               bool one_rank_more = true, const std::vector<PlaneWall>& more_walls = {}) {
   const ParticleStore fill = fill_container(s);
-  const std::vector<PlaneWall> walls = make_open_box(s.container);
+  std::vector<PlaneWall> walls = make_open_box(s.container);
+  walls.insert(walls.end(), more_walls.begin(), more_walls.end());
   // (1) and the state at `first` on all ranks.
   Simulation world(s, fill, walls, MPI_COMM_WORLD);
   world.run(first);
@@ -74,10 +77,13 @@ void expect_restart_is_bitwise(const SceneConfig& s, long first, long then, cons
   world.run(then);
   const Outcome reference = outcome(world);
   if (test::world_rank() == 0) {
-    std::printf("%s: %ld + %ld steps on %d ranks, %ld rebuilds, %ld contacts, %zu histories at the capture\n",
+    std::printf("%s: %ld + %ld steps on %d ranks, %ld rebuilds, %ld contacts, %zu histories at the capture, "
+                "%ld wall contacts\n",
                 what.c_str(), first, then, test::world_size(), reference.diagnostics.neighbor_builds,
-                reference.diagnostics.particle_contacts, at_first.history.size());
+                reference.diagnostics.particle_contacts, at_first.history.size(), reference.diagnostics.wall_contacts);
     ASSERT_EQ(at_first.step, first);
+    for (std::size_t w = walls.size() - more_walls.size(); w < walls.size(); ++w)
+      EXPECT_NE(reference.wall_forces[w], Vec3::Zero()) << walls[w].name << " touches the grains";
   }
   // (2) all ranks from the state.
   {
@@ -134,6 +140,20 @@ TEST(Restart, EllipsoidsAndAMixContinueBitwise) {
   expect_restart_is_bitwise(s, 16000, 3000, "120 paper ellipsoids");
   s.particles.shapes = {{1.0, 1.0, 3.0}, {0.6, 0.4, 1.0}};
   expect_restart_is_bitwise(s, 16000, 3000, "120 spheres and flat ellipsoids", false);
+}
+
+// A lid coming down onto the falling grains and a floor sliding under them (docs/scenes.md,
+// "Moving walls"): the walls' positions, velocities and work continue bitwise.
+TEST(Restart, MovingWallsContinueBitwise) {
+  SceneConfig s = test::deposition_scene(240);
+  const ParticleStore fill = fill_container(s);
+  double top = 0.0;
+  for (std::size_t i = 0; i < fill.size(); ++i) top = std::max(top, fill.x[i].z() + fill.radius[i]);
+  PlaneWall lid{"lid", Vec3(0, 0, top + 1e-3), Vec3(0, 0, -1), 0.5};
+  lid.velocity = Vec3(0, 0, -0.1);
+  PlaneWall belt{"belt", Vec3(0, 0, 1e-4), Vec3(0, 0, 1), 0.5};  // just above the box's floor
+  belt.velocity = Vec3(0.05, 0.02, 0);
+  expect_restart_is_bitwise(s, 2500, 1500, "240 spheres, moving lid and belt", true, {lid, belt});
 }
 
 // A gate that opens between the capture and the end: the wall removed after the restart, and a
