@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -15,6 +14,7 @@
 #include "coupling/run/scene_run.h"
 #include "coupling/run/stop_request.h"
 #include "coupling/scene_input.h"
+#include "coupling/scene_text.h"
 #include "coupling/strain_report.h"
 #include "coupling/study.h"
 #include "dem/core/error.h"
@@ -119,15 +119,6 @@ void print_deposition(const upgrain::coupling::SceneInput& in, const upgrain::co
   std::fflush(stdout);
 }
 
-std::string read_text(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw upgrain::Error(file + ": cannot open the parameter file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in && !in.eof()) throw upgrain::Error(file + ": cannot be read");
-  return text.str();
-}
-
 // The scene of a run to continue (upgrain --restart DIR [scene.prm]): rank 0 reads the newest
 // valid checkpoint of DIR, every rank the scene it stores; a scene file given as well may change
 // only what a restart may (coupling::differing_parameters). `notes` receives what the log
@@ -161,7 +152,7 @@ upgrain::coupling::SceneInput restart_input(const std::string& dir, const std::s
   coupling::SceneInput in = coupling::parse_scene_text(scene, dir + ": the scene of its checkpoint");
   if (!file.empty()) {
     // The given file's values for what a restart may change, the checkpoint's for the rest.
-    coupling::SceneInput given = coupling::parse_scene_text(read_text(file), file);
+    coupling::SceneInput given = coupling::parse_scene_text(coupling::read_scene_bytes(file), file);
     const std::vector<std::string> differ =
         coupling::differing_parameters(scene, given.output.checkpoint.scene);
     if (!differ.empty()) {
@@ -186,6 +177,7 @@ int run(int argc, char** argv) {
   using namespace upgrain;
   std::string file, output_override, restart_dir;
   bool check_only = false;
+  // The command line is every rank's: its errors are said once (CollectiveError).
   for (int k = 1; k < argc; ++k) {
     const std::string a = argv[k];
     if (a == "-h" || a == "--help") {
@@ -200,17 +192,17 @@ int run(int argc, char** argv) {
     } else if (a == "--check") {
       check_only = true;
     } else if (a == "--restart") {
-      if (k + 1 >= argc) throw Error("--restart needs the output folder of the run");
+      if (k + 1 >= argc) throw CollectiveError("--restart needs the output folder of the run");
       restart_dir = argv[++k];
     } else if (a == "--output") {
-      if (k + 1 >= argc) throw Error("--output needs a folder name");
+      if (k + 1 >= argc || argv[k + 1][0] == '\0') throw CollectiveError("--output needs a folder name");
       output_override = argv[++k];
     } else if (!a.empty() && a[0] == '-') {
-      throw Error("unknown option '" + a + "' (see upgrain --help)");
+      throw CollectiveError("unknown option '" + a + "' (see upgrain --help)");
     } else if (file.empty()) {
       file = a;
     } else {
-      throw Error("more than one scene file given ('" + file + "', '" + a + "')");
+      throw CollectiveError("more than one scene file given ('" + file + "', '" + a + "')");
     }
   }
   int rank = 0, ranks = 1;
@@ -218,18 +210,25 @@ int run(int argc, char** argv) {
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
   coupling::SceneInput in;
   std::vector<std::string> restart_notes;
-  if (!restart_dir.empty()) {
-    if (!output_override.empty()) throw Error("--restart continues in its own folder: leave out --output");
-    in = restart_input(restart_dir, file, restart_notes);
-  } else {
-    in = file.empty() ? coupling::default_scene() : coupling::read_scene_file(file);
-    if (!output_override.empty()) {
-      in.output.folder = output_override;
-      coupling::validate_scene(in);
+  if (!restart_dir.empty() && !output_override.empty())
+    throw CollectiveError("--restart continues in its own folder: leave out --output");
+  // Every rank reads and checks the scene, and they agree on the outcome before rank 0 creates
+  // the output folder: a refusal is every rank's, printed once.
+  std::string refusal;
+  try {
+    if (!restart_dir.empty()) {
+      in = restart_input(restart_dir, file, restart_notes);
+    } else {
+      in = file.empty() ? coupling::default_scene() : coupling::read_scene_file(file);
+      if (!output_override.empty()) {
+        in.output.folder = output_override;
+        coupling::validate_scene(in);
+      }
     }
+  } catch (const std::exception& e) {
+    refusal = e.what();
   }
-  // Every rank has read and checked the scene before rank 0 creates the output folder.
-  MPI_Barrier(MPI_COMM_WORLD);
+  dem::throw_if_any(MPI_COMM_WORLD, refusal);
   const dem::TimeStepEstimate ts = dem::estimate_time_step(in.scene);
   if (rank == 0) {
     std::printf("upgrain: %s\n  %ld %s, time step %.3g s (safe %.3g s, %s-limited), end time %.3g s\n",
@@ -245,6 +244,7 @@ int run(int argc, char** argv) {
       std::printf("    %-20s %-3s  %s\n", c.entry.c_str(), c.on ? "on" : "off", c.reason.c_str());
     std::printf("  %d MPI rank%s, %s summation (Parallel/summation)\n", ranks, ranks > 1 ? "s" : "",
                 dem::to_string(in.parallel.summation).c_str());
+    for (const std::string& w : in.warnings) std::printf("  warning: %s\n", w.c_str());
     if (in.parallel.legacy_engine != "auto")
       std::printf(
           "  warning: Parallel/DEM engine = %s is ignored: one engine runs the DEM on every rank count "
@@ -290,6 +290,8 @@ int run(int argc, char** argv) {
       std::fflush(stdout);
     }
     return 128 + stopped.signal();
+  } catch (const CollectiveError& e) {
+    throw CollectiveError(in.source + ": " + e.what());
   } catch (const Error& e) {
     throw Error(in.source + ": " + e.what());
   }
@@ -301,11 +303,28 @@ int run(int argc, char** argv) {
 int main(int argc, char** argv) {
   upgrain::dem::prefer_isolated_singleton();
   MPI_Init(&argc, &argv);
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
   int code = 0;
   try {
     code = run(argc, argv);
+  } catch (const upgrain::CollectiveError& e) {
+    // Every rank has it: said once.
+    if (rank == 0) {
+      std::fflush(stdout);
+      std::fprintf(stderr, "\nupgrain: error: %s\n", e.what());
+    }
+    code = 1;
   } catch (const std::exception& e) {
+    // This rank's alone: the others may be waiting for it in a message, so the run is ended
+    // (MPI_Abort) rather than left to hang.
     std::fflush(stdout);
+    if (ranks > 1) {
+      std::fprintf(stderr, "\nupgrain: error on rank %d of %d: %s\n", rank, ranks, e.what());
+      std::fflush(stderr);
+      MPI_Abort(MPI_COMM_WORLD, 1);
+    }
     std::fprintf(stderr, "\nupgrain: error: %s\n", e.what());
     code = 1;
   }

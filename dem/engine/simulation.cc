@@ -208,7 +208,7 @@ void Simulation::step() {
   const Clock::time_point t2 = Clock::now();
   const std::string overlap = runaway_overlap(global[1], kRunawayOverlapRatio, last_overlap_step_,
                                               static_cast<double>(last_overlap_step_) * dt_, dt_);
-  if (!overlap.empty()) throw Error(overlap);
+  if (!overlap.empty()) throw CollectiveError(overlap);  // every rank has the same maximum
   const bool rebuilding = global[0] > 0.0;
   if (rebuilding) {
     rebuild();
@@ -270,7 +270,7 @@ void Simulation::rebuild() {
   MPI_Allreduce(&count, &total, 1, MPI_LONG, MPI_SUM, comm());
   timings_.rebuild_messages += seconds_since(t);
   const std::string lost = lost_particles(total, n_global_, step_);
-  if (!lost.empty()) throw Error(lost);
+  if (!lost.empty()) throw CollectiveError(lost);
   sort_unique(records);
   // Memory locality only: the lists fix the order of every sum.
   sort_by_cell(p_, range_);
@@ -605,7 +605,7 @@ StepDiagnostics Simulation::diagnostics() const {
   // step() checks each evaluation at the next step's reduction; this covers a run's last one.
   const std::string runaway = runaway_overlap(overlap, kRunawayOverlapRatio, last_overlap_step_,
                                               static_cast<double>(last_overlap_step_) * dt_, dt_);
-  if (!runaway.empty()) throw Error(runaway);
+  if (!runaway.empty()) throw CollectiveError(runaway);
   StepDiagnostics d;
   d.particle_contacts = counts[0];
   d.wall_contacts = counts[1];
