@@ -166,6 +166,8 @@ upgrain::coupling::SceneInput restart_input(const std::string& dir, const std::s
     in.output.checkpoint = given.output.checkpoint;  // with the given file's text: its end time
     in.parallel = given.parallel;
   }
+  // Later errors name what the user ran, not the checkpoint's copy of the scene.
+  in.source = file.empty() ? "upgrain --restart " + dir : file;
   in.output.folder = dir;
   in.restarting = true;
   in.resume = checkpoint;

@@ -9,7 +9,9 @@ Usage: compare_rank_outputs.py [--other-blocks] REFERENCE_FOLDER OTHER_FOLDER...
   an exact sum, docs/parallel.md), but the timings and how the work was shared.
 Report, plots, logs and the deal.II meshes (which carry their creation time) are skipped.
 With --other-blocks (runs on different rank counts) so are the compute-grid stress and strain,
-whose blocks are those of each rank count, and the checkpoints, which keep the blocks.
+whose blocks are those of each rank count, and the checkpoints, which keep the blocks; with
+--no-checkpoints the checkpoints alone (a run continued with another end time, or stopped by a
+signal, has other checkpoints by design: they hold the scene's text and the step they stopped at).
 """
 import csv
 import json
@@ -80,6 +82,9 @@ def main():
     args = sys.argv[1:]
     if args and args[0] == '--other-blocks':
         SKIP_FILES, SKIP_FOLDERS = BLOCK_FILES, BLOCK_FOLDERS
+        args = args[1:]
+    elif args and args[0] == '--no-checkpoints':
+        SKIP_FOLDERS = ('checkpoints' + os.sep,)
         args = args[1:]
     ref = args[0]
     failed = False
