@@ -3,6 +3,7 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -11,6 +12,7 @@
 #include <string>
 
 #include "coupling/dem_run.h"
+#include "coupling/run/output_folder.h"
 #include "coupling/run/scene_run.h"
 #include "coupling/run/stop_request.h"
 #include "coupling/scene_input.h"
@@ -71,8 +73,12 @@ void print_deposition(const upgrain::coupling::SceneInput& in, const upgrain::co
               2.0 * static_cast<double>(r.diagnostics.particle_contacts) /
                   static_cast<double>(in.scene.particles.count),
               r.bed.particles_outside);
-  std::printf("  energy: kinetic/released %.3e, balance error %.3e\n", r.kinetic_to_released,
-              r.energy_balance_error);
+  if (std::isfinite(r.kinetic_to_released))
+    std::printf("  energy: kinetic/released %.3e, balance error %.3e\n", r.kinetic_to_released,
+                r.energy_balance_error);
+  else
+    std::printf("  energy: no potential energy released (kinetic/released undefined), balance error %.3e\n",
+                r.energy_balance_error);
   if (r.load.ranks > 1)
     std::printf(
         "  load over %d ranks: owned particles max/mean %.3f, compute time max/mean %.3f, communication up "
@@ -266,6 +272,9 @@ int run(int argc, char** argv) {
           "  checkpoints: every %g s simulated, every %g s of wall clock (0 = never), the last %d kept\n",
           c.interval, c.wall_interval, c.keep);
   }
+  // overwrite: the earlier run's files go before the first new one is written.
+  if (in.overwrite && !in.restarting)
+    dem::run_on_root(MPI_COMM_WORLD, [&] { coupling::replace_earlier_run(in.output.folder); });
   coupling::install_stop_handlers();
   auto progress = [rank](const coupling::Progress& p) {
     if (rank == 0) print_progress(p);

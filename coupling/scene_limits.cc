@@ -9,9 +9,30 @@
 #include <sstream>
 
 #include "coupling/memory_estimate.h"
+#include "coupling/run/output_folder.h"
+#include "dem/contact/weight_overlap.h"
 #include "dem/core/error.h"
+#include "dem/engine/simulation.h"
+#include "dem/scene/gradation.h"
 
 namespace upgrain::coupling {
+
+void check_gradation_sampling(const SceneInput& in, const std::string& where) {
+  const std::vector<dem::GradationPoint>& curve = in.scene.particles.gradation;
+  if (curve.empty()) return;
+  // About 10^8 draws take a second; 10^9 is where --check would sit for half a minute.
+  constexpr double kMostDraws = 1e9;
+  const double acceptance = dem::sampling_acceptance(curve);
+  const double draws = static_cast<double>(in.scene.particles.count) / acceptance;
+  if (draws <= kMostDraws) return;
+  std::ostringstream m;
+  m.precision(3);
+  m << where << "Particles/gradation spans radii " << curve.front().radius << " to " << curve.back().radius
+    << " m: drawing Particles/count = " << in.scene.particles.count
+    << " grains by their mass fractions accepts one draw in " << 1.0 / acceptance << " (about " << draws
+    << " draws, more than " << kMostDraws << "); raise the smallest radius or use fewer grains";
+  throw Error(m.str());
+}
 
 void check_memory(const SceneInput& in, const std::string& where) {
   const MemoryEstimate need = estimate_memory(in);
@@ -37,8 +58,14 @@ void check_output_folder(const SceneInput& in, const std::string& where) {
   std::error_code ec;
   if (fs::exists(folder, ec)) {
     if (!fs::is_directory(folder, ec)) throw Error(entry + " exists and is not a folder");
-    if (!fs::is_empty(folder, ec) && !in.overwrite && !in.restarting)
-      throw Error(entry + " already holds results; choose another folder or set 'Output/overwrite = true'");
+    if (!fs::is_empty(folder, ec) && !in.restarting) {
+      if (!in.overwrite)
+        throw Error(entry + " already holds results; choose another folder or set 'Output/overwrite = true'");
+      if (!holds_a_run(folder))
+        throw Error(entry +
+                    " holds files but no earlier run (no time_series.csv, summary.json or checkpoints/): "
+                    "Output/overwrite replaces a run's folder only; choose an empty or new folder");
+    }
     if (::access(folder.c_str(), W_OK | X_OK) != 0)
       throw Error(entry + " cannot be written: " + std::strerror(errno));
     return;
@@ -94,6 +121,25 @@ void check_fill_height(SceneInput& in, double fill_top, const std::string& where
          "the height or lower Particles/count";
     in.warnings.push_back(m.str());
   }
+}
+
+void check_stiffness(SceneInput& in, const std::string& where) {
+  const double ratio = dem::weight_overlap_ratio(in.scene);
+  if (ratio <= dem::kStaticOverlapBound) return;
+  std::ostringstream m;
+  m.precision(3);
+  m << where << "the grains are too soft for their weight: by the " << in.scene.contact_law
+    << " law a grain's weight alone presses it " << ratio
+    << " of a radius into the floor (DEM keeps static overlaps below " << dem::kStaticOverlapBound
+    << "); raise Particles/youngs modulus (now " << in.scene.particles.material.youngs_modulus
+    << " Pa) or the law's stiffness";
+  // Beyond the guard's limit the run would stop at the first contact, whatever the time step.
+  if (ratio >= dem::kRunawayOverlapRatio) {
+    m << ": the run would stop at the runaway-overlap limit of " << dem::kRunawayOverlapRatio
+      << " of a radius";
+    throw Error(m.str());
+  }
+  in.warnings.push_back(m.str());
 }
 
 void check_stress_box(const SceneInput& in, double fill_top, const std::string& where) {

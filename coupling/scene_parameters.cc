@@ -348,6 +348,9 @@ SceneInput parse_scene_text(const std::string& bytes, const std::string& source)
     return extract(prm, source);
   } catch (const Error& e) {
     throw Error(source + ": " + e.what());
+  } catch (const dealii::ExceptionBase& e) {
+    // A value its pattern let through that does not convert (e.g. '0.3{{' for a real).
+    throw Error(one_line_message(e, source));
   }
 }
 

@@ -139,6 +139,7 @@ void validate_scene(SceneInput& in) {
     }
   }
   check_memory(in, where);
+  check_gradation_sampling(in, where);
   double fill_top = 0.0;
   try {
     fill_top = dem::plan_fill(s).top;
@@ -146,6 +147,7 @@ void validate_scene(SceneInput& in) {
     throw Error(where + e.what());
   }
   check_fill_height(in, fill_top, where);
+  check_stiffness(in, where);
   check_stress_box(in, fill_top, where);
   check_output_intervals(in, where);
   const dem::TimeStepEstimate ts = dem::estimate_time_step(s);

@@ -17,6 +17,7 @@
 #include "dem/core/error.h"
 #include "dem/io/atomic_file.h"
 #include "dem/io/grid_stress_output.h"
+#include "dem/io/json_number.h"
 #include "dem/stress/asymmetry.h"
 #include "fem/elastic_column.h"
 #include "upscale/grid_fields.h"
@@ -187,25 +188,26 @@ void write_study_json(const std::filesystem::path& folder, const SceneInput& in,
                       const DemFemComparison& c, int ranks) {
   const double area = in.scene.container.lx * in.scene.container.ly;
   const fem::ConfinedColumn exact = fem::analytic_solution(problem);
+  const auto n = [](double v) { return dem::io::json_number(v); };
   std::ostringstream j;
-  j.precision(17);
   j << "{\n  \"ranks\": " << ranks << ",\n  \"grid_cells\": [" << d.grid.n[0] << ", " << d.grid.n[1] << ", "
-    << d.grid.n[2] << "],\n  \"grid_top_m\": " << d.grid.hi.z()
-    << ",\n  \"cell_volume_m3\": " << d.stress.cell_volume << ",\n  \"grain_mass_kg\": " << d.total_mass
-    << ",\n  \"weight_N\": " << d.total_mass * in.scene.gravity
-    << ",\n  \"floor_force_z_N\": " << d.floor_force.z()
-    << ",\n  \"side_wall_force_z_N\": " << d.side_wall_vertical << ",\n  \"footprint_m2\": " << area
-    << ",\n  \"bulk_density\": " << problem.density << ",\n  \"k0\": " << c.k0
+    << d.grid.n[2] << "],\n  \"grid_top_m\": " << n(d.grid.hi.z())
+    << ",\n  \"cell_volume_m3\": " << n(d.stress.cell_volume) << ",\n  \"grain_mass_kg\": " << n(d.total_mass)
+    << ",\n  \"weight_N\": " << n(d.total_mass * in.scene.gravity)
+    << ",\n  \"floor_force_z_N\": " << n(d.floor_force.z())
+    << ",\n  \"side_wall_force_z_N\": " << n(d.side_wall_vertical) << ",\n  \"footprint_m2\": " << n(area)
+    << ",\n  \"bulk_density\": " << n(problem.density) << ",\n  \"k0\": " << n(c.k0)
     << ",\n  \"fem_dofs\": " << sol.n_dofs
-    << ",\n  \"fem_relative_l2_error_stress\": " << sol.l2_error_stress / exact.stress_l2_norm(area)
+    << ",\n  \"fem_relative_l2_error_stress\": " << n(sol.l2_error_stress / exact.stress_l2_norm(area))
     << ",\n  \"fem_relative_l2_error_displacement\": "
-    << sol.l2_error_displacement / exact.displacement_l2_norm(area)
-    << ",\n  \"fem_mean_lateral_ratio\": " << c.fem_mean_lateral_ratio << ",\n  \"formulas\": {";
+    << n(sol.l2_error_displacement / exact.displacement_l2_norm(area))
+    << ",\n  \"fem_mean_lateral_ratio\": " << n(c.fem_mean_lateral_ratio) << ",\n  \"formulas\": {";
   for (std::size_t k = 0; k < c.formulas.size(); ++k) {
     const FormulaComparison& fc = c.formulas[k];
     j << (k ? "," : "") << "\n    \"" << dem::io::field_name(fc.formula)
-      << "\": {\"relative_l2_zz\": " << fc.relative_l2[8] << ", \"relative_l2_xx\": " << fc.relative_l2[0]
-      << ", \"mean_lateral_ratio\": " << fc.mean_lateral_ratio << "}";
+      << "\": {\"relative_l2_zz\": " << n(fc.relative_l2[8])
+      << ", \"relative_l2_xx\": " << n(fc.relative_l2[0])
+      << ", \"mean_lateral_ratio\": " << n(fc.mean_lateral_ratio) << "}";
   }
   j << "\n  }\n}\n";
   dem::io::write_text_atomically(folder / "study.json", j.str());

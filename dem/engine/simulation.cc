@@ -207,7 +207,7 @@ void Simulation::step() {
   MPI_Allreduce(local, global, 2, MPI_DOUBLE, MPI_MAX, comm());
   const Clock::time_point t2 = Clock::now();
   const std::string overlap = runaway_overlap(global[1], kRunawayOverlapRatio, last_overlap_step_,
-                                              static_cast<double>(last_overlap_step_) * dt_, dt_);
+                                              static_cast<double>(last_overlap_step_) * dt_, scene_);
   if (!overlap.empty()) throw CollectiveError(overlap);  // every rank has the same maximum
   const bool rebuilding = global[0] > 0.0;
   if (rebuilding) {
@@ -604,7 +604,7 @@ StepDiagnostics Simulation::diagnostics() const {
   MPI_Allreduce(MPI_IN_PLACE, &overlap, 1, MPI_DOUBLE, MPI_MAX, comm());
   // step() checks each evaluation at the next step's reduction; this covers a run's last one.
   const std::string runaway = runaway_overlap(overlap, kRunawayOverlapRatio, last_overlap_step_,
-                                              static_cast<double>(last_overlap_step_) * dt_, dt_);
+                                              static_cast<double>(last_overlap_step_) * dt_, scene_);
   if (!runaway.empty()) throw CollectiveError(runaway);
   StepDiagnostics d;
   d.particle_contacts = counts[0];
