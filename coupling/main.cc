@@ -12,9 +12,11 @@
 #include <string>
 
 #include "coupling/dem_run.h"
+#include "coupling/quiet_p4est.h"
 #include "coupling/run/output_folder.h"
 #include "coupling/run/scene_run.h"
 #include "coupling/run/stop_request.h"
+#include "coupling/run/stress_summary.h"
 #include "coupling/scene_input.h"
 #include "coupling/scene_text.h"
 #include "coupling/strain_report.h"
@@ -22,7 +24,6 @@
 #include "dem/core/error.h"
 #include "dem/parallel/exchange.h"
 #include "dem/parallel/mpi_start.h"
-#include "dem/stress/asymmetry.h"
 #include "dem/time_step.h"
 
 namespace {
@@ -103,19 +104,19 @@ void print_deposition(const upgrain::coupling::SceneInput& in, const upgrain::co
     std::printf("  grid stress (%d x %d x %d cells up to z = %.4f m), final state:\n", grid.n[0], grid.n[1],
                 grid.n[2], grid.hi.z());
     for (dem::StressFormula f : in.output.grid_stress.formulas) {
-      double max_rai = 0.0, floor_szz = 0.0;
-      int floor_cells = 0;
-      for (int c = 0; c < grid.num_cells(); ++c) {
-        if (g.particles[c] == 0) continue;
-        max_rai = std::max(max_rai, dem::relative_asymmetry_index(g[f][c]));
-        if (c < grid.n[0] * grid.n[1]) {
-          floor_szz += g[f][c](2, 2);
-          ++floor_cells;
-        }
-      }
-      std::printf("    %-18s max RAI %.3e %%, mean sigma_zz of the bottom layer %.6g Pa\n",
-                  std::string(dem::name_of(f)).c_str(), 100.0 * max_rai,
-                  floor_cells ? floor_szz / floor_cells : 0.0);
+      const coupling::StressSummary s = coupling::summarise_stress(g, grid, f);
+      char rai[96];
+      if (s.rated_cells == 0)
+        std::snprintf(rai, sizeof rai, "no cell with measurable stress");
+      else if (std::isinf(s.max_rai))
+        std::snprintf(rai, sizeof rai, "max RAI unbounded (a cell with skew stress only)");
+      else
+        std::snprintf(rai, sizeof rai, "max RAI %.3g %%", 100.0 * s.max_rai);
+      std::printf("    %-18s %s", std::string(dem::name_of(f)).c_str(), rai);
+      if (s.negligible_cells > 0)
+        std::printf(" (%d cell%s with grains but negligible stress left out)", s.negligible_cells,
+                    s.negligible_cells > 1 ? "s" : "");
+      std::printf(", mean sigma_zz of the bottom layer %.6g Pa\n", s.floor_szz);
     }
   }
   std::printf("  results: %s/{summary.json,time_series.csv,particles.xdmf,snapshots/%s%s}\n",
@@ -140,7 +141,7 @@ upgrain::coupling::SceneInput restart_input(const std::string& dir, const std::s
     try {
       std::vector<std::string> refused;
       checkpoint = std::make_shared<coupling::Checkpoint>(coupling::newest_checkpoint(dir, refused));
-      for (const std::string& r : refused) notes.push_back("refused checkpoint " + r);
+      for (const std::string& r : refused) notes.push_back("refused " + r);
       scene = checkpoint->scene;
       char where[256];
       std::snprintf(where, sizeof where, "resuming from %s at step %ld (t = %.9g s)",
@@ -314,6 +315,7 @@ int run(int argc, char** argv) {
 int main(int argc, char** argv) {
   upgrain::dem::prefer_isolated_singleton();
   MPI_Init(&argc, &argv);
+  upgrain::coupling::quiet_p4est();
   int rank = 0, ranks = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);

@@ -11,9 +11,10 @@ namespace upgrain::coupling {
 namespace {
 
 // Peak resident memory of `upgrain` measured on a few steps of a deposition (GNU time's maximum
-// resident set size): 1,000 and 20,000 spheres differ by 3.0 kB per grain; 40^3 and 80^3 stress
-// cells add 0.39 kB per cell and formula, and the strain 5.95 kB per cell more; the process
-// itself (deal.II, MPI, HDF5 loaded) starts at 176 MB. A settled bed's contacts only add to the
+// resident set size): 1,000 and 20,000 spheres differ by 3.0 kB per grain; 40^3 stress cells
+// with the 7 formulas and no strain add 2.72 kB per cell (0.39 kB per cell and formula), with
+// strain 8.67 kB per cell at 40^3 and at 80^3 alike (5.95 kB more); the process itself
+// (deal.II, MPI, HDF5 loaded) starts at 176 MB. A settled bed's contacts only add to the
 // per-grain figure, so the estimate is a lower bound.
 constexpr double kBytesPerGrain = 3.0e3;
 constexpr double kBytesPerCellAndFormula = 0.39e3;

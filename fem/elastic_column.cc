@@ -47,6 +47,7 @@
 #include <stdexcept>
 
 #include "dem/io/atomic_file.h"
+#include "dem/io/undated_vtk.h"
 #include "fem/elastic_column.h"
 
 namespace upgrain::fem {
@@ -404,7 +405,7 @@ void ElasticColumn::output_results(const std::string& folder) const {
       for (unsigned int r = 0; r < n_ranks; ++r) pieces.push_back(piece_name(r));
       std::ostringstream pvtu;
       data_out.write_pvtu_record(pvtu, pieces);
-      dem::io::write_text_atomically(dir / "column.pvtu", pvtu.str());
+      dem::io::write_text_atomically(dir / "column.pvtu", dem::io::undated_vtk(pvtu.str()));
     } catch (const std::exception& e) {
       error = e.what();
     }

@@ -181,11 +181,15 @@ Checkpoint newest_checkpoint(const fs::path& folder, std::vector<std::string>& r
     try {
       return read_checkpoint(f);
     } catch (const std::exception& e) {
-      refused.push_back(f.string() + ": " + e.what());
+      // The readers' errors name the file already ("checkpoint <file>: ...").
+      const std::string why = e.what();
+      refused.push_back(why.find(f.string()) != std::string::npos ? why
+                                                                  : "checkpoint " + f.string() + ": " + why);
     }
   }
+  // Every one refused: the newest one's reason says what happened.
   throw Error("no readable checkpoint in " + (folder / "checkpoints").string() + " (" +
-              std::to_string(files.size()) + " refused)");
+              std::to_string(files.size()) + " refused; the newest: " + refused.front() + ")");
 }
 
 }  // namespace upgrain::coupling

@@ -53,7 +53,8 @@ std::vector<std::filesystem::path> checkpoint_files(const std::filesystem::path&
 Checkpoint read_checkpoint(const std::filesystem::path& file);
 
 // The newest checkpoint of `folder` that reads whole. Each newer one that does not is named in
-// `refused`, with its reason. Throws upgrain::Error when none reads.
+// `refused` ("checkpoint <file>: <reason>"). Throws upgrain::Error with the newest one's reason
+// when none reads.
 Checkpoint newest_checkpoint(const std::filesystem::path& folder, std::vector<std::string>& refused);
 
 }  // namespace upgrain::coupling

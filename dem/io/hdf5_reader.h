@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -132,9 +133,12 @@ class Reader {
   static constexpr double kLargestWhole = 9007199254740992.0;  // 2^53
   [[nodiscard]] long whole(double v, const std::string& what, double lo = -kLargestWhole,
                            double hi = kLargestWhole) const {
-    if (!(v >= lo && v <= hi) || v != std::floor(v))
-      throw Error(where() + what + " is " + std::to_string(v) + ", not a whole number in [" +
-                  std::to_string(static_cast<long>(lo)) + ", " + std::to_string(static_cast<long>(hi)) + "]");
+    if (!(v >= lo && v <= hi) || v != std::floor(v)) {
+      std::ostringstream m;
+      m.precision(17);
+      m << where() << what << " is " << v << ", not a whole number in [" << lo << ", " << hi << "]";
+      throw Error(m.str());
+    }
     return static_cast<long>(v);
   }
   [[nodiscard]] long whole_attribute(const char* name, const std::string& object = "/",

@@ -18,7 +18,8 @@ endif()
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 # A hang (a FIFO opened for reading waits for a writer) fails the test, not the suite.
-execute_process(COMMAND ${UPGRAIN} ${PRM} WORKING_DIRECTORY ${WORK} TIMEOUT 30
+separate_arguments(launcher UNIX_COMMAND "${LAUNCHER}")
+execute_process(COMMAND ${launcher} ${UPGRAIN} ${PRM} WORKING_DIRECTORY ${WORK} TIMEOUT 30
                 RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(code EQUAL 0)
   message(FATAL_ERROR "upgrain accepted ${PRM}\nstdout: ${out}")
@@ -28,6 +29,12 @@ if(NOT code MATCHES "^[0-9]+$")
 endif()
 if(NOT err MATCHES "${EXPECT}")
   message(FATAL_ERROR "error message does not match '${EXPECT}':\n${err}")
+endif()
+# Said once, also when every rank of an MPI run refused the scene.
+string(REGEX MATCHALL "upgrain: error" said "${err}")
+list(LENGTH said times)
+if(NOT times EQUAL 1)
+  message(FATAL_ERROR "the error was printed ${times} times:\n${err}")
 endif()
 get_filename_component(prm_name ${PRM} NAME)
 if(NOT err MATCHES "${prm_name}")

@@ -106,8 +106,8 @@ def check_files_whole(folder, temporary_allowed=False):
 def same_as_reference(upgrain, work, folder, log, ranks=1):
     # Checkpoints differ by design (the end time in their scene, a signal's extra one), and on
     # another rank count so do the compute grids (compare_rank_outputs.py).
-    option = '--other-blocks' if ranks > 1 else '--no-checkpoints'
-    r = subprocess.run([sys.executable, COMPARE, option, reference_of(work), folder],
+    options = ['--other-blocks'] if ranks > 1 else ['--no-checkpoints', '--meshes']
+    r = subprocess.run([sys.executable, COMPARE] + options + [reference_of(work), folder],
                        capture_output=True, text=True)
     if r.returncode != 0:
         fail(f'the continued run differs from the uninterrupted one:\n{r.stdout}{r.stderr}')
