@@ -61,10 +61,7 @@ void check_output_folder(const SceneInput& in, const std::string& where) {
     if (!fs::is_empty(folder, ec) && !in.restarting) {
       if (!in.overwrite)
         throw Error(entry + " already holds results; choose another folder or set 'Output/overwrite = true'");
-      if (!holds_a_run(folder))
-        throw Error(entry +
-                    " holds files but no earlier run (no time_series.csv, summary.json or checkpoints/): "
-                    "Output/overwrite replaces a run's folder only; choose an empty or new folder");
+      if (const std::string why = why_not_replaceable(folder); !why.empty()) throw Error(entry + " " + why);
     }
     if (::access(folder.c_str(), W_OK | X_OK) != 0)
       throw Error(entry + " cannot be written: " + std::strerror(errno));

@@ -15,13 +15,23 @@ bool holds_a_run(const fs::path& folder) {
   return false;
 }
 
+std::string why_not_replaceable(const fs::path& folder) {
+  if (!holds_a_run(folder))
+    return "holds files but no earlier run (no time_series.csv, summary.json or checkpoints/): "
+           "Output/overwrite replaces a run's folder only; choose an empty or new folder";
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(folder, ec))
+    if (e.path().extension() == ".prm")
+      return "holds the scene file " + e.path().filename().string() +
+             ", which overwrite would remove with the earlier run; move it out of the folder";
+  return {};
+}
+
 void replace_earlier_run(const fs::path& folder) {
   std::error_code ec;
   if (!fs::exists(folder, ec) || fs::is_empty(folder, ec)) return;
-  if (!holds_a_run(folder))
-    throw Error("Output/overwrite = true, but " + folder.string() +
-                " holds no earlier run (no time_series.csv, summary.json or checkpoints/) and is not empty: "
-                "overwrite replaces a run's folder only; choose an empty or new folder");
+  if (const std::string why = why_not_replaceable(folder); !why.empty())
+    throw Error("Output/folder = '" + folder.string() + "' " + why);
   fs::path aside = folder;
   aside += ".replaced." + std::to_string(::getpid());
   fs::rename(folder, aside, ec);

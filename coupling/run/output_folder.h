@@ -11,6 +11,10 @@ namespace upgrain::coupling {
 // Whether `folder` holds the results of a run: its time series, summary or checkpoints.
 bool holds_a_run(const std::filesystem::path& folder);
 
+// Why overwrite may not replace `folder` (it holds no run, or a scene file, which a run never
+// writes and the user would lose), or empty when it may.
+std::string why_not_replaceable(const std::filesystem::path& folder);
+
 // Empty `folder` of the earlier run: it is renamed aside first (one step, so a crash leaves
 // either the whole earlier run or none of it under the folder's name), then removed. Does
 // nothing when the folder is missing or empty; throws upgrain::Error naming it when it holds

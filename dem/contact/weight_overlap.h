@@ -2,9 +2,9 @@
 // How far a grain sinks into its support under its own weight by the scene's contact law: the
 // overlap at which the law's normal force equals the weight of the scene's largest grain
 // resting on the floor, as a fraction of its radius. DEM keeps static overlaps small (about
-// 1 % of a radius and below; O'Sullivan, Particulate Discrete Element Modelling, 2011, ch. 2);
-// much more means the grains are too soft to carry a bed, whatever the time step: the
-// runaway-overlap guard (dem/engine/guards.h) tells the two causes apart with it.
+// 1 % of a radius and below, a common guideline; O'Sullivan, Particulate Discrete Element
+// Modelling, 2011); much more means the grains are too soft to carry a bed, whatever the time
+// step: the runaway-overlap guard (dem/engine/guards.h) tells the two causes apart with it.
 #include "dem/scene/scene_config.h"
 
 namespace upgrain::dem {
