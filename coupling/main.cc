@@ -3,9 +3,9 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -13,15 +13,18 @@
 
 #include "coupling/accuracy/accuracy_study.h"
 #include "coupling/dem_run.h"
+#include "coupling/quiet_p4est.h"
+#include "coupling/run/output_folder.h"
 #include "coupling/run/scene_run.h"
 #include "coupling/run/stop_request.h"
+#include "coupling/run/stress_summary.h"
 #include "coupling/scene_input.h"
+#include "coupling/scene_text.h"
 #include "coupling/strain_report.h"
 #include "coupling/study.h"
 #include "dem/core/error.h"
 #include "dem/parallel/exchange.h"
 #include "dem/parallel/mpi_start.h"
-#include "dem/stress/asymmetry.h"
 #include "dem/time_step.h"
 
 namespace {
@@ -75,8 +78,12 @@ void print_deposition(const upgrain::coupling::SceneInput& in, const upgrain::co
               2.0 * static_cast<double>(r.diagnostics.particle_contacts) /
                   static_cast<double>(in.scene.particles.count),
               r.bed.particles_outside);
-  std::printf("  energy: kinetic/released %.3e, balance error %.3e\n", r.kinetic_to_released,
-              r.energy_balance_error);
+  if (std::isfinite(r.kinetic_to_released))
+    std::printf("  energy: kinetic/released %.3e, balance error %.3e\n", r.kinetic_to_released,
+                r.energy_balance_error);
+  else
+    std::printf("  energy: no potential energy released (kinetic/released undefined), balance error %.3e\n",
+                r.energy_balance_error);
   if (r.load.ranks > 1)
     std::printf(
         "  load over %d ranks: owned particles max/mean %.3f, compute time max/mean %.3f, communication up "
@@ -101,19 +108,19 @@ void print_deposition(const upgrain::coupling::SceneInput& in, const upgrain::co
     std::printf("  grid stress (%d x %d x %d cells up to z = %.4f m), final state:\n", grid.n[0], grid.n[1],
                 grid.n[2], grid.hi.z());
     for (dem::StressFormula f : in.output.grid_stress.formulas) {
-      double max_rai = 0.0, floor_szz = 0.0;
-      int floor_cells = 0;
-      for (int c = 0; c < grid.num_cells(); ++c) {
-        if (g.particles[c] == 0) continue;
-        max_rai = std::max(max_rai, dem::relative_asymmetry_index(g[f][c]));
-        if (c < grid.n[0] * grid.n[1]) {
-          floor_szz += g[f][c](2, 2);
-          ++floor_cells;
-        }
-      }
-      std::printf("    %-18s max RAI %.3e %%, mean sigma_zz of the bottom layer %.6g Pa\n",
-                  std::string(dem::name_of(f)).c_str(), 100.0 * max_rai,
-                  floor_cells ? floor_szz / floor_cells : 0.0);
+      const coupling::StressSummary s = coupling::summarise_stress(g, grid, f);
+      char rai[96];
+      if (s.rated_cells == 0)
+        std::snprintf(rai, sizeof rai, "no cell with measurable stress");
+      else if (std::isinf(s.max_rai))
+        std::snprintf(rai, sizeof rai, "max RAI unbounded (a cell with skew stress only)");
+      else
+        std::snprintf(rai, sizeof rai, "max RAI %.3g %%", 100.0 * s.max_rai);
+      std::printf("    %-18s %s", std::string(dem::name_of(f)).c_str(), rai);
+      if (s.negligible_cells > 0)
+        std::printf(" (%d cell%s with grains but negligible stress left out)", s.negligible_cells,
+                    s.negligible_cells > 1 ? "s" : "");
+      std::printf(", mean sigma_zz of the bottom layer %.6g Pa\n", s.floor_szz);
     }
   }
   std::printf("  results: %s/{summary.json,time_series.csv,particles.xdmf,snapshots/%s%s}\n",
@@ -121,15 +128,6 @@ void print_deposition(const upgrain::coupling::SceneInput& in, const upgrain::co
               r.final_stress ? ",grid_stress.csv,grid_stress.xdmf,grid_stress/" : "",
               r.final_strain ? ",grid_strain.csv,grid_strain.xdmf,grid_strain/" : "");
   std::fflush(stdout);
-}
-
-std::string read_text(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw upgrain::Error(file + ": cannot open the parameter file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in && !in.eof()) throw upgrain::Error(file + ": cannot be read");
-  return text.str();
 }
 
 // The scene of a run to continue (upgrain --restart DIR [scene.prm]): rank 0 reads the newest
@@ -147,7 +145,7 @@ upgrain::coupling::SceneInput restart_input(const std::string& dir, const std::s
     try {
       std::vector<std::string> refused;
       checkpoint = std::make_shared<coupling::Checkpoint>(coupling::newest_checkpoint(dir, refused));
-      for (const std::string& r : refused) notes.push_back("refused checkpoint " + r);
+      for (const std::string& r : refused) notes.push_back("refused " + r);
       scene = checkpoint->scene;
       char where[256];
       std::snprintf(where, sizeof where, "resuming from %s at step %ld (t = %.9g s)",
@@ -165,7 +163,7 @@ upgrain::coupling::SceneInput restart_input(const std::string& dir, const std::s
   coupling::SceneInput in = coupling::parse_scene_text(scene, dir + ": the scene of its checkpoint");
   if (!file.empty()) {
     // The given file's values for what a restart may change, the checkpoint's for the rest.
-    coupling::SceneInput given = coupling::parse_scene_text(read_text(file), file);
+    coupling::SceneInput given = coupling::parse_scene_text(coupling::read_scene_bytes(file), file);
     const std::vector<std::string> differ =
         coupling::differing_parameters(scene, given.output.checkpoint.scene);
     if (!differ.empty()) {
@@ -179,6 +177,8 @@ upgrain::coupling::SceneInput restart_input(const std::string& dir, const std::s
     in.output.checkpoint = given.output.checkpoint;  // with the given file's text: its end time
     in.parallel = given.parallel;
   }
+  // Later errors name what the user ran, not the checkpoint's copy of the scene.
+  in.source = file.empty() ? "upgrain --restart " + dir : file;
   in.output.folder = dir;
   in.restarting = true;
   in.resume = checkpoint;
@@ -190,6 +190,7 @@ int run(int argc, char** argv) {
   using namespace upgrain;
   std::string file, output_override, restart_dir, study;
   bool check_only = false;
+  // The command line is every rank's: its errors are said once (CollectiveError).
   for (int k = 1; k < argc; ++k) {
     const std::string a = argv[k];
     if (a == "-h" || a == "--help") {
@@ -208,17 +209,17 @@ int run(int argc, char** argv) {
       study = argv[++k];
       if (study != "accuracy") throw Error("--study: unknown study '" + study + "' (known: accuracy)");
     } else if (a == "--restart") {
-      if (k + 1 >= argc) throw Error("--restart needs the output folder of the run");
+      if (k + 1 >= argc) throw CollectiveError("--restart needs the output folder of the run");
       restart_dir = argv[++k];
     } else if (a == "--output") {
-      if (k + 1 >= argc) throw Error("--output needs a folder name");
+      if (k + 1 >= argc || argv[k + 1][0] == '\0') throw CollectiveError("--output needs a folder name");
       output_override = argv[++k];
     } else if (!a.empty() && a[0] == '-') {
-      throw Error("unknown option '" + a + "' (see upgrain --help)");
+      throw CollectiveError("unknown option '" + a + "' (see upgrain --help)");
     } else if (file.empty()) {
       file = a;
     } else {
-      throw Error("more than one scene file given ('" + file + "', '" + a + "')");
+      throw CollectiveError("more than one scene file given ('" + file + "', '" + a + "')");
     }
   }
   int rank = 0, ranks = 1;
@@ -226,18 +227,25 @@ int run(int argc, char** argv) {
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
   coupling::SceneInput in;
   std::vector<std::string> restart_notes;
-  if (!restart_dir.empty()) {
-    if (!output_override.empty()) throw Error("--restart continues in its own folder: leave out --output");
-    in = restart_input(restart_dir, file, restart_notes);
-  } else {
-    in = file.empty() ? coupling::default_scene() : coupling::read_scene_file(file);
-    if (!output_override.empty()) {
-      in.output.folder = output_override;
-      coupling::validate_scene(in);
+  if (!restart_dir.empty() && !output_override.empty())
+    throw CollectiveError("--restart continues in its own folder: leave out --output");
+  // Every rank reads and checks the scene, and they agree on the outcome before rank 0 creates
+  // the output folder: a refusal is every rank's, printed once.
+  std::string refusal;
+  try {
+    if (!restart_dir.empty()) {
+      in = restart_input(restart_dir, file, restart_notes);
+    } else {
+      in = file.empty() ? coupling::default_scene() : coupling::read_scene_file(file);
+      if (!output_override.empty()) {
+        in.output.folder = output_override;
+        coupling::validate_scene(in);
+      }
     }
+  } catch (const std::exception& e) {
+    refusal = e.what();
   }
-  // Every rank has read and checked the scene before rank 0 creates the output folder.
-  MPI_Barrier(MPI_COMM_WORLD);
+  dem::throw_if_any(MPI_COMM_WORLD, refusal);
   const dem::TimeStepEstimate ts = dem::estimate_time_step(in.scene);
   if (rank == 0) {
     std::printf("upgrain: %s\n  %ld %s, time step %.3g s (safe %.3g s, %s-limited), end time %.3g s\n",
@@ -253,6 +261,7 @@ int run(int argc, char** argv) {
       std::printf("    %-20s %-3s  %s\n", c.entry.c_str(), c.on ? "on" : "off", c.reason.c_str());
     std::printf("  %d MPI rank%s, %s summation (Parallel/summation)\n", ranks, ranks > 1 ? "s" : "",
                 dem::to_string(in.parallel.summation).c_str());
+    for (const std::string& w : in.warnings) std::printf("  warning: %s\n", w.c_str());
     if (in.parallel.legacy_engine != "auto")
       std::printf(
           "  warning: Parallel/DEM engine = %s is ignored: one engine runs the DEM on every rank count "
@@ -273,6 +282,9 @@ int run(int argc, char** argv) {
           c.interval, c.wall_interval, c.keep);
   }
   std::fflush(stdout);  // the preamble reaches a log file before a run that may be killed
+  // overwrite: the earlier run's files go before the first new one is written.
+  if (in.overwrite && !in.restarting)
+    dem::run_on_root(MPI_COMM_WORLD, [&] { coupling::replace_earlier_run(in.output.folder); });
   coupling::install_stop_handlers();
   auto progress = [rank](const coupling::Progress& p) {
     if (rank == 0) print_progress(p);
@@ -300,6 +312,8 @@ int run(int argc, char** argv) {
       std::fflush(stdout);
     }
     return 128 + stopped.signal();
+  } catch (const CollectiveError& e) {
+    throw CollectiveError(in.source + ": " + e.what());
   } catch (const Error& e) {
     throw Error(in.source + ": " + e.what());
   }
@@ -311,11 +325,29 @@ int run(int argc, char** argv) {
 int main(int argc, char** argv) {
   upgrain::dem::prefer_isolated_singleton();
   MPI_Init(&argc, &argv);
+  upgrain::coupling::quiet_p4est();
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
   int code = 0;
   try {
     code = run(argc, argv);
+  } catch (const upgrain::CollectiveError& e) {
+    // Every rank has it: said once.
+    if (rank == 0) {
+      std::fflush(stdout);
+      std::fprintf(stderr, "\nupgrain: error: %s\n", e.what());
+    }
+    code = 1;
   } catch (const std::exception& e) {
+    // This rank's alone: the others may be waiting for it in a message, so the run is ended
+    // (MPI_Abort) rather than left to hang.
     std::fflush(stdout);
+    if (ranks > 1) {
+      std::fprintf(stderr, "\nupgrain: error on rank %d of %d: %s\n", rank, ranks, e.what());
+      std::fflush(stderr);
+      MPI_Abort(MPI_COMM_WORLD, 1);
+    }
     std::fprintf(stderr, "\nupgrain: error: %s\n", e.what());
     code = 1;
   }

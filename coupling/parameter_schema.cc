@@ -158,7 +158,9 @@ const std::vector<ParameterSpec>& parameter_schema() {
 
       {"Output", "folder", "upgrain-output", K::text, 0, 0, "", "-", "Folder for all results of the run."},
       {"Output", "overwrite", "false", K::boolean, 0, 0, "", "-",
-       "Allow writing into a folder that already holds results (otherwise the run refuses to start)."},
+       "Replace an earlier run in the folder: its files are removed before the new run writes any, so the "
+       "two never mix (otherwise a folder with results is refused). Only a folder holding a run "
+       "(time_series.csv, summary.json or checkpoints/) is replaced."},
       {"Output", "snapshot interval", "0.05", K::real, 0.0, 1e6, "", "s",
        "Simulated time between HDF5 snapshots; 0 = first and last only."},
       {"Output", "time series interval", "0.002", K::real, 0.0, 1e6, "", "s",

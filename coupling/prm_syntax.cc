@@ -1,6 +1,7 @@
 #include "coupling/prm_syntax.h"
 
 #include <algorithm>
+#include <map>
 #include <sstream>
 #include <vector>
 
@@ -51,6 +52,9 @@ void check_prm_syntax(const std::string& text, const std::string& filename) {
   std::string raw, line;
   std::vector<std::string> stack;
   int line_no = 0, start_line = 0;
+  // Where each subsection was opened and each entry set: deal.II would let the last value
+  // win without a word, so a second one is refused with both lines.
+  std::map<std::string, int> opened, set_at;
   while (std::getline(in, raw)) {
     ++line_no;
     if (line.empty()) start_line = line_no;
@@ -78,6 +82,10 @@ void check_prm_syntax(const std::string& text, const std::string& filename) {
       const auto known = sections();
       if (std::find(known.begin(), known.end(), name) == known.end())
         fail(filename, start_line, "unknown subsection '" + name + "'; the subsections are " + join(known));
+      if (const auto [first, fresh] = opened.emplace(name, start_line); !fresh)
+        fail(filename, start_line,
+             "subsection '" + name + "' again (first at line " + std::to_string(first->second) +
+                 "): put its entries in one subsection");
       stack.push_back(name);
     } else if (keyword == "end") {
       if (l != "end") fail(filename, start_line, "malformed line '" + l + "': 'end' stands alone");
@@ -97,6 +105,11 @@ void check_prm_syntax(const std::string& text, const std::string& filename) {
         fail(filename, start_line,
              "unknown entry '" + name + "' in subsection '" + stack.back() + "'; its entries are " +
                  join(known));
+      const std::string key = stack.back() + "/" + name;
+      if (const auto [first, fresh] = set_at.emplace(key, start_line); !fresh)
+        fail(filename, start_line,
+             key + " is set again (first at line " + std::to_string(first->second) +
+                 "); keep one of the two lines");
     } else {
       fail(filename, start_line, "malformed line '" + l + "': expected 'subsection', 'set' or 'end'");
     }
@@ -105,6 +118,11 @@ void check_prm_syntax(const std::string& text, const std::string& filename) {
   if (!stack.empty())
     fail(filename, line_no,
          "subsection '" + stack.back() + "' is not closed by 'end' before the end of the file");
+  if (set_at.empty())
+    throw Error(filename +
+                ": sets no parameter (the file is empty, or holds only comments and subsections); run "
+                "upgrain without a file for the built-in default scene, or start from "
+                "'upgrain --print-parameters'");
 }
 
 }  // namespace upgrain::coupling

@@ -43,6 +43,8 @@ struct SceneInput {
   // in its own output folder, which then holds results by design.
   bool restarting = false;
   std::shared_ptr<const Checkpoint> resume;
+  // What validate_scene accepted but the user should hear, one line each (printed once).
+  std::vector<std::string> warnings;
 };
 
 // Reads a .prm file: syntax and entry names first (prm_syntax.h), values by deal.II's
@@ -53,8 +55,9 @@ SceneInput read_scene_file(const std::string& filename);
 // The built-in default scene: every parameter at its default.
 SceneInput default_scene();
 
-// A scene from the text of a parameter file (a checkpoint's scene), with `source` naming it in
-// errors; not yet validated (validate_scene).
+// A scene from the bytes of a parameter file (a checkpoint's scene, a file read by
+// read_scene_bytes), decoded (scene_text.h) and checked (prm_syntax.h), with `source` naming it
+// in errors; not yet validated (validate_scene).
 SceneInput parse_scene_text(const std::string& text, const std::string& source);
 
 // The entries two scenes' parameter texts (CheckpointOptions::scene) give different values,

@@ -8,11 +8,13 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <sstream>
 
 #include "coupling/parameter_schema.h"
 #include "coupling/prm_syntax.h"
 #include "coupling/scene_input.h"
+#include "coupling/scene_text.h"
 #include "dem/contact/contact_laws.h"
 #include "dem/core/error.h"
 
@@ -380,6 +382,24 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   return in;
 }
 
+// deal.II's message over several indented lines as one line "<source>:<line>: ...": the text
+// was parsed from a string, which deal.II names "input string" or not at all.
+std::string one_line_message(const dealii::ExceptionBase& e, const std::string& source) {
+  std::ostringstream info;
+  e.print_info(info);
+  std::string msg;
+  for (char c : info.str()) {
+    const bool blank = c == ' ' || c == '\n' || c == '\t';
+    if (blank && (msg.empty() || msg.back() == ' ')) continue;
+    msg += blank ? ' ' : c;
+  }
+  while (!msg.empty() && msg.back() == ' ') msg.pop_back();
+  static const std::regex where(R"(^Line <(\d+)> of file <[^>]*>: *)");
+  std::smatch m;
+  if (std::regex_search(msg, m, where)) return source + ":" + m[1].str() + ": " + m.suffix().str();
+  return source + ": " + (msg.empty() ? "cannot be read" : msg);
+}
+
 // "Section/entry" -> value of every `set` line of a parameter text.
 std::map<std::string, std::string> set_lines_of(const std::string& text) {
   std::map<std::string, std::string> out;
@@ -409,21 +429,23 @@ std::map<std::string, std::string> set_lines_of(const std::string& text) {
 
 }  // namespace
 
-SceneInput parse_scene_text(const std::string& text, const std::string& source) {
+SceneInput parse_scene_text(const std::string& bytes, const std::string& source) {
+  const std::string text = decode_scene_text(bytes, source);
   check_prm_syntax(text, source);
   ParameterHandler prm;
   declare(prm);
   try {
     prm.parse_input_from_string(text, "", false);
   } catch (const dealii::ExceptionBase& e) {
-    std::ostringstream info;
-    e.print_info(info);
-    throw Error(source + ": " + info.str());
+    throw Error(one_line_message(e, source));
   }
   try {
     return extract(prm, source);
   } catch (const Error& e) {
     throw Error(source + ": " + e.what());
+  } catch (const dealii::ExceptionBase& e) {
+    // A value its pattern let through that does not convert (e.g. '0.3{{' for a real).
+    throw Error(one_line_message(e, source));
   }
 }
 
@@ -446,36 +468,7 @@ std::vector<std::string> differing_parameters(const std::string& run, const std:
 }
 
 SceneInput read_scene_file(const std::string& filename) {
-  std::ifstream file(filename);
-  if (!file) throw Error(filename + ": cannot open the parameter file");
-  std::stringstream text;
-  text << file.rdbuf();
-  check_prm_syntax(text.str(), filename);
-
-  ParameterHandler prm;
-  declare(prm);
-  try {
-    prm.parse_input(filename, "", false, true);
-  } catch (const dealii::ExceptionBase& e) {
-    std::ostringstream info;
-    e.print_info(info);
-    // deal.II spreads its message over indented lines: make it one line.
-    std::string msg;
-    for (char c : info.str()) {
-      const bool blank = c == ' ' || c == '\n' || c == '\t';
-      if (blank && (msg.empty() || msg.back() == ' ')) continue;
-      msg += blank ? ' ' : c;
-    }
-    while (!msg.empty() && msg.back() == ' ') msg.pop_back();
-    if (msg.empty()) msg = filename + ": cannot be read";
-    throw Error(msg);
-  }
-  SceneInput in;
-  try {
-    in = extract(prm, filename);
-  } catch (const Error& e) {
-    throw Error(filename + ": " + e.what());
-  }
+  SceneInput in = parse_scene_text(read_scene_bytes(filename), filename);
   validate_scene(in);
   return in;
 }

@@ -1,11 +1,11 @@
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <optional>
 #include <sstream>
 
 #include "coupling/accuracy/accuracy_knobs.h"
 #include "coupling/scene_input.h"
+#include "coupling/scene_limits.h"
 #include "dem/core/error.h"
 #include "dem/scene/fill.h"
 #include "dem/scene/gradation.h"
@@ -126,6 +126,7 @@ void validate_continuum(ContinuumOptions& c, const std::string& where) {
 void validate_scene(SceneInput& in) {
   const dem::SceneConfig& s = in.scene;
   const std::string where = in.source + ": ";
+  in.warnings.clear();
   // The effect set first: the time-step estimate below depends on it (gravity).
   try {
     dem::ChosenEffects chosen = dem::choose_effects(s, in.effect_switches, {in.output.energy_balance});
@@ -169,11 +170,18 @@ void validate_scene(SceneInput& in) {
       throw Error(m.str());
     }
   }
+  check_memory(in, where);
+  check_gradation_sampling(in, where);
+  double fill_top = 0.0;
   try {
-    (void)dem::plan_fill(s);
+    fill_top = dem::plan_fill(s).top;
   } catch (const Error& e) {
     throw Error(where + e.what());
   }
+  check_fill_height(in, fill_top, where);
+  check_stiffness(in, where);
+  check_stress_box(in, fill_top, where);
+  check_output_intervals(in, where);
   const dem::TimeStepEstimate ts = dem::estimate_time_step(s);
   if (s.time_step > ts.safe_step && !s.time_step_rule.allow_unsafe) {
     std::ostringstream m;
@@ -259,16 +267,7 @@ void validate_scene(SceneInput& in) {
       throw Error(m.str());
     }
   }
-  namespace fs = std::filesystem;
-  const fs::path& folder = in.output.folder;
-  std::error_code ec;
-  if (fs::exists(folder, ec)) {
-    if (!fs::is_directory(folder, ec))
-      throw Error(where + "Output/folder = '" + folder.string() + "' exists and is not a folder");
-    if (!fs::is_empty(folder, ec) && !in.overwrite && !in.restarting)
-      throw Error(where + "Output/folder = '" + folder.string() +
-                  "' already holds results; choose another folder or set 'Output/overwrite = true'");
-  }
+  check_output_folder(in, where);
   // Last, once the scene itself is known sound: the Accuracy section's knobs and values (upgrain --study
   // accuracy), refused here with the entry named, before any run.
   try {

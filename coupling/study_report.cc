@@ -8,6 +8,7 @@
 #include "coupling/report_format.h"
 #include "coupling/strain_report.h"
 #include "dem/io/atomic_file.h"
+#include "dem/io/json_number.h"
 #include "dem/io/grid_stress_output.h"
 
 namespace upgrain::coupling {
@@ -276,34 +277,35 @@ void write_study_json(const std::filesystem::path& folder, const StudyRecord& s)
   const fem::ConfinedColumn exact = fem::analytic_solution(s.rollers_problem);
   const DemOutcome& d = s.dem;
   const DemFemComparison& c = s.comparison;
+  // Every number through json_number: a value that is not finite is written null.
+  const auto n = [](double v) { return dem::io::json_number(v); };
   std::ostringstream j;
-  j.precision(17);
   j << "{\n  \"ranks\": " << s.ranks << ",\n  \"grid_cells\": [" << d.grid.n[0] << ", " << d.grid.n[1] << ", "
-    << d.grid.n[2] << "],\n  \"grid_top_m\": " << d.grid.hi.z()
-    << ",\n  \"cell_volume_m3\": " << d.stress.cell_volume << ",\n  \"grain_mass_kg\": " << d.total_mass
-    << ",\n  \"weight_N\": " << d.total_mass * s.in.scene.gravity
-    << ",\n  \"floor_force_z_N\": " << d.floor_force.z()
-    << ",\n  \"side_wall_force_z_N\": " << d.side_wall_vertical
-    << ",\n  \"dem_wall_share\": " << c.dem_wall_share << ",\n  \"footprint_m2\": " << area
-    << ",\n  \"bulk_density\": " << s.rollers_problem.density << ",\n  \"k0\": " << c.k0
+    << d.grid.n[2] << "],\n  \"grid_top_m\": " << n(d.grid.hi.z())
+    << ",\n  \"cell_volume_m3\": " << n(d.stress.cell_volume) << ",\n  \"grain_mass_kg\": " << n(d.total_mass)
+    << ",\n  \"weight_N\": " << n(d.total_mass * s.in.scene.gravity)
+    << ",\n  \"floor_force_z_N\": " << n(d.floor_force.z())
+    << ",\n  \"side_wall_force_z_N\": " << n(d.side_wall_vertical)
+    << ",\n  \"dem_wall_share\": " << n(c.dem_wall_share) << ",\n  \"footprint_m2\": " << n(area)
+    << ",\n  \"bulk_density\": " << n(s.rollers_problem.density) << ",\n  \"k0\": " << n(c.k0)
     << ",\n  \"fem_dofs\": " << s.rollers.n_dofs
-    << ",\n  \"fem_relative_l2_error_stress\": " << s.rollers.l2_error_stress / exact.stress_l2_norm(area)
+    << ",\n  \"fem_relative_l2_error_stress\": " << n(s.rollers.l2_error_stress / exact.stress_l2_norm(area))
     << ",\n  \"fem_relative_l2_error_displacement\": "
-    << s.rollers.l2_error_displacement / exact.displacement_l2_norm(area)
-    << ",\n  \"fem_mean_lateral_ratio\": " << c.continua.front().mean_lateral_ratio << ",\n  \"continua\": {";
+    << n(s.rollers.l2_error_displacement / exact.displacement_l2_norm(area))
+    << ",\n  \"fem_mean_lateral_ratio\": " << n(c.continua.front().mean_lateral_ratio) << ",\n  \"continua\": {";
   for (std::size_t k = 0; k < c.continua.size(); ++k) {
     const ContinuumResult& cr = c.continua[k];
     j << (k ? "," : "") << "\n    \"" << cr.key << "\": {\"label\": \"" << cr.label
-      << "\", \"wall_share\": " << cr.wall_share << ", \"mean_lateral_ratio\": " << cr.mean_lateral_ratio
-      << ", \"largest_level_spread\": " << largest(cr.level_spread);
+      << "\", \"wall_share\": " << n(cr.wall_share) << ", \"mean_lateral_ratio\": " << n(cr.mean_lateral_ratio)
+      << ", \"largest_level_spread\": " << n(largest(cr.level_spread));
     for (const FrictionalRun& f : s.frictional) {
       if (f.key != cr.key) continue;
       const fem::FrictionalColumnSolution& q = f.solution;
       j << ", \"newton_iterations\": " << q.newton_iterations
         << ", \"linear_iterations\": " << q.linear_iterations << ", \"bisections\": " << q.bisections
-        << ", \"seconds\": " << q.total_seconds << ", \"slipping_wall_share\": " << q.slipping_wall_share
-        << ", \"plastic_volume_share\": " << q.plastic_volume_share
-        << ", \"floor_force_z_N\": " << q.floor_vertical_force << ", \"weight_N\": " << q.weight;
+        << ", \"seconds\": " << n(q.total_seconds) << ", \"slipping_wall_share\": " << n(q.slipping_wall_share)
+        << ", \"plastic_volume_share\": " << n(q.plastic_volume_share)
+        << ", \"floor_force_z_N\": " << n(q.floor_vertical_force) << ", \"weight_N\": " << n(q.weight);
     }
     j << "}";
   }
@@ -313,33 +315,29 @@ void write_study_json(const std::filesystem::path& folder, const StudyRecord& s)
   for (std::size_t k = 0; k < c.formulas.size(); ++k) {
     const FormulaComparison& fc = c.formulas[k];
     j << (k ? "," : "") << "\n    \"" << dem::io::field_name(fc.formula)
-      << "\": {\"relative_l2_zz\": " << fc.against[0].component[8]
-      << ", \"relative_l2_xx\": " << fc.against[0].component[0]
-      << ", \"mean_lateral_ratio\": " << fc.mean_lateral_ratio << ", \"closest_continuum\": \""
+      << "\": {\"relative_l2_zz\": " << n(fc.against[0].component[8])
+      << ", \"relative_l2_xx\": " << n(fc.against[0].component[0])
+      << ", \"mean_lateral_ratio\": " << n(fc.mean_lateral_ratio) << ", \"closest_continuum\": \""
       << c.continua[fc.closest].key << "\", \"against\": {";
     for (std::size_t m = 0; m < c.continua.size(); ++m)
-      j << (m ? ", " : "") << "\"" << c.continua[m].key << "\": {\"tensor\": " << fc.against[m].tensor
-        << ", \"zz\": " << fc.against[m].component[8] << "}";
+      j << (m ? ", " : "") << "\"" << c.continua[m].key << "\": {\"tensor\": " << n(fc.against[m].tensor)
+        << ", \"zz\": " << n(fc.against[m].component[8]) << "}";
     j << "}}";
   }
   j << "\n  }";
   if (s.cg.done) {
     const CoarseGrainingOutcome& cg = s.cg;
     const double norm = cg.comparison.l2_continuum_zz;
-    j << ",\n  \"coarse_graining\": {\"kernel\": \"" << cg.kernel << "\", \"width_m\": " << cg.width
-      << ", \"width_diameters\": " << cg.width_in_diameters << ", \"mean_diameter_m\": " << cg.diameter
+    j << ",\n  \"coarse_graining\": {\"kernel\": \"" << cg.kernel << "\", \"width_m\": " << n(cg.width)
+      << ", \"width_diameters\": " << n(cg.width_in_diameters) << ", \"mean_diameter_m\": " << n(cg.diameter)
       << ", \"points\": " << cg.comparison.points << ", \"evaluation_points\": \"" << cg.points
-      << "\", \"relative_l2_zz\": " << cg.comparison.l2_difference[8] / norm
-      << ", \"relative_l2_xx\": " << cg.comparison.l2_difference[0] / norm
-      << ", \"lateral_ratio\": " << cg.comparison.lateral_ratio
-      << ", \"largest_level_spread\": " << cg.largest_level_spread()
-      << ", \"momentum_residual\": " << cg.residual << ", \"momentum_rate\": " << cg.momentum_rate
-      << ", \"momentum_residual_by_differences\": ";
-    if (std::isfinite(cg.residual_by_differences))
-      j << cg.residual_by_differences;
-    else
-      j << "null";
-    j << ", \"seconds\": " << cg.seconds << "}";
+      << "\", \"relative_l2_zz\": " << n(cg.comparison.l2_difference[8] / norm)
+      << ", \"relative_l2_xx\": " << n(cg.comparison.l2_difference[0] / norm)
+      << ", \"lateral_ratio\": " << n(cg.comparison.lateral_ratio)
+      << ", \"largest_level_spread\": " << n(cg.largest_level_spread())
+      << ", \"momentum_residual\": " << n(cg.residual) << ", \"momentum_rate\": " << n(cg.momentum_rate)
+      << ", \"momentum_residual_by_differences\": " << n(cg.residual_by_differences)
+      << ", \"seconds\": " << n(cg.seconds) << "}";
   }
   j << "\n}\n";
   dem::io::write_text_atomically(folder / "study.json", j.str());

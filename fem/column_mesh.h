@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "dem/io/atomic_file.h"
+#include "dem/io/undated_vtk.h"
 #include "fem/elastic_column.h"
 
 namespace upgrain::fem::column_mesh {
@@ -143,7 +144,7 @@ inline void write_pieces_and_record(const dealii::DataOut<dim>& data_out, const 
       for (unsigned int r = 0; r < n_ranks; ++r) pieces.push_back(piece_name(r));
       std::ostringstream pvtu;
       data_out.write_pvtu_record(pvtu, pieces);
-      dem::io::write_text_atomically(dir / "column.pvtu", pvtu.str());
+      dem::io::write_text_atomically(dir / "column.pvtu", dem::io::undated_vtk(pvtu.str()));
     } catch (const std::exception& e) {
       error = e.what();
     }

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # README command 2 (and what CI runs): install the packages, build, and run the whole
 # test suite through CTest: a Release build with warnings as errors runs every test, an
-# AddressSanitizer+UBSan build runs the unit tests. A second run rebuilds only what changed.
+# AddressSanitizer+UBSan build runs the unit tests, and a clang build of the fuzz targets
+# replays their stored corpus. A second run rebuilds only what changed.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$here/scripts/install-deps.sh"
@@ -19,3 +20,14 @@ jobs="${UPGRAIN_JOBS:-2}"
   -DUPGRAIN_SANITIZE=ON -DUPGRAIN_WITH_DEALII=OFF -DUPGRAIN_BUILD_BENCH=OFF
 (cd "$here/build-asan" && ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 \
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ctest --output-on-failure -j"$jobs" -L unit)
+
+# The fuzz targets over their stored corpus, every input once (docs/input.md, "Fuzzing"): a
+# build of their own with clang, of the few sources the two readers need. scripts/fuzz.sh
+# fuzzes them for minutes; CI only replays what was found.
+if command -v clang++ >/dev/null; then
+  CC=clang CXX=clang++ "$here/scripts/build.sh" "$here/build-fuzz" -DCMAKE_BUILD_TYPE=Release -DUPGRAIN_WERROR=ON \
+    -DUPGRAIN_FUZZ=ON
+  (cd "$here/build-fuzz" && ctest --output-on-failure -L fuzz)
+else
+  echo "test.sh: clang++ not found: the fuzz targets were not built (scripts/install-deps.sh installs clang)"
+fi

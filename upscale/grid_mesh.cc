@@ -35,9 +35,11 @@
 #include <fstream>
 #include <limits>
 #include <set>
+#include <sstream>
 #include <system_error>
 
 #include "dem/core/error.h"
+#include "dem/io/undated_vtk.h"
 
 namespace upgrain::upscale {
 
@@ -373,7 +375,11 @@ class GridToMesh {
     for (unsigned r = 0; r < ranks; ++r) pieces.push_back(piece(r));
     on_every_rank(comm_, [&] {
       if (rank != 0) return;
-      write(record, [&](std::ostream& out) { data_out.write_pvtu_record(out, pieces); });
+      write(record, [&](std::ostream& out) {
+        std::ostringstream text;
+        data_out.write_pvtu_record(text, pieces);
+        out << dem::io::undated_vtk(text.str());
+      });
       for (const std::string& name : pieces) fs::rename(staging / name, folder / name);
       fs::rename(staging / record, folder / record);
     });

@@ -29,6 +29,7 @@
 
 #include "dem/core/error.h"
 #include "dem/io/atomic_file.h"
+#include "dem/io/undated_vtk.h"
 #include "dem/parallel/exchange.h"
 
 namespace upgrain::upscale {
@@ -275,7 +276,7 @@ class PointFieldsOnMesh {
       try {
         std::ostringstream pvtu;
         data_out.write_pvtu_record(pvtu, pieces);
-        dem::io::write_text_atomically(folder / (basename + ".pvtu"), pvtu.str());
+        dem::io::write_text_atomically(folder / (basename + ".pvtu"), dem::io::undated_vtk(pvtu.str()));
       } catch (const std::exception& e) {
         error = e.what();
       }

@@ -7,6 +7,7 @@
 
 #include "dem/core/error.h"
 #include "dem/io/atomic_file.h"
+#include "dem/io/checksum_block.h"
 #include "dem/io/engine_state_file.h"
 #include "dem/io/hdf5_reader.h"
 #include "dem/io/hdf5_util.h"
@@ -51,11 +52,11 @@ GridEvaluationState read_grid_state(const hdf5::Reader& in, const std::string& g
                                     dem::StressFormula rate_formula) {
   GridEvaluationState s;
   s.stress_files = dem::io::read_grid_stress_list(in, group + "/stress_files");
-  s.stress_rows = static_cast<long>(in.attribute("stress_rows", group));
-  s.compute_grid_rows = static_cast<long>(in.attribute("compute_grid_rows", group));
+  s.stress_rows = in.whole_attribute("stress_rows", group, 0);
+  s.compute_grid_rows = in.whole_attribute("compute_grid_rows", group, 0);
   s.strain_files = upscale::read_strain_list(in, group + "/strain_files");
-  s.strain_rows = static_cast<long>(in.attribute("strain_rows", group));
-  s.block_rows = static_cast<long>(in.attribute("block_rows", group));
+  s.strain_rows = in.whole_attribute("strain_rows", group, 0);
+  s.block_rows = in.whole_attribute("block_rows", group, 0);
   if (in.exists(group + "/reference")) s.reference = upscale::read_strain_reference(in, group + "/reference");
   if (in.exists(group + "/previous")) s.previous = upscale::read_previous_strain(in, group + "/previous");
   if (in.exists(group + "/rates")) s.rates = upscale::read_rate_history(in, group + "/rates", rate_formula);
@@ -89,8 +90,8 @@ fs::path write_checkpoint(const fs::path& folder, const Checkpoint& c, int keep)
   std::snprintf(name, sizeof name, "checkpoint_%09ld.h5", c.step);
   dem::io::AtomicFile target(dir / name);
   {
-    hdf5::Handle file(H5Fcreate(target.temporary_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
-                      H5Fclose, "create " + target.temporary_path().string());
+    hdf5::Handle file(hdf5::create_file(target.temporary_path(), dem::io::kChecksumBlockBytes), H5Fclose,
+                      "create " + target.temporary_path().string());
     hdf5::write_attribute(file, "format", kFormat);
     hdf5::write_attribute(file, "format_version", static_cast<double>(kCheckpointVersion));
     hdf5::write_attribute(file, "code_version", UPGRAIN_VERSION);
@@ -114,7 +115,13 @@ fs::path write_checkpoint(const fs::path& folder, const Checkpoint& c, int keep)
       hdf5::write_dataset(g, "id", ref.id.data(), ref.id.size());
       hdf5::write_vectors(g, "position", ref.x);
     }
-    hdf5::flush(file, target.final_path().string());
+    // Its checksum in its first block, written and synced: only then does it get its name.
+    // The image leaves the user block out: it goes first, stamped with the rest's checksum.
+    std::vector<unsigned char> image(dem::io::kChecksumBlockBytes, 0);
+    const std::vector<unsigned char> rest = hdf5::file_image(file);
+    image.insert(image.end(), rest.begin(), rest.end());
+    dem::io::stamp_checksum(image);
+    dem::io::write_bytes(target.temporary_path(), image.data(), image.size(), target.final_path().string());
   }
   target.commit();
   // The newest `keep` stay (a crash while writing the next leaves the last one whole).
@@ -137,6 +144,8 @@ std::vector<fs::path> checkpoint_files(const fs::path& folder) {
 }
 
 Checkpoint read_checkpoint(const fs::path& file) {
+  // Every byte is checked before the HDF5 library parses one (dem/io/checksum_block.h).
+  dem::io::verify_checksum(file, "checkpoint");
   hdf5::QuietHdf5 quiet;
   hdf5::Reader in(file, "checkpoint");
   if (!in.has_attribute("format") || in.text_attribute("format") != kFormat)
@@ -147,7 +156,7 @@ Checkpoint read_checkpoint(const fs::path& file) {
                 ", this build reads format " + std::to_string(kCheckpointVersion));
   Checkpoint c;
   c.file = file;
-  c.step = static_cast<long>(in.attribute("step"));
+  c.step = in.whole_attribute("step", "/", 0);
   c.time = in.attribute("time");
   c.scene = in.text_attribute("scene");
   c.scene_hash = in.text_attribute("scene_hash");
@@ -155,18 +164,18 @@ Checkpoint read_checkpoint(const fs::path& file) {
   c.engine = dem::io::read_engine_state(in, "/engine");
   if (c.engine.step != c.step) throw Error(in.where() + "the engine's step is not the checkpoint's");
   RunState& r = c.run;
-  r.schedule.step = static_cast<long>(in.attribute("step", "/run"));
-  r.schedule.next_release = static_cast<std::size_t>(in.attribute("next_release", "/run"));
-  r.schedule.rest_check_from = static_cast<long>(in.attribute("rest_check_from", "/run"));
-  r.files.series_rows = static_cast<long>(in.attribute("series_rows", "/run"));
+  r.schedule.step = in.whole_attribute("step", "/run", 0);
+  r.schedule.next_release = static_cast<std::size_t>(in.whole_attribute("next_release", "/run", 0));
+  r.schedule.rest_check_from = in.whole_attribute("rest_check_from", "/run");
+  r.files.series_rows = in.whole_attribute("series_rows", "/run", 0);
   r.files.snapshots = dem::io::read_snapshot_list(in, "/run/snapshots");
   r.grids = in.exists("/run/grids");
   if (r.grids) {
     // The rate formula is checked against the scene's when the run resumes; read it as stored.
-    const auto formula =
-        in.exists("/run/grids/rates")
-            ? static_cast<dem::StressFormula>(static_cast<int>(in.attribute("formula", "/run/grids/rates")))
-            : dem::StressFormula::bagi;
+    const auto formula = in.exists("/run/grids/rates")
+                             ? static_cast<dem::StressFormula>(in.whole_attribute(
+                                   "formula", "/run/grids/rates", 0, dem::kStressFormulaCount - 1))
+                             : dem::StressFormula::bagi;
     r.grid_state = read_grid_state(in, "/run/grids", formula);
   }
   if (in.exists("/run/cg_reference")) {
@@ -189,11 +198,15 @@ Checkpoint newest_checkpoint(const fs::path& folder, std::vector<std::string>& r
     try {
       return read_checkpoint(f);
     } catch (const std::exception& e) {
-      refused.push_back(f.string() + ": " + e.what());
+      // The readers' errors name the file already ("checkpoint <file>: ...").
+      const std::string why = e.what();
+      refused.push_back(why.find(f.string()) != std::string::npos ? why
+                                                                  : "checkpoint " + f.string() + ": " + why);
     }
   }
+  // Every one refused: the newest one's reason says what happened.
   throw Error("no readable checkpoint in " + (folder / "checkpoints").string() + " (" +
-              std::to_string(files.size()) + " refused)");
+              std::to_string(files.size()) + " refused; the newest: " + refused.front() + ")");
 }
 
 }  // namespace upgrain::coupling

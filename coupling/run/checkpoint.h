@@ -2,8 +2,9 @@
 // Checkpoints of a run (docs/restart.md): the engine's whole state (dem/engine/engine_state.h)
 // and where the run stands (its schedule, the files and table rows written, the grid
 // evaluations' state), with the scene's parameters and their hash, in one HDF5 file
-// <folder>/checkpoints/checkpoint_<step>.h5, written atomically (temporary name, flushed, then
-// renamed); the newest `keep` are kept. A restart reads the newest one that is valid.
+// <folder>/checkpoints/checkpoint_<step>.h5, written atomically (temporary name, flushed, closed,
+// stamped with a checksum of its bytes, synced, then renamed); the newest `keep` are kept. A
+// restart reads the newest one that is valid.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -17,7 +18,8 @@
 
 namespace upgrain::coupling {
 
-inline constexpr int kCheckpointVersion = 1;
+// 2: the file begins with a checksum block (dem/io/checksum_block.h).
+inline constexpr int kCheckpointVersion = 2;
 
 // Where a run stands besides the engine.
 struct RunState {
@@ -50,12 +52,13 @@ std::filesystem::path write_checkpoint(const std::filesystem::path& folder, cons
 // Every checkpoint file of <folder>/checkpoints/, newest (largest step) first.
 std::vector<std::filesystem::path> checkpoint_files(const std::filesystem::path& folder);
 
-// Reads one checkpoint; throws upgrain::Error naming the file and what is wrong (not HDF5, cut
-// short, of another version, a part missing).
+// Reads one checkpoint; throws upgrain::Error naming the file and what is wrong (its bytes do
+// not match its checksum, not HDF5, of another version, a part missing or out of range).
 Checkpoint read_checkpoint(const std::filesystem::path& file);
 
 // The newest checkpoint of `folder` that reads whole. Each newer one that does not is named in
-// `refused`, with its reason. Throws upgrain::Error when none reads.
+// `refused` ("checkpoint <file>: <reason>"). Throws upgrain::Error with the newest one's reason
+// when none reads.
 Checkpoint newest_checkpoint(const std::filesystem::path& folder, std::vector<std::string>& refused);
 
 }  // namespace upgrain::coupling

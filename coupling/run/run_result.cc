@@ -4,16 +4,12 @@
 #include <cmath>
 #include <sstream>
 
+#include "dem/io/json_number.h"
+
 namespace upgrain::coupling {
 
 namespace {
-std::string num(double v) {
-  if (!std::isfinite(v)) return "null";
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
-}
+std::string num(double v) { return dem::io::json_number(v); }
 // A JSON string (the names written here need no escapes).
 std::string quoted(std::string s) {
   s.insert(s.begin(), '"');

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <sstream>
 
+#include "dem/contact/weight_overlap.h"
+#include "dem/time_step.h"
+
 namespace upgrain::dem {
 
 std::string non_finite_state(const ParticleStore& p, int n_owned, long step, double time) {
@@ -17,12 +20,29 @@ std::string non_finite_state(const ParticleStore& p, int n_owned, long step, dou
   return {};
 }
 
-std::string runaway_overlap(double ratio, double limit, long step, double time, double time_step) {
+std::string runaway_overlap(double ratio, double limit, long step, double time, const SceneConfig& scene) {
   if (!(ratio > limit)) return {};
   std::ostringstream m;
+  m.precision(3);
   m << "runaway overlap at step " << step << " (t = " << time << " s): an overlap reached " << ratio
-    << " of a radius (limit " << limit << "); the time step " << time_step
-    << " s is too large for this scene or a particle was placed inside another";
+    << " of a radius (limit " << limit << "); ";
+  // Two causes look alike here: grains too soft to carry their weight sink into each other at
+  // any time step, while a time step too large lets fast contacts overshoot. The overlap the
+  // weight alone gives by the contact law tells them apart.
+  const double weight = weight_overlap_ratio(scene);
+  if (weight > kStaticOverlapBound) {
+    m << "the grains are too soft for their weight: by the " << scene.contact_law
+      << " law a grain's weight alone presses it " << weight
+      << " of a radius into the floor (DEM keeps static "
+      << "overlaps below " << kStaticOverlapBound
+      << "), and a bed stacks many; raise Particles/youngs modulus "
+      << "(now " << scene.particles.material.youngs_modulus
+      << " Pa) or the law's stiffness, not the time step";
+  } else {
+    m << "the time step " << scene.time_step << " s (safe " << estimate_time_step(scene).safe_step
+      << " s) is too large for the impacts of this scene, or a particle was placed inside another (a grain's "
+      << "weight alone gives an overlap of " << weight << " of a radius)";
+  }
   return m.str();
 }
 

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "dem/core/particle_store.h"
+#include "dem/scene/scene_config.h"
 
 namespace upgrain::dem {
 
@@ -17,8 +18,10 @@ namespace upgrain::dem {
 // orientation (stores with shapes) is not finite, named with the step and time.
 std::string non_finite_state(const ParticleStore& p, int n_owned, long step, double time);
 
-// An overlap above `limit` of the smallest semi-axis at the evaluation of `step`.
-std::string runaway_overlap(double ratio, double limit, long step, double time, double time_step);
+// An overlap above `limit` of the smallest semi-axis at the evaluation of `step`, with its
+// cause: grains too soft for their weight (dem/contact/weight_overlap.h), or a time step too
+// large for the impacts.
+std::string runaway_overlap(double ratio, double limit, long step, double time, const SceneConfig& scene);
 
 // The global particle count after a migration differs from the scene's.
 std::string lost_particles(long count, long expected, long step);

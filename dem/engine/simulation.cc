@@ -224,8 +224,8 @@ void Simulation::step() {
   MPI_Allreduce(local, global, 2, MPI_DOUBLE, MPI_MAX, comm());
   const Clock::time_point t2 = Clock::now();
   const std::string overlap = runaway_overlap(global[1], kRunawayOverlapRatio, last_overlap_step_,
-                                              static_cast<double>(last_overlap_step_) * dt_, dt_);
-  if (!overlap.empty()) throw Error(overlap);
+                                              static_cast<double>(last_overlap_step_) * dt_, scene_);
+  if (!overlap.empty()) throw CollectiveError(overlap);  // every rank has the same maximum
   const bool rebuilding = global[0] > 0.0;
   if (rebuilding) {
     rebuild();
@@ -287,7 +287,7 @@ void Simulation::rebuild() {
   MPI_Allreduce(&count, &total, 1, MPI_LONG, MPI_SUM, comm());
   timings_.rebuild_messages += seconds_since(t);
   const std::string lost = lost_particles(total, n_global_, step_);
-  if (!lost.empty()) throw Error(lost);
+  if (!lost.empty()) throw CollectiveError(lost);
   sort_unique(records);
   // Memory locality only: the lists fix the order of every sum.
   sort_by_cell(p_, range_);
@@ -686,8 +686,8 @@ StepDiagnostics Simulation::diagnostics() const {
   MPI_Allreduce(MPI_IN_PLACE, &overlap, 1, MPI_DOUBLE, MPI_MAX, comm());
   // step() checks each evaluation at the next step's reduction; this covers a run's last one.
   const std::string runaway = runaway_overlap(overlap, kRunawayOverlapRatio, last_overlap_step_,
-                                              static_cast<double>(last_overlap_step_) * dt_, dt_);
-  if (!runaway.empty()) throw Error(runaway);
+                                              static_cast<double>(last_overlap_step_) * dt_, scene_);
+  if (!runaway.empty()) throw CollectiveError(runaway);
   StepDiagnostics d;
   d.particle_contacts = counts[0];
   d.wall_contacts = counts[1];

@@ -1,7 +1,10 @@
 #include "dem/io/atomic_file.h"
 
+#include <fcntl.h>
 #include <unistd.h>
-#include <fstream>
+
+#include <cerrno>
+#include <cstring>
 #include <system_error>
 
 #include "dem/core/error.h"
@@ -27,15 +30,33 @@ void AtomicFile::commit() {
   committed_ = true;
 }
 
+void write_bytes(const std::filesystem::path& path, const void* data, std::size_t n,
+                 const std::string& name) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw Error("cannot write " + name + ": " + std::strerror(errno));
+  const char* p = static_cast<const char*>(data);
+  std::size_t done = 0;
+  while (done < n) {
+    const ssize_t put = ::write(fd, p + done, n - done);
+    if (put < 0 && errno == EINTR) continue;
+    if (put <= 0) {
+      const int e = put < 0 ? errno : ENOSPC;
+      ::close(fd);
+      throw Error("cannot write " + name + ": " + std::strerror(e));
+    }
+    done += static_cast<std::size_t>(put);
+  }
+  // A file whose bytes are still in the page cache can be lost whole in a crash after its
+  // rename; the error of a delayed write shows here or at close.
+  const bool synced = ::fsync(fd) == 0;
+  const int e = errno;
+  if (::close(fd) != 0 || !synced)
+    throw Error("cannot write " + name + ": " + std::strerror(synced ? errno : e));
+}
+
 void write_text_atomically(const std::filesystem::path& path, const std::string& text) {
   AtomicFile f(path);
-  {
-    std::ofstream out(f.temporary_path(), std::ios::binary);
-    if (!out) throw Error("cannot write " + f.temporary_path().string());
-    out << text;
-    out.flush();
-    if (!out) throw Error("error while writing " + f.temporary_path().string());
-  }
+  write_bytes(f.temporary_path(), text.data(), text.size(), path.string());
   f.commit();
 }
 

@@ -2,6 +2,7 @@
 // Files appear under their final name only when complete: they are written under a
 // temporary name in the same folder and renamed (POSIX rename is atomic within a file
 // system). A crash or an error leaves no half-written file under the final name.
+#include <cstddef>
 #include <filesystem>
 #include <string>
 
@@ -24,6 +25,10 @@ class AtomicFile {
   std::filesystem::path tmp_;
   bool committed_ = false;
 };
+
+// Writes `n` bytes to `path` (created or emptied) and syncs them to the disk; throws
+// upgrain::Error "cannot write <name>: <reason>" (a full disk: "No space left on device").
+void write_bytes(const std::filesystem::path& path, const void* data, std::size_t n, const std::string& name);
 
 // Writes `text` to `path` atomically.
 void write_text_atomically(const std::filesystem::path& path, const std::string& text);

@@ -1,5 +1,9 @@
 #include "dem/io/csv_series.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>
@@ -17,17 +21,32 @@ CsvSeries::CsvSeries(std::filesystem::path path, std::string header)
     : path_(std::move(path)), header_(std::move(header)) {}
 
 void CsvSeries::append(const std::string& rows) {
-  rows_ += static_cast<long>(std::count(rows.begin(), rows.end(), '\n'));
+  const long added = static_cast<long>(std::count(rows.begin(), rows.end(), '\n'));
   if (!started_) {
     write_text_atomically(path_, header_ + rows);
     started_ = true;
+    rows_ += added;
     return;
   }
   if (rows.empty()) return;
-  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path_.c_str(), "ab"), std::fclose);
-  if (!f) throw Error("cannot append to " + path_.string() + ": " + std::strerror(errno));
-  if (std::fwrite(rows.data(), 1, rows.size(), f.get()) != rows.size() || std::fflush(f.get()) != 0)
-    throw Error("cannot append to " + path_.string() + ": " + std::strerror(errno));
+  const int fd = ::open(path_.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+  if (fd < 0) throw Error("cannot append to " + path_.string() + ": " + std::strerror(errno));
+  struct stat before {};
+  std::size_t done = 0;
+  int error = ::fstat(fd, &before) == 0 ? 0 : errno;
+  while (error == 0 && done < rows.size()) {
+    const ssize_t put = ::write(fd, rows.data() + done, rows.size() - done);
+    if (put < 0 && errno == EINTR) continue;
+    if (put <= 0)
+      error = put < 0 ? errno : ENOSPC;
+    else
+      done += static_cast<std::size_t>(put);
+  }
+  // A row cut short by a full disk is taken back: the table under its name stays whole.
+  if (error != 0 && done > 0 && ::ftruncate(fd, before.st_size) != 0) error = errno;
+  ::close(fd);
+  if (error != 0) throw Error("cannot append to " + path_.string() + ": " + std::strerror(error));
+  rows_ += added;
 }
 
 void CsvSeries::resume(long rows) {

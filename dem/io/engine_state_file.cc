@@ -179,7 +179,7 @@ EngineState read_engine_state(const hdf5::Reader& in, const std::string& group) 
                 std::to_string(EngineState::kVersion));
   if (in.attribute("history_version", group) != ContactHistoryRecord::kVersion)
     throw Error(in.where() + "contact-history records of another version");
-  auto whole = [&](const char* name) { return static_cast<long>(in.attribute(name, group)); };
+  auto whole = [&](const char* name) { return in.whole_attribute(name, group); };
   s.step = whole("step");
   s.pair_contacts = whole("pair_contacts");
   s.wall_contacts = whole("wall_contacts");
@@ -295,7 +295,8 @@ EngineState read_engine_state(const hdf5::Reader& in, const std::string& group) 
   const char* names3[3] = {"planes_x", "planes_y", "planes_z"};
   for (int d = 0; d < 3; ++d) s.domain.planes[d] = in.read_all<double>(dg + names3[d]);
   const std::vector<double> balance = in.read<double>(dg + "balance", H5T_NATIVE_DOUBLE, 4);
-  s.domain.balance = {static_cast<long>(balance[0]), static_cast<long>(balance[1]), balance[2], balance[3]};
+  s.domain.balance = {in.whole(balance[0], dg + "balance[0]"), in.whole(balance[1], dg + "balance[1]"),
+                      balance[2], balance[3]};
   return s;
 }
 

@@ -4,8 +4,10 @@
 // object.
 #include <hdf5.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -60,6 +62,11 @@ class Reader {
         dims[1] != cols)
       throw Error(where() + "dataset " + name + " has shape " + shape(rank, dims) + ", expected " +
                   std::to_string(rows) + (cols == 1 ? "" : " x " + std::to_string(cols)));
+    // The data must be in the file before memory is taken for it: a corrupt shape could ask
+    // for more than the machine has.
+    Handle type(H5Dget_type(set), H5Tclose, "get the type of " + name + where(true));
+    if (!holds(H5Dget_storage_size(set), rows, cols * H5Tget_size(type)))
+      throw Error(where() + "dataset " + name + " is shorter than its shape (" + shape(rank, dims) + ")");
     std::vector<T> v(rows * cols);
     if (!v.empty() && H5Dread(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0)
       throw Error(where() + "cannot read dataset " + name);
@@ -108,6 +115,8 @@ class Reader {
         H5Tget_class(type) != H5T_STRING || H5Tis_variable_str(type) > 0)
       throw Error(where() + "attribute " + name + " is not a list of text");
     const std::size_t width = H5Tget_size(type);
+    if (!holds(H5Aget_storage_size(a), n, width))
+      throw Error(where() + "attribute " + name + " is cut short");
     std::string packed(width * n, '\0');
     if (n > 0 && H5Aread(a, type, packed.data()) < 0) throw Error(where() + "cannot read attribute " + name);
     std::vector<std::string> out(n);
@@ -116,6 +125,25 @@ class Reader {
       out[i].resize(std::strlen(out[i].c_str()));
     }
     return out;
+  }
+
+  // A number of the file that must be whole and within [lo, hi] (a count, a step, an index, an
+  // enumerator): one that is not finite, not whole or out of range is an error naming `what`
+  // (converting it would be undefined behaviour).
+  static constexpr double kLargestWhole = 9007199254740992.0;  // 2^53
+  [[nodiscard]] long whole(double v, const std::string& what, double lo = -kLargestWhole,
+                           double hi = kLargestWhole) const {
+    if (!(v >= lo && v <= hi) || v != std::floor(v)) {
+      std::ostringstream m;
+      m.precision(17);
+      m << where() << what << " is " << v << ", not a whole number in [" << lo << ", " << hi << "]";
+      throw Error(m.str());
+    }
+    return static_cast<long>(v);
+  }
+  [[nodiscard]] long whole_attribute(const char* name, const std::string& object = "/",
+                                     double lo = -kLargestWhole, double hi = kLargestWhole) const {
+    return whole(attribute(name, object), std::string("attribute ") + name + " of " + object, lo, hi);
   }
 
   // A scalar attribute of the file, or of the group or dataset at `object`.
@@ -185,6 +213,10 @@ class Reader {
       throw Error(kind + " " + path.string() + ": no such file");
     if (H5Fis_hdf5(path.c_str()) <= 0) throw Error(kind + " " + path.string() + ": not an HDF5 file");
     return H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  }
+  // Whether `stored` bytes hold `count` elements of `size` bytes (without overflow).
+  static bool holds(hsize_t stored, hsize_t count, std::size_t size) {
+    return size > 0 && count <= stored / size;
   }
   static std::string shape(int rank, const hsize_t* dims) {
     std::string s;

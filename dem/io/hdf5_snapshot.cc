@@ -37,7 +37,7 @@ void write_snapshot(const std::filesystem::path& path, const ParticleStore& p,
 
   AtomicFile target(path);
   {
-    Handle file(H5Fcreate(target.temporary_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
+    Handle file(hdf5::create_file(target.temporary_path()), H5Fclose,
                 "create " + target.temporary_path().string());
     write_attribute(file, "time", time);
     write_attribute(file, "step", static_cast<double>(step));

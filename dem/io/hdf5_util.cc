@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "dem/core/error.h"
+#include "dem/io/atomic_file.h"
 
 namespace upgrain::dem::io::hdf5 {
 
@@ -82,9 +83,37 @@ hid_t create_group(hid_t parent, const std::string& name) {
   return g;
 }
 
+hid_t create_file(const std::filesystem::path& path, hsize_t user_block) {
+  // The image grows by 1 MiB at a time; nothing is written behind it.
+  Handle access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "create a file access property list");
+  if (H5Pset_fapl_core(access, std::size_t{1} << 20, false) < 0)
+    throw Error("HDF5: cannot select the in-memory file driver");
+  Handle creation(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "create a file creation property list");
+  if (user_block > 0 && H5Pset_userblock(creation, user_block) < 0)
+    throw Error("HDF5: cannot reserve a user block of " + std::to_string(user_block) + " bytes");
+  const hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, creation, access);
+  if (f < 0) throw Error("HDF5: cannot create " + path.string());
+  return f;
+}
+
+std::vector<unsigned char> file_image(hid_t file) {
+  // Every cached object's metadata into the image first (the image alone leaves out what open
+  // groups and datasets still hold).
+  if (H5Fflush(file, H5F_SCOPE_GLOBAL) < 0) throw Error("HDF5: cannot flush a file built in memory");
+  const ssize_t size = H5Fget_file_image(file, nullptr, 0);
+  std::vector<unsigned char> image(size > 0 ? static_cast<std::size_t>(size) : 0);
+  if (size <= 0 || H5Fget_file_image(file, image.data(), image.size()) != size)
+    throw Error("HDF5: cannot take the image of a file built in memory");
+  return image;
+}
+
 void flush(hid_t file, const std::string& path) {
-  if (H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
-    throw Error("cannot write " + path + " (HDF5 flush failed: is the disk full?)");
+  const ssize_t length = H5Fget_name(file, nullptr, 0);
+  std::string name(length > 0 ? static_cast<std::size_t>(length) : 0, '\0');
+  if (length <= 0 || H5Fget_name(file, name.data(), name.size() + 1) != length)
+    throw Error("HDF5: cannot name the file of " + path);
+  const std::vector<unsigned char> image = file_image(file);
+  write_bytes(name, image.data(), image.size(), path);
 }
 
 }  // namespace upgrain::dem::io::hdf5

@@ -4,6 +4,7 @@
 #include <hdf5.h>
 
 #include <cstdint>
+#include <filesystem>
 #include <string>
 
 #include <vector>
@@ -67,9 +68,18 @@ hid_t create_group(hid_t parent, const std::string& name);
 // Fields of vectors and tensors as rows of 3 and 9 doubles (tensors row-major, T_ij at 3 i + j).
 void write_vectors(hid_t group, const char* name, const std::vector<Vec3>& v);
 void write_tensors(hid_t group, const char* name, const std::vector<Mat3>& t);
-// Writes every buffer of an open file to disk, and throws upgrain::Error naming `path` when it
-// cannot (a full disk, a write error): called before a file is committed (atomic_file.h), so a
-// file whose data did not reach the disk never gets its final name.
+// A new file for `path` (an AtomicFile's temporary name), built in memory by HDF5's core driver
+// without a backing store: the library itself never writes to the disk, so a full disk or a
+// write error cannot leave it holding a half-closed file (HDF5 1.10 then crashes when it
+// terminates), and every write error is ours to report (flush). `user_block`: bytes reserved
+// at the start of the file for the application (checksum_block.h).
+hid_t create_file(const std::filesystem::path& path, hsize_t user_block = 0);
+// The bytes of a file made by create_file, as they stand.
+std::vector<unsigned char> file_image(hid_t file);
+// Writes the file's bytes to the path it was made for and syncs them; throws upgrain::Error
+// naming `path` (its final name) when that fails (a full disk, a write error). Called before a
+// file is committed (atomic_file.h), so a file whose bytes did not all reach the disk never
+// gets its final name.
 void flush(hid_t file, const std::string& path);
 
 }  // namespace upgrain::dem::io::hdf5

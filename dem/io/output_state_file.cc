@@ -30,12 +30,12 @@ void put_grid(const RegularGrid& g, double* nine) {
   }
 }
 
-RegularGrid get_grid(const double* nine) {
+RegularGrid get_grid(const double* nine, const hdf5::Reader& in) {
   RegularGrid g;
   for (int d = 0; d < 3; ++d) {
     g.lo[d] = nine[d];
     g.hi[d] = nine[3 + d];
-    g.n[d] = static_cast<int>(nine[6 + d]);
+    g.n[d] = static_cast<int>(in.whole(nine[6 + d], "a grid's cell count", 0, 1 << 20));
   }
   return g;
 }
@@ -56,8 +56,8 @@ std::vector<SnapshotInfo> read_snapshot_list(const hdf5::Reader& in, const std::
   const std::vector<double> v = read_list(in, group, 4, files);
   std::vector<SnapshotInfo> out;
   for (std::size_t k = 0; k < files.size(); ++k)
-    out.push_back({files[k], v[4 * k], static_cast<long>(v[4 * k + 1]), static_cast<long>(v[4 * k + 2]),
-                   v[4 * k + 3] != 0.0});
+    out.push_back({files[k], v[4 * k], in.whole(v[4 * k + 1], group + " step"),
+                   in.whole(v[4 * k + 2], group + " count", 0), v[4 * k + 3] != 0.0});
   return out;
 }
 
@@ -79,7 +79,8 @@ std::vector<GridStressEntry> read_grid_stress_list(const hdf5::Reader& in, const
   const std::vector<double> v = read_list(in, group, 11, files);
   std::vector<GridStressEntry> out;
   for (std::size_t k = 0; k < files.size(); ++k)
-    out.push_back({files[k], v[11 * k], static_cast<long>(v[11 * k + 1]), get_grid(v.data() + 11 * k + 2)});
+    out.push_back(
+        {files[k], v[11 * k], in.whole(v[11 * k + 1], group + " step"), get_grid(v.data() + 11 * k + 2, in)});
   return out;
 }
 

@@ -23,8 +23,8 @@ std::vector<SnapshotInfo> read_snapshot_list(const hdf5::Reader& in, const std::
 void write_grid_stress_list(hid_t parent, const std::string& group, const std::vector<GridStressEntry>& list);
 std::vector<GridStressEntry> read_grid_stress_list(const hdf5::Reader& in, const std::string& group);
 
-// A regular grid as 9 numbers (lo, hi, n), and back.
+// A regular grid as 9 numbers (lo, hi, n), and back from the file `in` (whose errors name it).
 void put_grid(const RegularGrid& g, double* nine);
-RegularGrid get_grid(const double* nine);
+RegularGrid get_grid(const double* nine, const hdf5::Reader& in);
 
 }  // namespace upgrain::dem::io

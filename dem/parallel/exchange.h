@@ -75,8 +75,8 @@ std::vector<T> gather_to_root(const std::vector<T>& mine, MPI_Comm comm, int roo
 }
 
 // Makes an error collective: every rank calls it; if any rank passes a non-empty message,
-// the lowest such rank's message is thrown as upgrain::Error on every rank, so no rank is
-// left waiting in a later message.
+// the lowest such rank's message is thrown as upgrain::CollectiveError on every rank, so no
+// rank is left waiting in a later message and the driver prints it once.
 inline void throw_if_any(MPI_Comm comm, const std::string& local_message) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
@@ -90,10 +90,10 @@ inline void throw_if_any(MPI_Comm comm, const std::string& local_message) {
   MPI_Bcast(&length, 1, MPI_INT, first, comm);
   m.resize(static_cast<std::size_t>(length));
   MPI_Bcast(m.data(), length, MPI_CHAR, first, comm);
-  throw Error(m);
+  throw CollectiveError(m);
 }
 
-// Collective: runs `work` on `root`; an exception there is thrown as upgrain::Error on
+// Collective: runs `work` on `root`; an exception there is thrown as upgrain::CollectiveError on
 // every rank, so no rank waits forever in a later message.
 inline void run_on_root(MPI_Comm comm, const std::function<void()>& work, int root = 0) {
   int rank = 0;

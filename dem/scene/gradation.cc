@@ -27,6 +27,20 @@ void validate_gradation(const std::vector<GradationPoint>& c) {
     throw Error("gradation curve: the last point must have fraction passing 1 (it is the largest radius)");
 }
 
+double sampling_acceptance(const std::vector<GradationPoint>& c) {
+  validate_gradation(c);
+  const double r_min = c.front().radius;
+  double acceptance = 0.0;
+  for (std::size_t k = 1; k < c.size(); ++k) {
+    // r is linear in the fraction passing q over the segment: the integral of (r_min / r)^3 dq.
+    const double r0 = c[k - 1].radius, r1 = c[k].radius,
+                 dq = c[k].fraction_passing - c[k - 1].fraction_passing;
+    const double ratio0 = r_min / r0, ratio1 = r_min / r1;
+    acceptance += dq * r_min / (r1 - r0) * 0.5 * (ratio0 * ratio0 - ratio1 * ratio1);
+  }
+  return acceptance;
+}
+
 std::vector<double> sample_radii(const std::vector<GradationPoint>& c, long count, std::mt19937_64& rng) {
   validate_gradation(c);
   std::uniform_real_distribution<double> u(0.0, 1.0);

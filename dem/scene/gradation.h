@@ -17,4 +17,9 @@ void validate_gradation(const std::vector<GradationPoint>& curve);
 // number weights (the number density is the mass density divided by r^3).
 std::vector<double> sample_radii(const std::vector<GradationPoint>& curve, long count, std::mt19937_64& rng);
 
+// The mean acceptance probability of that draw, E[(r_min / r)^3] over the mass distribution:
+// sample_radii takes about count / acceptance draws, which a curve spanning decades of radius
+// makes astronomically many (the scene's validation refuses those, coupling/scene_limits.h).
+double sampling_acceptance(const std::vector<GradationPoint>& curve);
+
 }  // namespace upgrain::dem

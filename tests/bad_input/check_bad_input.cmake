@@ -1,17 +1,40 @@
 # Runs upgrain on one bad scene file in an empty folder and checks the refusal.
 if(NOT DEFINED EXPECT)
+  # The first line, after a byte-order mark if any, without a Windows line end.
   file(STRINGS ${PRM} first LIMIT_COUNT 1)
+  string(FIND "${first}" "# expect:" at)
+  string(SUBSTRING "${first}" ${at} -1 first)
   string(REGEX REPLACE "^# expect: *" "" EXPECT "${first}")
+  string(STRIP "${EXPECT}" EXPECT)
+endif()
+# A special file (a FIFO) is made where the test asks, outside the working folder.
+if(DEFINED MAKE_FIFO)
+  file(REMOVE ${MAKE_FIFO})
+  execute_process(COMMAND mkfifo ${MAKE_FIFO} RESULT_VARIABLE made)
+  if(NOT made EQUAL 0)
+    message(FATAL_ERROR "mkfifo ${MAKE_FIFO} failed")
+  endif()
 endif()
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
-execute_process(COMMAND ${UPGRAIN} ${PRM} WORKING_DIRECTORY ${WORK}
+# A hang (a FIFO opened for reading waits for a writer) fails the test, not the suite.
+separate_arguments(launcher UNIX_COMMAND "${LAUNCHER}")
+execute_process(COMMAND ${launcher} ${UPGRAIN} ${PRM} WORKING_DIRECTORY ${WORK} TIMEOUT 30
                 RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(code EQUAL 0)
   message(FATAL_ERROR "upgrain accepted ${PRM}\nstdout: ${out}")
 endif()
+if(NOT code MATCHES "^[0-9]+$")
+  message(FATAL_ERROR "upgrain did not end by itself on ${PRM}: ${code}")
+endif()
 if(NOT err MATCHES "${EXPECT}")
   message(FATAL_ERROR "error message does not match '${EXPECT}':\n${err}")
+endif()
+# Said once, also when every rank of an MPI run refused the scene.
+string(REGEX MATCHALL "upgrain: error" said "${err}")
+list(LENGTH said times)
+if(NOT times EQUAL 1)
+  message(FATAL_ERROR "the error was printed ${times} times:\n${err}")
 endif()
 get_filename_component(prm_name ${PRM} NAME)
 if(NOT err MATCHES "${prm_name}")

@@ -56,7 +56,7 @@ for s in snaps:
 floor = [k for k in last["walls"] if last["wall_normal"][k][2] > 0.5][0]
 weight = last["mass"] * g
 assert abs(-last["wall_force"][floor][2] - weight) < 0.05 * weight, (last["wall_force"][floor], weight)
-summary = json.load(open("summary.json"))
+summary = json.load(open("summary.json"), parse_constant=lambda c: sys.exit(f"summary.json: {c} is not JSON"))
 assert summary["particles_outside_container"] > 0
 # Strain from the release on; rates from its second output.
 files = sorted(os.listdir("grid_strain"))

@@ -50,7 +50,7 @@ with open("time_series.csv") as f:
     rows = [r for r in csv.reader(l for l in f if not l.startswith("#"))]
 header, data = rows[0], rows[1:]
 assert len(data) >= 40 and all(len(r) == len(header) for r in data), "time series malformed"
-summary = json.load(open("summary.json"))
+summary = json.load(open("summary.json"), parse_constant=lambda c: sys.exit(f"summary.json: {c} is not JSON"))
 for key in ("particles", "steps", "energy_balance_error", "bed_solid_fraction", "particle_steps_per_second"):
     assert key in summary, key
 assert summary["particles"] == expected

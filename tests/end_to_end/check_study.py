@@ -26,7 +26,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))  # before any chdir
 
 folder = sys.argv[1]
 os.chdir(folder)
-s = json.load(open("study.json"))
+s = json.load(open("study.json"), parse_constant=lambda c: sys.exit(f"study.json: {c} is not JSON"))
 assert s["fem_relative_l2_error_stress"] < 1e-8, s["fem_relative_l2_error_stress"]
 assert abs(s["fem_mean_lateral_ratio"] - s["k0"]) < 1e-8, (s["fem_mean_lateral_ratio"], s["k0"])
 

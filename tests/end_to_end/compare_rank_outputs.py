@@ -1,22 +1,28 @@
 #!/usr/bin/env python3
 """Checks that runs of one scene on different rank counts wrote the same results.
 
-Usage: compare_rank_outputs.py [--other-blocks] REFERENCE_FOLDER OTHER_FOLDER...
+Usage: compare_rank_outputs.py [--other-blocks | --no-checkpoints] [--meshes] REFERENCE_FOLDER OTHER_FOLDER...
 
 - Every HDF5 file (snapshots, grid stress, grid strain), XDMF file and grid CSV table:
   byte-identical.
 - time_series.csv and summary.json: every number bitwise equal (the cumulative dissipation is
   an exact sum, docs/parallel.md), but the timings and how the work was shared.
-Report, plots, logs and the deal.II meshes (which carry their creation time) are skipped.
+Report, plots and logs are skipped, and so are the deal.II meshes (a piece per rank) unless
+--meshes is given, for runs on one rank count: then they too must be the same bytes (their
+records carry no creation date, dem/io/undated_vtk.h).
 With --other-blocks (runs on different rank counts) so are the compute-grid stress and strain,
-whose blocks are those of each rank count, and the checkpoints, which keep the blocks.
+whose blocks are those of each rank count, and the checkpoints, which keep the blocks; with
+--no-checkpoints the checkpoints alone (a run continued with another end time, or stopped by a
+signal, has other checkpoints by design: they hold the scene's text and the step they stopped at).
 """
 import csv
 import json
 import os
 import sys
 
-SKIP_SUFFIXES = ('.md', '.png', '.log', '.pvtu', '.vtu', '.pvd')
+# The deal.II meshes have a piece per rank: compared (--meshes) between runs on one rank count.
+MESH_SUFFIXES = ('.pvtu', '.vtu', '.pvd')
+SKIP_SUFFIXES = ('.md', '.png', '.log') + MESH_SUFFIXES
 # The stress and strain per MPI block: the blocks are the rank count's own (docs/stress.md,
 # docs/strain.md).
 BLOCK_FILES = {'compute_grid_stress.csv', 'compute_grid_strain.csv'}
@@ -77,10 +83,18 @@ def compare(ref, other):
 
 def main():
     global SKIP_FILES, SKIP_FOLDERS
+    global SKIP_SUFFIXES
     args = sys.argv[1:]
-    if args and args[0] == '--other-blocks':
-        SKIP_FILES, SKIP_FOLDERS = BLOCK_FILES, BLOCK_FOLDERS
-        args = args[1:]
+    while args and args[0].startswith('--'):
+        option = args.pop(0)
+        if option == '--other-blocks':
+            SKIP_FILES, SKIP_FOLDERS = BLOCK_FILES, BLOCK_FOLDERS
+        elif option == '--no-checkpoints':
+            SKIP_FOLDERS = ('checkpoints' + os.sep,)
+        elif option == '--meshes':
+            SKIP_SUFFIXES = tuple(s for s in SKIP_SUFFIXES if s not in MESH_SUFFIXES)
+        else:
+            sys.exit(f'unknown option {option}')
     ref = args[0]
     failed = False
     for other in args[1:]:

@@ -16,7 +16,8 @@ Usage: kill_and_restart.py UPGRAIN SCENE WORK [--kills N] [--signal KILL|TERM]
    mpiexec the launcher reports its own code). No temporary file may remain once the last run
    has ended.
 4. compare_rank_outputs.py compares the two folders: every HDF5, XDMF and CSV file
-   byte-identical, time_series.csv and summary.json bitwise but the timings (and, on other
+   byte-identical (the deal.II meshes too when the rank count stays), time_series.csv and
+   summary.json bitwise but the timings (and, on other
    rank counts, the compute-grid files and the checkpoints, which follow the blocks).
 """
 import argparse
@@ -94,8 +95,7 @@ def main():
     if leftovers:
         sys.exit(f'temporary files left behind: {leftovers[:5]}')
     compare = [sys.executable, os.path.join(HERE, 'compare_rank_outputs.py')]
-    if restart_ranks != a.ranks:
-        compare.append('--other-blocks')
+    compare.append('--other-blocks' if restart_ranks != a.ranks else '--meshes')
     compare += [whole, broken]
     sys.exit(subprocess.run(compare).returncode)
 

@@ -26,6 +26,25 @@ TEST(Gradation, SampledMassFollowsTheCurve) {
   EXPECT_NEAR(below / total, 0.3, 0.01);
 }
 
+// The acceptance of the mass-to-number draw against a midpoint sum of (r_min / r(q))^3 over
+// the fraction passing q: it sets how many draws a count of grains takes.
+TEST(Gradation, SamplingAcceptanceIsTheMeanOfTheAcceptedFraction) {
+  const std::vector<GradationPoint> curve{{1.0e-3, 0.0}, {1.5e-3, 0.3}, {2.5e-3, 1.0}};
+  const int n = 1000000;
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double q = (i + 0.5) / n;
+    const std::size_t k = q < 0.3 ? 1 : 2;
+    const double r = curve[k - 1].radius + (q - curve[k - 1].fraction_passing) /
+                                               (curve[k].fraction_passing - curve[k - 1].fraction_passing) *
+                                               (curve[k].radius - curve[k - 1].radius);
+    sum += std::pow(curve[0].radius / r, 3);
+  }
+  EXPECT_NEAR(sampling_acceptance(curve), sum / n, 1e-9);
+  // Six and a half decades of radius: about one draw in five million accepted.
+  EXPECT_LT(sampling_acceptance({{1e-9, 0.0}, {2.5e-3, 1.0}}), 1e-6);
+}
+
 TEST(Gradation, InvalidCurvesAreRefused) {
   EXPECT_THROW(validate_gradation({{1e-3, 0.0}}), upgrain::Error);
   EXPECT_THROW(validate_gradation({{1e-3, 0.0}, {0.9e-3, 1.0}}), upgrain::Error);

@@ -148,7 +148,7 @@ void write_grid_strain(const std::filesystem::path& path, const GridStrain& stra
   const auto cells = static_cast<hsize_t>(grid.num_cells());
   AtomicFile target(path);
   {
-    Handle file(H5Fcreate(target.temporary_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
+    Handle file(hdf5::create_file(target.temporary_path()), H5Fclose,
                 "create " + target.temporary_path().string());
     write_strain_attributes(file, strain);
     {
@@ -277,7 +277,7 @@ void write_compute_grid_strain(const std::filesystem::path& path, const GridStra
   std::vector<std::int32_t> block(member.begin(), member.end());
   AtomicFile target(path);
   {
-    Handle file(H5Fcreate(target.temporary_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
+    Handle file(hdf5::create_file(target.temporary_path()), H5Fclose,
                 "create " + target.temporary_path().string());
     write_strain_attributes(file, strain);
     {

@@ -22,7 +22,7 @@ void write_grid(hid_t g, const dem::RegularGrid& grid) {
 }
 dem::RegularGrid read_grid(const Reader& in, const std::string& group) {
   const std::vector<double> nine = in.read<double>(group + "/grid", H5T_NATIVE_DOUBLE, 9);
-  return dem::io::get_grid(nine.data());
+  return dem::io::get_grid(nine.data(), in);
 }
 
 void write_reasons(hid_t g, const char* name, const std::vector<StrainReason>& r) {
@@ -56,8 +56,8 @@ void write_strain_reference(hid_t parent, const std::string& group, const Strain
 StrainReference read_strain_reference(const Reader& in, const std::string& group) {
   StrainReference r;
   r.time = in.attribute("time", group);
-  r.step = static_cast<long>(in.attribute("step", group));
-  r.cells = static_cast<int>(in.attribute("cells", group));
+  r.step = in.whole_attribute("step", group);
+  r.cells = static_cast<int>(in.whole_attribute("cells", group, 0, 1 << 30));
   r.grid = read_grid(in, group);
   r.id = in.read_all<std::int64_t>(group + "/id");
   r.x = in.read_vectors(group + "/x");
@@ -89,12 +89,12 @@ void write_previous_strain(hid_t parent, const std::string& group, const GridStr
 
 GridStrain read_previous_strain(const Reader& in, const std::string& group) {
   GridStrain s;
-  s.set = static_cast<StrainSet>(static_cast<int>(in.attribute("set", group)));
+  s.set = static_cast<StrainSet>(in.whole_attribute("set", group, 0, 1));
   s.reference_time = in.attribute("reference_time", group);
-  s.reference_step = static_cast<long>(in.attribute("reference_step", group));
+  s.reference_step = in.whole_attribute("reference_step", group);
   s.time = in.attribute("time", group);
-  s.step = static_cast<long>(in.attribute("step", group));
-  s.untracked = static_cast<long>(in.attribute("untracked", group));
+  s.step = in.whole_attribute("step", group);
+  s.untracked = in.whole_attribute("untracked", group);
   s.grid = read_grid(in, group);
   s.particles = in.read_all<std::int64_t>(group + "/particles");
   const int cells = static_cast<int>(s.particles.size());
@@ -131,11 +131,11 @@ void write_rate_history(hid_t parent, const std::string& group, const StressRate
 }
 
 StressRateHistory read_rate_history(const Reader& in, const std::string& group, dem::StressFormula formula) {
-  if (static_cast<int>(in.attribute("formula", group)) != static_cast<int>(formula))
+  if (in.whole_attribute("formula", group, 0, dem::kStressFormulaCount - 1) != static_cast<int>(formula))
     throw Error(in.where() + "the stress rates were kept for another stress formula (Strain/rate formula)");
   StressRateHistory h(formula);
   std::deque<StressRateHistory::Output> outputs;
-  const int n = static_cast<int>(in.attribute("outputs", group));
+  const int n = static_cast<int>(in.whole_attribute("outputs", group, 0, 1 << 20));
   for (int k = 0; k < n; ++k) {
     const std::string name = group + "/output_" + std::to_string(k);
     StressRateHistory::Output o;
@@ -178,8 +178,8 @@ std::vector<GridStrainEntry> read_strain_list(const Reader& in, const std::strin
     GridStrainEntry e;
     e.file = files[k];
     e.time = row[0];
-    e.step = static_cast<long>(row[1]);
-    e.grid = dem::io::get_grid(row + 2);
+    e.step = in.whole(row[1], group + " step");
+    e.grid = dem::io::get_grid(row + 2, in);
     e.computed = {row[11] != 0.0, row[12] != 0.0};
     e.rates = row[13] != 0.0;
     out.push_back(e);

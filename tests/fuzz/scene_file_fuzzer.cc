@@ -1,0 +1,29 @@
+// libFuzzer target: the parameter-file reader on arbitrary bytes (docs/input.md, "Fuzzing").
+// The syntax check, then the full read into a SceneInput and its validation, as the driver
+// does before a run; nothing is run or written. Any input must end in upgrain::Error (a
+// refusal naming the file, line or parameter) or in a scene: another exception, a crash, a
+// sanitizer report or a hang is a defect.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "coupling/prm_syntax.h"
+#include "coupling/scene_input.h"
+#include "dem/core/error.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace upgrain;
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  try {
+    coupling::check_prm_syntax(text, "fuzz.prm");
+  } catch (const Error&) {
+  }
+  try {
+    coupling::SceneInput in = coupling::parse_scene_text(text, "fuzz.prm");
+    // A folder that does not exist: validation looks at it, and nothing creates it.
+    in.output.folder = "/nonexistent/upgrain-fuzz-output";
+    coupling::validate_scene(in);
+  } catch (const Error&) {
+  }
+  return 0;
+}

@@ -1,0 +1,71 @@
+// The overlap a grain's weight gives by its contact law, and the runaway-overlap guard's
+// diagnosis built on it (dem/contact/weight_overlap.h, dem/engine/guards.h).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "dem/contact/weight_overlap.h"
+#include "dem/core/material.h"
+#include "dem/engine/guards.h"
+#include "dem/time_step.h"
+
+namespace upgrain::dem {
+namespace {
+
+SceneConfig resting_scene(double youngs_modulus) {
+  SceneConfig s;
+  s.particles.radius = 2e-3;
+  s.particles.material.youngs_modulus = youngs_modulus;
+  s.effects.gravity = true;
+  return s;
+}
+
+double weight_of(const SceneConfig& s) {
+  const double r = s.particles.radius;
+  return s.particles.material.density * 4.0 / 3.0 * std::numbers::pi * r * r * r * s.gravity;
+}
+
+TEST(WeightOverlap, HertzMatchesTheClosedForm) {
+  for (double e : {1e3, 1e6, 5e7, 7e10}) {
+    const SceneConfig s = resting_scene(e);
+    const double r = s.particles.radius;
+    const double e_star = effective_youngs_modulus(s.particles.material, s.particles.material);
+    // F = 4/3 E* sqrt(R) delta^(3/2) (Johnson 1985, eq. 4.23), solved for delta.
+    const double delta = std::pow(3.0 * weight_of(s) / (4.0 * e_star * std::sqrt(r)), 2.0 / 3.0);
+    EXPECT_NEAR(weight_overlap_ratio(s), delta / r, 1e-9 * delta / r) << "E = " << e;
+  }
+}
+
+TEST(WeightOverlap, HookeIsTheWeightOverTheSpring) {
+  SceneConfig s = resting_scene(5e7);
+  s.contact_law = "hooke";
+  s.law_parameters = {{"normal stiffness", 2e3}};
+  EXPECT_NEAR(weight_overlap_ratio(s), weight_of(s) / 2e3 / s.particles.radius, 1e-9);
+}
+
+TEST(WeightOverlap, NoneWithoutGravity) {
+  SceneConfig s = resting_scene(1e3);
+  s.effects.gravity = false;
+  EXPECT_EQ(weight_overlap_ratio(s), 0.0);
+}
+
+// Soft grains (E = 1e3 Pa) with a time step far below the safe one: the guard blames the
+// stiffness; stiff grains: the time step.
+TEST(RunawayOverlap, TellsSoftGrainsFromATooLargeTimeStep) {
+  SceneConfig soft = resting_scene(1e3);
+  soft.time_step = estimate_time_step(soft).safe_step / 13.0;
+  const std::string a = runaway_overlap(0.3, 0.25, 100, 1e-3, soft);
+  EXPECT_NE(a.find("too soft for their weight"), std::string::npos) << a;
+  EXPECT_EQ(a.find("too large"), std::string::npos) << a;
+
+  SceneConfig stiff = resting_scene(5e7);
+  stiff.time_step = 10.0 * estimate_time_step(stiff).safe_step;
+  const std::string b = runaway_overlap(0.3, 0.25, 100, 1e-3, stiff);
+  EXPECT_NE(b.find("time step"), std::string::npos) << b;
+  EXPECT_EQ(b.find("too soft"), std::string::npos) << b;
+  EXPECT_TRUE(runaway_overlap(0.2, 0.25, 100, 1e-3, stiff).empty());
+}
+
+}  // namespace
+}  // namespace upgrain::dem
