@@ -184,7 +184,7 @@ void compute(const ForceInput& in) {
       }
       if constexpr (kEnergyPerParticle) {
         book(ce, out.particle_elastic[i]);
-        book(ce, dissipation[i]);
+        book_with_wall_work(ce, dissipation[i]);
       }
       ++wall_contacts;
       max_ratio = std::max(max_ratio, kin.overlap / (Shapes ? p.min_semi_axis(i) : ri));

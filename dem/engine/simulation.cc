@@ -325,7 +325,7 @@ void Simulation::evaluate_forces() {
   record_next_ = false;
   if (!dissipation_per_grain()) {
     DissipatedEnergy step;
-    book(out_.energy, step);
+    book_with_wall_work(out_.energy, step);
     add_to(dissipated_, step);
   }
   last_overlap_ratio_ = out_.max_overlap_ratio;
