@@ -56,7 +56,7 @@ GridEvaluationState read_grid_state(const hdf5::Reader& in, const std::string& g
   s.compute_grid_rows = in.whole_attribute("compute_grid_rows", group, 0);
   s.strain_files = upscale::read_strain_list(in, group + "/strain_files");
   s.strain_rows = in.whole_attribute("strain_rows", group, 0);
-  s.block_rows = in.whole_attribute("block_rows", group, 0);
+  s.block_rows = in.whole_attribute("block_rows", group, -1);  // -1: no block strain output
   if (in.exists(group + "/reference")) s.reference = upscale::read_strain_reference(in, group + "/reference");
   if (in.exists(group + "/previous")) s.previous = upscale::read_previous_strain(in, group + "/previous");
   if (in.exists(group + "/rates")) s.rates = upscale::read_rate_history(in, group + "/rates", rate_formula);
