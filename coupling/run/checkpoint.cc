@@ -53,7 +53,7 @@ GridEvaluationState read_grid_state(const hdf5::Reader& in, const std::string& g
   GridEvaluationState s;
   s.stress_files = dem::io::read_grid_stress_list(in, group + "/stress_files");
   s.stress_rows = in.whole_attribute("stress_rows", group, 0);
-  s.compute_grid_rows = in.whole_attribute("compute_grid_rows", group, 0);
+  s.compute_grid_rows = in.whole_attribute("compute_grid_rows", group, -1);  // -1: no compute grids
   s.strain_files = upscale::read_strain_list(in, group + "/strain_files");
   s.strain_rows = in.whole_attribute("strain_rows", group, 0);
   s.block_rows = in.whole_attribute("block_rows", group, -1);  // -1: no block strain output
