@@ -272,7 +272,8 @@ const std::vector<ParameterSpec>& parameter_schema() {
        "Stress grids to try, cells along x y z, separated by ';' (the paper's grid-size study)."},
       {"Accuracy", "fem degrees", "1, 2, 3", K::text, 0, 0, "", "-",
        "Polynomial degrees of the continuum to try against its analytic solution."},
-      {"Accuracy", "fem refinements", "0, 1, 2", K::text, 0, 0, "", "-", "Global refinements to try with each degree."},
+      {"Accuracy", "fem refinements", "0, 1, 2", K::text, 0, 0, "", "-",
+       "Global refinements to try with each degree."},
       {"Accuracy", "replicas", "3", K::integer, 1, 20, "", "-",
        "Runs of the scene as given that differ only in Fill/seed; their spread is the noise floor below "
        "which a change is reported as no measurable change."},

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "coupling/accuracy/accuracy_options.h"
 #include "coupling/run/output_options.h"
 #include "coupling/run/scene_run.h"
-#include "coupling/accuracy/accuracy_options.h"
 #include "coupling/study_options.h"
 #include "dem/scene/effect_choice.h"
 #include "dem/scene/scene_config.h"

@@ -272,7 +272,7 @@ int run_study(const SceneInput& in, MPI_Comm comm, const std::function<void(cons
     timings.emplace_back("tables and plots", since(t0));
     timings.emplace_back("whole study", since(t_all));
     const StudyRecord record{in,      r, d,       problem, sol,          frictional, failed,
-                             janssen, c, timings, plots,   strain_plots, ranks, cg};
+                             janssen, c, timings, plots,   strain_plots, ranks,      cg};
     write_report(folder, record);
     write_study_json(folder, record);
     std::printf("  study: %d x %d x %d grid, continua Q%u with %llu dofs: elastic on rollers %.2f s",

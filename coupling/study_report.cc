@@ -8,8 +8,8 @@
 #include "coupling/report_format.h"
 #include "coupling/strain_report.h"
 #include "dem/io/atomic_file.h"
-#include "dem/io/json_number.h"
 #include "dem/io/grid_stress_output.h"
+#include "dem/io/json_number.h"
 
 namespace upgrain::coupling {
 
@@ -103,9 +103,10 @@ void headline_section(std::ostringstream& m, const StudyRecord& s) {
     m << "; relaxed by FIRE in " << r.relaxation->steps << " steps to residual force "
       << fmt(r.relaxation->max_force_residual, 3) << " and torque "
       << fmt(r.relaxation->max_torque_residual, 3) << " (of m g, m g r)"
-      << (r.relaxation->converged ? std::string()
-                                  : "; **not converged**: the step limit (`Study/max relaxation steps`) ended it "
-                                    "above `Study/relaxation tolerance`");
+      << (r.relaxation->converged
+              ? std::string()
+              : "; **not converged**: the step limit (`Study/max relaxation steps`) ended it "
+                "above `Study/relaxation tolerance`");
   m << ".\n- Weight over the floor area: " << fmt(weight / area)
     << " Pa. Floor force over area: " << fmt(-s.dem.floor_force.z() / area) << " Pa.\n";
   m << "- Share of the weight the side walls carry: DEM " << percent(c.dem_wall_share);
@@ -183,15 +184,16 @@ void coarse_graining_section(std::ostringstream& m, const StudyRecord& s) {
   if (!cg.done) return;
   const double norm = cg.comparison.l2_continuum_zz;
   m << "## Coarse-grained fields on the mesh\n\n"
-    << "Each grain and contact smoothed by a " << cg.kernel << " kernel of width w = "
-    << fmt(cg.width_in_diameters, 3) << " d = " << fmt(cg.width, 3) << " m (d = " << fmt(cg.diameter, 4)
-    << " m the mean grain diameter, cut-off " << fmt(cg.cutoff, 3) << " m), " << cg.grains << " grains, "
-    << cg.branches << " branches, " << cg.wall_contacts << " wall contacts, evaluated at "
-    << cg.comparison.points << " " << cg.points
+    << "Each grain and contact smoothed by a " << cg.kernel
+    << " kernel of width w = " << fmt(cg.width_in_diameters, 3) << " d = " << fmt(cg.width, 3)
+    << " m (d = " << fmt(cg.diameter, 4) << " m the mean grain diameter, cut-off " << fmt(cg.cutoff, 3)
+    << " m), " << cg.grains << " grains, " << cg.branches << " branches, " << cg.wall_contacts
+    << " wall contacts, evaluated at " << cg.comparison.points << " " << cg.points
     << " of the continuum's mesh (docs/coarse-graining.md). Against the elastic column on rollers, in the L2 "
        "norm over the mesh (its Gauss points), divided by its ||σ_zz||: σ_zz "
-    << fmt(cg.comparison.l2_difference[8] / norm, 3) << ", σ_xx " << fmt(cg.comparison.l2_difference[0] / norm, 3)
-    << ", σ_xz " << fmt(cg.comparison.l2_difference[2] / norm, 3)
+    << fmt(cg.comparison.l2_difference[8] / norm, 3) << ", σ_xx "
+    << fmt(cg.comparison.l2_difference[0] / norm, 3) << ", σ_xz "
+    << fmt(cg.comparison.l2_difference[2] / norm, 3)
     << ". Its level spread is over the levels of Gauss points a cut-off below the bed's top ("
     << fmt(cg.bed_top, 4) << " m).\n\n"
     << "- Momentum balance: largest |d(ρv)/dt + ∇·(ρvv) − ∇·σ − ρg − b| over the points = "
@@ -292,18 +294,21 @@ void write_study_json(const std::filesystem::path& folder, const StudyRecord& s)
     << ",\n  \"fem_relative_l2_error_stress\": " << n(s.rollers.l2_error_stress / exact.stress_l2_norm(area))
     << ",\n  \"fem_relative_l2_error_displacement\": "
     << n(s.rollers.l2_error_displacement / exact.displacement_l2_norm(area))
-    << ",\n  \"fem_mean_lateral_ratio\": " << n(c.continua.front().mean_lateral_ratio) << ",\n  \"continua\": {";
+    << ",\n  \"fem_mean_lateral_ratio\": " << n(c.continua.front().mean_lateral_ratio)
+    << ",\n  \"continua\": {";
   for (std::size_t k = 0; k < c.continua.size(); ++k) {
     const ContinuumResult& cr = c.continua[k];
     j << (k ? "," : "") << "\n    \"" << cr.key << "\": {\"label\": \"" << cr.label
-      << "\", \"wall_share\": " << n(cr.wall_share) << ", \"mean_lateral_ratio\": " << n(cr.mean_lateral_ratio)
+      << "\", \"wall_share\": " << n(cr.wall_share)
+      << ", \"mean_lateral_ratio\": " << n(cr.mean_lateral_ratio)
       << ", \"largest_level_spread\": " << n(largest(cr.level_spread));
     for (const FrictionalRun& f : s.frictional) {
       if (f.key != cr.key) continue;
       const fem::FrictionalColumnSolution& q = f.solution;
       j << ", \"newton_iterations\": " << q.newton_iterations
         << ", \"linear_iterations\": " << q.linear_iterations << ", \"bisections\": " << q.bisections
-        << ", \"seconds\": " << n(q.total_seconds) << ", \"slipping_wall_share\": " << n(q.slipping_wall_share)
+        << ", \"seconds\": " << n(q.total_seconds)
+        << ", \"slipping_wall_share\": " << n(q.slipping_wall_share)
         << ", \"plastic_volume_share\": " << n(q.plastic_volume_share)
         << ", \"floor_force_z_N\": " << n(q.floor_vertical_force) << ", \"weight_N\": " << n(q.weight);
     }

@@ -253,8 +253,8 @@ class Study {
     auto csv_row = [&](const Row& r, double value) {
       csv << r.knob << ",\"" << r.label << "\"," << value << ',' << (r.is_default ? 1 : 0) << ','
           << r.wall_seconds << ',' << r.wall_seconds / reference_.wall_seconds << ',' << r.steps << ','
-          << r.fire_steps << ',' << (r.fire_converged ? 1 : 0) << ',' << worst_change(r)
-          << ',' << (r.has_bed ? (within(r) ? 1 : 0) : 1) << ',' << r.exact_error;
+          << r.fire_steps << ',' << (r.fire_converged ? 1 : 0) << ',' << worst_change(r) << ','
+          << (r.has_bed ? (within(r) ? 1 : 0) : 1) << ',' << r.exact_error;
       const std::vector<double> v = r.has_bed ? values(r.bed) : std::vector<double>(kMeasures, kNaN);
       for (int m = 0; m < kMeasures; ++m)
         csv << ',' << v[m] << ',' << (r.change.empty() ? kNaN : r.change[m]);
@@ -281,14 +281,14 @@ class Study {
     for (int m = 0; m < kMeasures; ++m)
       md << "| " << kMeasureNames[m] << " | "
          << (m == kMeasures - 1 ? fmt(noise_[m], "%.2e") : fmt(100.0 * noise_[m], "%.3f %%")) << " |\n";
-    md << "\nThe scene as given took " << fmt(reference_.wall_seconds, "%.1f") << " s ("
-       << reference_.steps << " steps, FIRE " << reference_.fire_steps
-       << (reference_.fire_converged ? "" : ", not converged") << ")";
+    md << "\nThe scene as given took " << fmt(reference_.wall_seconds, "%.1f") << " s (" << reference_.steps
+       << " steps, FIRE " << reference_.fire_steps << (reference_.fire_converged ? "" : ", not converged")
+       << ")";
     if (!replicas_.empty()) {
       md << "; its replicas";
       for (const Row& r : replicas_)
-        md << (&r == &replicas_.front() ? " " : ", ") << fmt(r.wall_seconds, "%.1f") << " s (FIRE " << r.fire_steps
-           << (r.fire_converged ? "" : ", not converged") << ")";
+        md << (&r == &replicas_.front() ? " " : ", ") << fmt(r.wall_seconds, "%.1f") << " s (FIRE "
+           << r.fire_steps << (r.fire_converged ? "" : ", not converged") << ")";
       const bool fire_differs = std::any_of(replicas_.begin(), replicas_.end(), [&](const Row& r) {
         return r.fire_steps != reference_.fire_steps;
       });
@@ -325,7 +325,8 @@ class Study {
            << " | " << fmt(r->wall_seconds / reference_.wall_seconds, "%.2f") << " |";
         if (bed) {
           md << ' ' << (r->has_bed ? std::to_string(r->steps) : "-") << " | "
-             << (r->has_bed ? std::to_string(r->fire_steps) + (r->fire_converged ? "" : " (not converged)") : "-")
+             << (r->has_bed ? std::to_string(r->fire_steps) + (r->fire_converged ? "" : " (not converged)")
+                            : "-")
              << " |";
           for (int m = 0; m < kMeasures; ++m) md << ' ' << (r->has_bed ? change_text(*r, m) : "-") << " |";
         }

@@ -45,8 +45,8 @@ struct EngineState {
   std::vector<DissipatedEnergy> dissipation_share;
 
   std::vector<ContactHistoryRecord> history;  // sorted by key, separation budgets kept
-  std::vector<PlaneWall> walls;              // with their velocities
-  std::vector<Vec3> wall_points_at_build;  // the walls' points at the last list build
+  std::vector<PlaneWall> walls;               // with their velocities
+  std::vector<Vec3> wall_points_at_build;     // the walls' points at the last list build
 
   // What the last evaluation counted and exerted (StepDiagnostics, Simulation::wall_forces()),
   // over every rank, for a restart that asks before its first step.

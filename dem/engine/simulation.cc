@@ -381,8 +381,7 @@ std::size_t Simulation::wall_index(const std::string& name) const {
 
 void Simulation::set_wall_velocity(std::size_t wall, const Vec3& velocity) {
   if (wall >= walls_.size()) throw Error("no wall " + std::to_string(wall) + " to move");
-  if (!velocity.allFinite())
-    throw Error("the velocity of wall '" + walls_[wall].name + "' is not finite");
+  if (!velocity.allFinite()) throw Error("the velocity of wall '" + walls_[wall].name + "' is not finite");
   if (velocity == walls_[wall].velocity) return;
   // The last evaluation booked its wall's work for the coming step with the old velocity
   // (force_loop_body.h): the half that belongs to the coming step is the new velocity's.

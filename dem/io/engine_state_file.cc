@@ -43,8 +43,8 @@ std::vector<double> flat(const std::vector<ElasticEnergy>& e) {
 std::vector<double> flat(const std::vector<DissipatedEnergy>& d) {
   std::vector<double> out;
   for (const DissipatedEnergy& x : d)
-    out.insert(out.end(),
-               {x.damping, x.friction, x.stiffness_change, x.rolling, x.rolling_stiffness_change, x.wall_work});
+    out.insert(out.end(), {x.damping, x.friction, x.stiffness_change, x.rolling, x.rolling_stiffness_change,
+                           x.wall_work});
   return out;
 }
 
@@ -244,7 +244,8 @@ EngineState read_engine_state(const hdf5::Reader& in, const std::string& group) 
     const std::vector<double> d = in.read<double>(pg + "dissipation_share", H5T_NATIVE_DOUBLE, n, 6);
     for (std::size_t i = 0; i < n; ++i) {
       s.particle_elastic.push_back({e[3 * i], e[3 * i + 1], e[3 * i + 2]});
-      s.dissipation_share.push_back({d[6 * i], d[6 * i + 1], d[6 * i + 2], d[6 * i + 3], d[6 * i + 4], d[6 * i + 5]});
+      s.dissipation_share.push_back(
+          {d[6 * i], d[6 * i + 1], d[6 * i + 2], d[6 * i + 3], d[6 * i + 4], d[6 * i + 5]});
     }
   }
   if (!std::is_sorted(p.id.begin(), p.id.end()) || std::adjacent_find(p.id.begin(), p.id.end()) != p.id.end())

@@ -15,7 +15,8 @@ constexpr const char* kSeriesHeader =
     "relaxation - stiffness changes - work_by_walls (dem/engine/energy.h); balance_error = (total - "
     "total(0)) / (initial kinetic + elastic energy + |potential energy released| + |work_by_walls|)\n"
     "time,step,kinetic_translational,kinetic_rotational,potential,elastic_normal,"
-    "elastic_tangential,dissipated_damping,dissipated_friction,tangential_stiffness_change,work_by_walls,total,"
+    "elastic_tangential,dissipated_damping,dissipated_friction,tangential_stiffness_change,work_by_walls,"
+    "total,"
     "balance_error,particle_contacts,wall_contacts,max_overlap_ratio,neighbor_builds\n";
 }
 
@@ -27,12 +28,13 @@ RunRecorder::RunRecorder(std::filesystem::path folder)
 void RunRecorder::record_series(double time, long step, const EnergyBalance& e, double balance_error,
                                 const StepDiagnostics& d) {
   char line[512];
-  std::snprintf(line, sizeof line,
-                "%.9g,%ld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.6e,%ld,%ld,%.6e,%ld\n",
-                time, step, e.kinetic_translational, e.kinetic_rotational, e.potential, e.elastic_normal,
-                e.elastic_tangential, e.dissipated_damping, e.dissipated_friction,
-                e.tangential_stiffness_change, e.work_by_walls, e.total(), balance_error, d.particle_contacts, d.wall_contacts,
-                d.max_overlap_ratio, d.neighbor_builds);
+  std::snprintf(
+      line, sizeof line,
+      "%.9g,%ld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.6e,%ld,%ld,%.6e,%ld\n", time,
+      step, e.kinetic_translational, e.kinetic_rotational, e.potential, e.elastic_normal,
+      e.elastic_tangential, e.dissipated_damping, e.dissipated_friction, e.tangential_stiffness_change,
+      e.work_by_walls, e.total(), balance_error, d.particle_contacts, d.wall_contacts, d.max_overlap_ratio,
+      d.neighbor_builds);
   rows_.emplace_back(line);
 }
 

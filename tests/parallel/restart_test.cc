@@ -77,10 +77,12 @@ void expect_restart_is_bitwise(const SceneConfig& s, long first, long then, cons
   world.run(then);
   const Outcome reference = outcome(world);
   if (test::world_rank() == 0) {
-    std::printf("%s: %ld + %ld steps on %d ranks, %ld rebuilds, %ld contacts, %zu histories at the capture, "
-                "%ld wall contacts\n",
-                what.c_str(), first, then, test::world_size(), reference.diagnostics.neighbor_builds,
-                reference.diagnostics.particle_contacts, at_first.history.size(), reference.diagnostics.wall_contacts);
+    std::printf(
+        "%s: %ld + %ld steps on %d ranks, %ld rebuilds, %ld contacts, %zu histories at the capture, "
+        "%ld wall contacts\n",
+        what.c_str(), first, then, test::world_size(), reference.diagnostics.neighbor_builds,
+        reference.diagnostics.particle_contacts, at_first.history.size(),
+        reference.diagnostics.wall_contacts);
     ASSERT_EQ(at_first.step, first);
     for (std::size_t w = walls.size() - more_walls.size(); w < walls.size(); ++w)
       EXPECT_NE(reference.wall_forces[w], Vec3::Zero()) << walls[w].name << " touches the grains";
