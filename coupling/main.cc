@@ -57,10 +57,28 @@ constexpr const char* kUsage =
     "Exit status: 0 done, 1 an error (named on one line), 128 + N stopped by signal N\n"
     "(130 SIGINT, 143 SIGTERM, 129 SIGHUP) after writing a checkpoint.\n";
 
+// One line, rewritten in place; a new phase starts a new line. The time left is at the rate of
+// the last seconds (coupling/run/progress_clock.h): a bound, not a promise, where the run may
+// stop sooner at rest or at its relaxation tolerance.
 void print_progress(const upgrain::coupling::Progress& p) {
+  using Phase = upgrain::coupling::Progress::Phase;
+  static Phase shown = Phase::dynamics;
+  if (p.phase != shown) std::printf("\n");
+  shown = p.phase;
   const double pct = 100.0 * static_cast<double>(p.step) / static_cast<double>(std::max(p.total_steps, 1L));
-  std::printf("\r  %5.1f %%  step %ld/%ld  %.0f steps/s  ETA %.0f s   ", pct, p.step, p.total_steps,
-              p.steps_per_second, p.eta_seconds);
+  char line[200];
+  if (p.phase == Phase::dynamics)
+    std::snprintf(line, sizeof line, "  %5.1f %%  step %ld/%ld  %.0f steps/s  ETA %.0f s%s", pct, p.step,
+                  p.total_steps, p.steps_per_second, p.eta_seconds, p.may_end_sooner ? " or at rest" : "");
+  else
+    std::snprintf(line, sizeof line,
+                  "  relaxing (FIRE)  step %ld/%ld  residual %.1e, stops at %.0e  ETA <= %.0f s", p.step,
+                  p.total_steps, p.residual, p.tolerance, p.eta_seconds);
+  // Padded to the previous line's length only: a line longer than the terminal would wrap.
+  static int previous = 0;
+  const int length = static_cast<int>(std::strlen(line));
+  std::printf("\r%-*s", std::max(length, previous), line);
+  previous = length;
   std::fflush(stdout);
 }
 
@@ -324,6 +342,9 @@ int run(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   upgrain::dem::prefer_isolated_singleton();
+  // Line-buffered even into a file: a batch log of a run killed later keeps every finished line
+  // (where a restart resumed, the effects, the stages done).
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   MPI_Init(&argc, &argv);
   upgrain::coupling::quiet_p4est();
   int rank = 0, ranks = 1;

@@ -60,7 +60,9 @@ void check_output_folder(const SceneInput& in, const std::string& where) {
     if (!fs::is_directory(folder, ec)) throw Error(entry + " exists and is not a folder");
     if (!fs::is_empty(folder, ec) && !in.restarting) {
       if (!in.overwrite)
-        throw Error(entry + " already holds results; choose another folder or set 'Output/overwrite = true'");
+        throw Error(entry +
+                    " already holds results; choose another folder ('--output DIR' on the command line) or "
+                    "set 'Output/overwrite = true'");
       if (const std::string why = why_not_replaceable(folder); !why.empty()) throw Error(entry + " " + why);
     }
     if (::access(folder.c_str(), W_OK | X_OK) != 0)

@@ -6,7 +6,9 @@
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$here/scripts/install-deps.sh"
-"$here/scripts/build.sh" "$here/build" -DCMAKE_BUILD_TYPE=Release
+# Only the driver: the tests and benchmarks are built by scripts/test.sh, into the same
+# folder with the same options, so that the second command compiles nothing twice.
+"$here/scripts/build.sh" "$here/build" -DCMAKE_BUILD_TYPE=Release -DUPGRAIN_WERROR=ON --target upgrain
 out="${UPGRAIN_OUTPUT:-$PWD/upgrain-output}"
 if [ -f "$out/report.md" ]; then
   echo "run-default: $out/report.md exists: the default study has already run (remove $out to run it again)"

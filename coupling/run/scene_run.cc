@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "coupling/run/grid_evaluation.h"
+#include "coupling/run/progress_clock.h"
 #include "coupling/run/run_files.h"
 #include "coupling/run/run_schedule.h"
 #include "coupling/run/stop_request.h"
@@ -22,32 +23,6 @@ namespace fs = std::filesystem;
 double seconds_between(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
 }
-
-// Progress reports on rank 0, at most one a second and at the last step; the rate is that of
-// the steps taken since `first_step` (a resumed run counts from its checkpoint).
-class ProgressClock {
- public:
-  ProgressClock(const dem::Simulation& sim, const ProgressReport& report, long first_step)
-      : report_(sim.is_root() ? report : ProgressReport{}),
-        first_(first_step),
-        start_(Clock::now()),
-        last_(start_) {}
-
-  void at(long s, long total, bool last) {
-    if (!report_) return;
-    const auto now = Clock::now();
-    if (seconds_between(last_, now) < 1.0 && s != total && !last) return;
-    const double rate = static_cast<double>(s - first_) / std::max(seconds(), 1e-9);
-    report_({s, total, rate, static_cast<double>(total - s) / std::max(rate, 1e-300)});
-    last_ = now;
-  }
-  [[nodiscard]] double seconds() const { return seconds_between(start_, Clock::now()); }
-
- private:
-  ProgressReport report_;
-  long first_;
-  Clock::time_point start_, last_;
-};
 
 // When to write a checkpoint: every `interval` of simulated time (the same steps in every run
 // of the scene), every `wall_interval` of wall-clock time, and when the run is asked to stop.
@@ -126,7 +101,7 @@ class SceneRun {
         schedule_(make_schedule(sim.scene(), output)),
         files_(sim, output),
         checkpoints_(output ? output->checkpoint : no_checkpoints_, sim.time_step(), output.has_value()),
-        clock_(sim, on_progress, resume ? resume->schedule.step : 0),
+        clock_(sim.is_root() ? on_progress : ProgressReport{}, resume ? resume->schedule.step : 0),
         states_(output ? output->coarse_graining : CoarseGrainingCapture{}) {
     if (resume) {
       files_.resume(sim, resume->files);
@@ -137,7 +112,7 @@ class SceneRun {
                        resume->schedule.rest_check_from};
       MPI_Bcast(where, 3, MPI_LONG, 0, sim.comm());
       state_ = {where[0], static_cast<std::size_t>(where[1]), where[2]};
-      clock_ = ProgressClock(sim, on_progress, state_.step);
+      clock_ = ProgressClock(sim.is_root() ? on_progress : ProgressReport{}, state_.step);
       return;
     }
     files_.record_series(sim);
@@ -173,7 +148,7 @@ class SceneRun {
         if (!series_now) files_.record_series(sim_);
         files_.write_snapshot(sim_);
       }
-      clock_.at(s, schedule_.total, r.stopped_at_rest);
+      clock_.dynamics(s, schedule_.total, control_.rest_ratio > 0.0, r.stopped_at_rest);
       if (r.stopped_at_rest) {
         // One more step, recorded, so that the final state has its stress.
         if (grids_ && !evaluate && !control_.relax_at_end) final_step();
@@ -185,7 +160,13 @@ class SceneRun {
       if (d.stop != 0) throw RunStopped(d.stop, s, written);
     }
     if (control_.relax_at_end) {
-      r.relaxation = dem::relax_to_equilibrium(sim_, control_.relaxation);
+      dem::RelaxationOptions relaxation = control_.relaxation;
+      relaxation.on_step = [&](const dem::RelaxationResult& now) {
+        clock_.relaxation(now.steps, relaxation.max_steps,
+                          std::max(now.max_force_residual, now.max_torque_residual),
+                          relaxation.force_tolerance, now.converged);
+      };
+      r.relaxation = dem::relax_to_equilibrium(sim_, relaxation);
       // One recorded step of the relaxed state for its stress, snapshot and series row.
       final_step();
     }

@@ -12,6 +12,7 @@
 
 #include "coupling/run/checkpoint.h"
 #include "coupling/run/output_options.h"
+#include "coupling/run/progress_clock.h"
 #include "coupling/run/run_result.h"
 #include "dem/engine/relaxation.h"
 #include "dem/engine/simulation.h"
@@ -27,14 +28,6 @@ struct RunControl {
   bool relax_at_end = false;
   dem::RelaxationOptions relaxation;
 };
-
-struct Progress {
-  long step;
-  long total_steps;
-  double steps_per_second;
-  double eta_seconds;
-};
-using ProgressReport = std::function<void(const Progress&)>;
 
 // From the scene's fill (made on rank 0), collective over `comm`: every rank keeps the grains
 // of its block. The output is written by rank 0 and holds the same bytes on any rank count

@@ -103,6 +103,12 @@ RelaxationResult relax_to_equilibrium(Simulation& sim, const RelaxationOptions& 
     const RelaxationResult now = equilibrium_residual(sim);
     r.max_force_residual = now.max_force_residual;
     r.max_torque_residual = now.max_torque_residual;
+    if (o.on_step) {
+      RelaxationResult so_far = r;
+      so_far.converged =
+          r.max_force_residual < o.force_tolerance && r.max_torque_residual < o.force_tolerance;
+      o.on_step(so_far);
+    }
   }
   if (!r.converged)
     r.converged = r.max_force_residual < o.force_tolerance && r.max_torque_residual < o.force_tolerance;

@@ -9,9 +9,13 @@
 // the velocity mixing, the kinetic energy removed) follow the engine's summation
 // (dem/engine/particle_sums.h) and its residuals are maxima over the ranks, so with
 // deterministic summation the relaxed state is bitwise the same on any rank count.
+#include <functional>
+
 #include "dem/engine/simulation.h"
 
 namespace upgrain::dem {
+
+struct RelaxationResult;
 
 struct RelaxationOptions {
   // Stop when every grain's out-of-balance force |F + m g| is below this fraction of its
@@ -23,6 +27,9 @@ struct RelaxationOptions {
   double alpha_start = 0.1;
   double alpha_shrink = 0.99;
   int delay_steps = 5;
+  // Called on every rank after each step with the result so far (a progress report; the
+  // residuals are the same on every rank).
+  std::function<void(const RelaxationResult&)> on_step;
 };
 
 struct RelaxationResult {
