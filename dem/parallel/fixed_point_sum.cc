@@ -8,27 +8,14 @@
 namespace upgrain::dem {
 
 FixedPointSums::FixedPointSums(std::vector<double> bounds)
-    : exponent_(bounds.size(), 0), limbs_(bounds.size() * kLimbs, 0) {
+    : exponent_(bounds.size(), 0), scale_(bounds.size(), 0.0), limbs_(bounds.size() * kLimbs, 0) {
   for (std::size_t q = 0; q < bounds.size(); ++q) {
     if (!std::isfinite(bounds[q]) || bounds[q] < 0.0)
       throw Error("fixed-point sum: bound " + std::to_string(bounds[q]) + " of quantity " +
                   std::to_string(q) + " is not a finite non-negative number");
     // frexp: bound = f 2^e with f in [0.5, 1), so every |term| <= bound < 2^e.
     if (bounds[q] > 0.0) (void)std::frexp(bounds[q], &exponent_[q]);
-  }
-}
-
-void FixedPointSums::add(int quantity, double term) {
-  // term 2^-e lies in (-1, 1). Each pass shifts 32 bits above the point (exact: a power of
-  // two), takes the integer part (exact) and keeps the fraction (exact: Sterbenz); the last
-  // limb is rounded to nearest. Limbs carry the term's sign, so |limb| < 2^32.
-  double x = std::ldexp(term, -exponent_[quantity]);
-  std::int64_t* l = limbs_.data() + static_cast<std::ptrdiff_t>(quantity) * kLimbs;
-  for (int k = 0; k < kLimbs; ++k) {
-    x = std::ldexp(x, 32);
-    const double d = k + 1 < kLimbs ? std::trunc(x) : std::nearbyint(x);
-    l[k] += static_cast<std::int64_t>(d);
-    x -= d;
+    if (exponent_[q] >= -1000 && exponent_[q] <= 1000) scale_[q] = std::ldexp(1.0, -exponent_[q]);
   }
 }
 
