@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <numeric>
@@ -107,3 +108,39 @@ TEST(FixedPointSums, RefusesABoundThatIsNotFinite) {
 }
 
 }  // namespace
+
+// The limbs are the term 2^-e cut at 2^-32, 2^-64, 2^-96 toward zero and rounded to nearest
+// even at 2^-128: the definition, written with the library's std::ldexp, std::trunc and
+// std::nearbyint, against the class's multiplications and shifts, at bounds from 2^-1000 to
+// 2^1000 (and beyond, where the class itself falls back to std::ldexp), for subnormal terms
+// and for terms exactly halfway between two values of the last limb.
+TEST(FixedPointSums, LimbsAreTheTermCutAndRoundedAsDefined) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int trial = 0; trial < 4000; ++trial) {
+    const int e = static_cast<int>(rng() % 2100) - 1050;
+    const double bound = std::ldexp(1.0 + static_cast<double>(rng() % 1000) / 1000.0, e);
+    if (!std::isfinite(bound) || bound == 0.0) continue;
+    FixedPointSums sums({bound});
+    int exponent = 0;
+    (void)std::frexp(bound, &exponent);
+    std::array<std::int64_t, FixedPointSums::kLimbs> expected{};
+    for (int k = 0; k < 40; ++k) {
+      double term = bound * unit(rng) * std::ldexp(1.0, -static_cast<int>(rng() % 200));
+      if (k % 8 == 0)  // halfway between two values of the last limb
+        term = std::ldexp(static_cast<double>(static_cast<int>(rng() % 1000) - 500) + 0.5, exponent - 128);
+      if (std::abs(term) > bound) term = std::copysign(bound, term);
+      sums.add(0, term);
+      double x = std::ldexp(term, -exponent);
+      for (int l = 0; l < FixedPointSums::kLimbs; ++l) {
+        x = std::ldexp(x, 32);
+        const double d = l + 1 < FixedPointSums::kLimbs ? std::trunc(x) : std::nearbyint(x);
+        expected[static_cast<std::size_t>(l)] += static_cast<std::int64_t>(d);
+        x -= d;
+      }
+    }
+    for (int l = 0; l < FixedPointSums::kLimbs; ++l)
+      ASSERT_EQ(sums.limbs()[static_cast<std::size_t>(l)], expected[static_cast<std::size_t>(l)])
+          << "bound 2^" << exponent << ", limb " << l;
+  }
+}
