@@ -23,6 +23,7 @@ Usage: kill_and_restart.py UPGRAIN SCENE WORK [--kills N] [--signal KILL|TERM]
 import argparse
 import os
 import random
+import re
 import shutil
 import signal
 import subprocess
@@ -36,6 +37,15 @@ def command(upgrain, ranks, args):
     if ranks <= 1:
         return [upgrain] + args
     return ['mpiexec', '-n', str(ranks), upgrain] + args
+
+
+def resumed(log_name, offset):
+    """Where the start that wrote the log from `offset` on resumed (the driver's stdout is
+    line-buffered, so the line is there even when the start was killed)."""
+    with open(log_name, errors='replace') as f:
+        f.seek(offset)
+        m = re.search(r'resuming from \S+ at step (\d+)', f.read())
+    return f'resumed at step {m.group(1)}, ' if m else ''
 
 
 def main():
@@ -72,6 +82,8 @@ def main():
         args = ['--output', broken, a.scene] if k == 0 else ['--restart', broken]
         ranks = a.ranks if k == 0 else restart_ranks
         delay = rng.uniform(0.1, 0.8) * wall if k == 0 else rng.uniform(*a.delays) * wall
+        log.flush()
+        where = log.tell()
         proc = subprocess.Popen(command(a.upgrain, ranks, args), stdout=log, stderr=log, start_new_session=True)
         try:
             code = proc.wait(timeout=delay)
@@ -83,7 +95,7 @@ def main():
         except subprocess.TimeoutExpired:
             os.killpg(proc.pid, sig)  # the launcher and every rank
             code = proc.wait()
-            print(f'start {k + 1}: signal {a.signal} at {delay:.2f} s, exit {code}')
+            print(f'start {k + 1}: {resumed(log.name, where)}signal {a.signal} at {delay:.2f} s, exit {code}')
             # One process: 128 + 15. Under mpiexec the launcher reports its own code.
             if sig == signal.SIGTERM and ranks == 1 and code != 143:
                 sys.exit(f'a run stopped by SIGTERM must exit with 143, not {code}; see {log.name}')
