@@ -71,7 +71,8 @@ std::map<std::string, std::string> summary_entries(const dem::Simulation& sim, c
       {"bed_solid_fraction", num(r.bed.solid_fraction)},
       {"particles_outside_container", num(static_cast<double>(r.bed.particles_outside))},
       {"relaxed", r.relaxation ? "true" : "false"},
-      {"relaxation_converged", r.relaxation && r.relaxation->converged ? "true" : "false"},
+      // null when no relaxation ran: neither converged nor not.
+      {"relaxation_converged", r.relaxation ? (r.relaxation->converged ? "true" : "false") : "null"},
       {"relaxation_steps", num(r.relaxation ? static_cast<double>(r.relaxation->steps) : 0.0)},
       {"relaxation_force_residual", num(r.relaxation ? r.relaxation->max_force_residual : 0.0)},
       {"relaxation_torque_residual", num(r.relaxation ? r.relaxation->max_torque_residual : 0.0)},
