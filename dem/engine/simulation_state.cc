@@ -93,6 +93,20 @@ std::vector<char> to_bytes(const EngineState& s) {
   return std::move(w.bytes());
 }
 
+// One grain's record appended to a state, with the parts the state carries.
+void append_record(EngineState& s, const Parts& parts, const ParticleRecord& p) {
+  append_state(s.particles, p.state);
+  if (parts.shapes) append_shape(s.particles, p.shape);
+  s.positions_at_build.push_back(get(p.resume.x_built));
+  if (parts.damping_force) s.damping_force.push_back(get(p.resume.damping_force));
+  if (parts.damping_torque) s.damping_torque.push_back(get(p.resume.damping_torque));
+  if (parts.rolling) s.rolling_damping_torque.push_back(get(p.resume.rolling_damping_torque));
+  if (parts.energy) {
+    s.particle_elastic.push_back(p.resume.elastic);
+    s.dissipation_share.push_back(p.resume.dissipated);
+  }
+}
+
 EngineState from_bytes(const std::vector<char>& bytes) {
   ByteReader r(bytes);
   EngineState s;
@@ -101,18 +115,7 @@ EngineState from_bytes(const std::vector<char>& bytes) {
   std::vector<ParticleRecord> records;
   r.get(records);
   s.particles.reserve(records.size());
-  for (const ParticleRecord& p : records) {
-    append_state(s.particles, p.state);
-    if (parts.shapes) append_shape(s.particles, p.shape);
-    s.positions_at_build.push_back(get(p.resume.x_built));
-    if (parts.damping_force) s.damping_force.push_back(get(p.resume.damping_force));
-    if (parts.damping_torque) s.damping_torque.push_back(get(p.resume.damping_torque));
-    if (parts.rolling) s.rolling_damping_torque.push_back(get(p.resume.rolling_damping_torque));
-    if (parts.energy) {
-      s.particle_elastic.push_back(p.resume.elastic);
-      s.dissipation_share.push_back(p.resume.dissipated);
-    }
-  }
+  for (const ParticleRecord& p : records) append_record(s, parts, p);
   r.get(s.history);
   std::uint64_t walls = 0;
   r.get(walls);
@@ -210,18 +213,7 @@ EngineState Simulation::capture_state() const {
                 MPI_SUM, comm());
   if (!is_root()) return s;
   s.particles.reserve(all.size());
-  for (const ParticleRecord& r : all) {
-    append_state(s.particles, r.state);
-    if (parts.shapes) append_shape(s.particles, r.shape);
-    s.positions_at_build.push_back(get(r.resume.x_built));
-    if (parts.damping_force) s.damping_force.push_back(get(r.resume.damping_force));
-    if (parts.damping_torque) s.damping_torque.push_back(get(r.resume.damping_torque));
-    if (parts.rolling) s.rolling_damping_torque.push_back(get(r.resume.rolling_damping_torque));
-    if (parts.energy) {
-      s.particle_elastic.push_back(r.resume.elastic);
-      s.dissipation_share.push_back(r.resume.dissipated);
-    }
-  }
+  for (const ParticleRecord& r : all) append_record(s, parts, r);
   sort_unique(history);
   s.history = std::move(history);
   s.walls = walls_;
