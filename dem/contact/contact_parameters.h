@@ -71,6 +71,21 @@ inline void book_with_wall_work(const ContactEnergy& ce, DissipatedEnergy& d) {
   d.wall_work += ce.wall_work;
 }
 
+// The energy a slip of an incremental spring (stiffness k) dissipates in one step: from
+// `before` (the previous value, carried into the present plane) the increment gave `trial`,
+// which the slip cut back to `after`. Velocity Verlet applies each force for half a step
+// before and half a step after its evaluation, so the spring's work over the step's
+// displacement (before - trial)/k is the trapezoid -(before + after).(before - trial)/(2k);
+// with the stored energy's change (|after|^2 - |before|^2)/(2k) it leaves
+// (before + after).(trial - after)/(2k) dissipated. Booking |after| (|trial| - |after|)/k (the
+// value after the slip alone) instead misses (after - before).(trial - after)/(2k) whenever the
+// limit changes while slipping: a balance error of first order in the time step
+// (docs/hard-cases.md, "Energy accounting of friction").
+[[gnu::always_inline]] inline double slip_dissipation(const Vec3& before, const Vec3& trial,
+                                                      const Vec3& after, double k) {
+  return (before + after).dot(trial - after) / (2.0 * k);
+}
+
 // An incremental spring's stored vector (a tangential force, a rolling torque) carried into
 // the current contact plane of normal n with its magnitude kept, and the energy that the
 // stiffness's change from `old_stiffness` to `stiffness` creates in it, |s|^2/2 (1/k - 1/k_old),

@@ -46,6 +46,7 @@ template <bool Energy>
   const double k_r = rolling_stiffness(c.k_n, p.friction, c.r_star);
   Vec3& m = s.torque;
   carry_into_plane<Energy>(m, n, s.stiffness, k_r, energy.rolling_stiffness_change);
+  const Vec3 before = m;  // the previous spring torque, in the present plane
   // Relative rolling: the part of omega_i - omega_j perpendicular to the normal (the normal
   // part is twisting, not resisted here).
   const Vec3 w_r = c.omega_rel - c.omega_rel.dot(n) * n;
@@ -55,9 +56,9 @@ template <bool Energy>
   const double trial2 = m.squaredNorm();
   viscous = Vec3::Zero();
   if (trial2 > limit * limit) {
-    const double trial = std::sqrt(trial2);
-    if constexpr (Energy) energy.dissipated_rolling += limit * (trial - limit) / k_r;
-    m *= limit / trial;  // plastic: the spring is rescaled, the dashpot is off (Ai et al., f = 0)
+    const Vec3 trial = m;
+    m *= limit / std::sqrt(trial2);  // plastic: the spring is rescaled, the dashpot is off (Ai et al., f = 0)
+    if constexpr (Energy) energy.dissipated_rolling += slip_dissipation(before, trial, m, k_r);
   } else if (p.damping_ratio > 0.0) {
     // Dashpot C_r = eta_r C_r,crit, C_r,crit = 2 sqrt(I_r k_r) (Ai et al. 2011).
     viscous = -(2.0 * p.damping_ratio * std::sqrt(c.inertia * k_r)) * w_r;

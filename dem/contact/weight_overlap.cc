@@ -30,4 +30,28 @@ double weight_overlap_ratio(const SceneConfig& s) {
   });
 }
 
+double impact_overlap_ratio(const SceneConfig& s, double speed) {
+  const double r = s.particles.gradation.empty() ? s.particles.radius : s.particles.gradation.back().radius;
+  const double mass = s.particles.material.density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  const double kinetic = 0.5 * mass * speed * speed;
+  if (!(kinetic > 0.0)) return 0.0;
+  ContactMaterial m = ContactMaterial::from(s.particles.material, s.friction, s.damping_ratio);
+  return with_contact_law(s.contact_law, [&]<class Law>() {
+    Law::Normal::constants(s, m);
+    const ContactParameters p{m.e_star_pw,     m.g_star_pw, r,     mass, s.friction,
+                              s.damping_ratio, s.time_step, m.k_n, m.k_t};
+    const auto energy = [&](double delta) {
+      return Law::Normal::energy(Law::Normal::response(p, delta), delta);
+    };
+    // The energy grows with the overlap: bisect on [0, 10 R], as weight_overlap_ratio.
+    double lo = 0.0, hi = 10.0 * r;
+    if (energy(hi) < kinetic) return hi / r;
+    for (int k = 0; k < 200 && hi - lo > 1e-13 * hi; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      (energy(mid) < kinetic ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi) / r;
+  });
+}
+
 }  // namespace upgrain::dem

@@ -14,6 +14,15 @@ namespace upgrain::dem {
 // (dem/contact/contact_laws.h) gets its figure. 0 without gravity.
 double weight_overlap_ratio(const SceneConfig& scene);
 
+// How far a grain moving at `speed` against the floor sinks into it by the scene's contact law:
+// the overlap at which the law's elastic energy equals the grain's kinetic energy m v^2 / 2
+// (R* = R, m* = m), as a fraction of the radius; the scene's largest grain. For Hertz it does
+// not depend on the size, (5 pi rho v^2 / (4 E*))^(2/5) (Johnson, Contact Mechanics, 1985,
+// eq. 11.23 with m = 4/3 pi rho R^3), and an impact between equal grains reaches 0.87 of it.
+// Beyond the runaway-overlap limit, the grains are too soft for the scene's impacts whatever
+// the time step.
+double impact_overlap_ratio(const SceneConfig& scene, double speed);
+
 // DEM practice's bound on a static overlap, as a fraction of the radius.
 inline constexpr double kStaticOverlapBound = 0.01;
 

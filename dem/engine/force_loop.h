@@ -55,6 +55,10 @@ struct ForceOutput {
   long pair_contacts = 0;  // touching pairs (deterministic: whose first particle is owned)
   long wall_contacts = 0;
   double max_overlap_ratio = 0.0;  // max of overlap / smallest semi-axis
+  // The contact of that overlap, for the runaway-overlap guard's diagnosis (guards.h): the
+  // global ids of its particle and partner, or -(w + 1) for wall w; -1 without contacts.
+  GlobalId max_overlap_particle = -1;
+  GlobalId max_overlap_partner = -1;
   // Scenes with non-spherical grains, per chunk of rows (buffers reused): the class of each
   // slot, and per batched geometry the pairs past their bounding spheres
   // (dem/contact/geometry/pair_geometries.h).

@@ -83,6 +83,7 @@ void compute(const ForceInput& in) {
   ContactEnergy energy;  // this rank's running sums (fast summation)
   long pair_contacts = 0, wall_contacts = 0;
   double max_ratio = 0.0;
+  int worst_i = -1, worst_j = -1;  // the contact of max_ratio (j = -(w + 1): wall w)
   TangentialSpring dummy_spring;
   Vec3 rolling_viscous;  // the dashpot part of one contact's rolling torque
 
@@ -187,7 +188,8 @@ void compute(const ForceInput& in) {
         book_with_wall_work(ce, dissipation[i]);
       }
       ++wall_contacts;
-      max_ratio = std::max(max_ratio, kin.overlap / (Shapes ? p.min_semi_axis(i) : ri));
+      const double ratio = kin.overlap / (Shapes ? p.min_semi_axis(i) : ri);
+      if (ratio > max_ratio) max_ratio = ratio, worst_i = i, worst_j = -w - 1;
     }
   };
 
@@ -371,7 +373,10 @@ void compute(const ForceInput& in) {
           const double delta = kin.overlap;
           const double r_min =
               Shapes ? std::min(p.min_semi_axis(i), p.min_semi_axis(j)) : std::min(ri, radius[j]);
-          if (delta > max_ratio * r_min) max_ratio = delta / r_min;  // divides only on a new maximum
+          if (delta > max_ratio * r_min) {  // divides only on a new maximum
+            max_ratio = delta / r_min;
+            worst_i = i, worst_j = j;
+          }
         }
         if constexpr (kDeterministic) {
           force[i] = fi;
@@ -399,6 +404,8 @@ void compute(const ForceInput& in) {
   out.pair_contacts = pair_contacts;
   out.wall_contacts = wall_contacts;
   out.max_overlap_ratio = max_ratio;
+  out.max_overlap_particle = worst_i < 0 ? -1 : p.id[worst_i];
+  out.max_overlap_partner = worst_j < 0 ? worst_j : p.id[worst_j];
 }
 
 // Every instantiation of one summation: per contact law (dem/contact/contact_laws.h), shape

@@ -20,12 +20,26 @@ std::string non_finite_state(const ParticleStore& p, int n_owned, long step, dou
   return {};
 }
 
-std::string runaway_overlap(double ratio, double limit, long step, double time, const SceneConfig& scene) {
+std::string runaway_overlap(double ratio, double limit, long step, double time, const SceneConfig& scene,
+                            const OverlapSite& site) {
   if (!(ratio > limit)) return {};
   std::ostringstream m;
   m.precision(3);
-  m << "runaway overlap at step " << step << " (t = " << time << " s): an overlap reached " << ratio
-    << " of a radius (limit " << limit << "); ";
+  m << "runaway overlap at step " << step << " (t = " << time << " s): an overlap";
+  const bool at_wall = site.particle >= 0 && site.partner < 0;
+  if (site.particle >= 0) {
+    m << " of particle " << site.particle << " with ";
+    if (at_wall)
+      m << "wall '" << site.wall << "'";
+    else
+      m << "particle " << site.partner;
+  }
+  m << " reached " << ratio << " of a radius (limit " << limit << "); ";
+  // An overlap of a whole smallest semi-axis at a wall: a sphere's centre has reached the
+  // plane. The grain is being lost through the wall, which no contact law can push back
+  // reliably from there (the law is far outside its validity).
+  if (at_wall && ratio >= 1.0)
+    m << "particle " << site.particle << " is passing through wall '" << site.wall << "'; ";
   // Two causes look alike here: grains too soft to carry their weight sink into each other at
   // any time step, while a time step too large lets fast contacts overshoot. The overlap the
   // weight alone gives by the contact law tells them apart.
@@ -38,6 +52,14 @@ std::string runaway_overlap(double ratio, double limit, long step, double time, 
       << "), and a bed stacks many; raise Particles/youngs modulus "
       << "(now " << scene.particles.material.youngs_modulus
       << " Pa) or the law's stiffness, not the time step";
+  } else if (const TimeStepEstimate ts = estimate_time_step(scene);
+             impact_overlap_ratio(scene, ts.impact_speed) > limit) {
+    // The law itself gives this overlap at the scene's impact speed: no time step helps.
+    m << "the grains are too soft for the impacts of this scene: by the " << scene.contact_law
+      << " law a grain hitting the floor at the expected impact speed " << ts.impact_speed << " m/s sinks "
+      << impact_overlap_ratio(scene, ts.impact_speed)
+      << " of a radius into it; raise Particles/youngs modulus (now "
+      << scene.particles.material.youngs_modulus << " Pa) or lower the impact speed, not the time step";
   } else {
     m << "the time step " << scene.time_step << " s (safe " << estimate_time_step(scene).safe_step
       << " s) is too large for the impacts of this scene, or a particle was placed inside another (a grain's "

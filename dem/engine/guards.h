@@ -18,10 +18,20 @@ namespace upgrain::dem {
 // orientation (stores with shapes) is not finite, named with the step and time.
 std::string non_finite_state(const ParticleStore& p, int n_owned, long step, double time);
 
-// An overlap above `limit` of the smallest semi-axis at the evaluation of `step`, with its
-// cause: grains too soft for their weight (dem/contact/weight_overlap.h), or a time step too
+// The contact of the largest overlap: global ids of the particle and its partner, or, for a
+// wall, partner = -(w + 1) and the wall's name. particle = -1: not known (nothing is named).
+struct OverlapSite {
+  GlobalId particle = -1;
+  GlobalId partner = -1;
+  std::string wall;
+};
+
+// An overlap above `limit` of the smallest semi-axis at the evaluation of `step`, naming its
+// contact, with its cause: a grain passing through a wall (an overlap of a whole semi-axis at
+// a wall), grains too soft for their weight (dem/contact/weight_overlap.h), or a time step too
 // large for the impacts.
-std::string runaway_overlap(double ratio, double limit, long step, double time, const SceneConfig& scene);
+std::string runaway_overlap(double ratio, double limit, long step, double time, const SceneConfig& scene,
+                            const OverlapSite& site = {});
 
 // The global particle count after a migration differs from the scene's.
 std::string lost_particles(long count, long expected, long step);

@@ -175,7 +175,9 @@ void Simulation::step() {
   for (int i = 0; i < n; ++i) {
     p_.v[i] += half * (p_.force[i] * p_.inv_mass[i] + g_);
     p_.x[i] += dt_ * p_.v[i];
-    moved = moved || (p_.x[i] - x_built[i]).squaredNorm() > limit2;
+    // Written so that a non-finite position counts as moved: the rebuild's guard then names
+    // the particle at once (a NaN compares false, and would otherwise never rebuild).
+    moved = moved || !((p_.x[i] - x_built[i]).squaredNorm() <= limit2);
   }
   if (rotation_) rotation_first_half(p_, static_cast<std::size_t>(n), half, dt_);
   // Moving walls drift with the grains; a wall that has moved half a skin since the lists were
@@ -223,9 +225,7 @@ void Simulation::step() {
   const Clock::time_point t1 = Clock::now();
   MPI_Allreduce(local, global, 2, MPI_DOUBLE, MPI_MAX, comm());
   const Clock::time_point t2 = Clock::now();
-  const std::string overlap = runaway_overlap(global[1], kRunawayOverlapRatio, last_overlap_step_,
-                                              static_cast<double>(last_overlap_step_) * dt_, scene_);
-  if (!overlap.empty()) throw CollectiveError(overlap);  // every rank has the same maximum
+  check_overlap(global[1]);  // every rank has the same maximum
   const bool rebuilding = global[0] > 0.0;
   if (rebuilding) {
     rebuild();
@@ -250,6 +250,7 @@ void Simulation::step() {
   for (int i = 0; i < n_owned_; ++i) p_.v[i] += half * (p_.force[i] * p_.inv_mass[i] + g_);
   if (rotation_) rotation_second_half(p_, static_cast<std::size_t>(n_owned_), half);
   ++step_;
+  last_overlap_step_ = step_;  // the evaluation was of this step's positions, at time()
   const Clock::time_point t6 = Clock::now();
   auto seconds = [](Clock::time_point a, Clock::time_point b) {
     return std::chrono::duration<double>(b - a).count();
@@ -329,7 +330,26 @@ void Simulation::evaluate_forces() {
     add_to(dissipated_, step);
   }
   last_overlap_ratio_ = out_.max_overlap_ratio;
+  last_overlap_particle_ = out_.max_overlap_particle;
+  last_overlap_partner_ = out_.max_overlap_partner;
   last_overlap_step_ = step_;
+}
+
+void Simulation::check_overlap(double global_max) const {
+  if (!(global_max > kRunawayOverlapRatio)) return;
+  // The rank whose own maximum it is names the contact (the lowest such rank).
+  struct {
+    double ratio;
+    int rank;
+  } mine{last_overlap_ratio_, rank()}, holder{};
+  MPI_Allreduce(&mine, &holder, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm());
+  GlobalId ids[2] = {last_overlap_particle_, last_overlap_partner_};
+  MPI_Bcast(ids, 2, MPI_INT64_T, holder.rank, comm());
+  OverlapSite site{ids[0], ids[1], {}};
+  if (site.partner < 0 && -site.partner - 1 < static_cast<GlobalId>(walls_.size()))
+    site.wall = walls_[static_cast<std::size_t>(-site.partner - 1)].name;
+  throw CollectiveError(runaway_overlap(global_max, kRunawayOverlapRatio, last_overlap_step_,
+                                        static_cast<double>(last_overlap_step_) * dt_, scene_, site));
 }
 
 void Simulation::add_to(std::array<ExactSum, kChannels>& sums, const DissipatedEnergy& d) {
@@ -684,9 +704,7 @@ StepDiagnostics Simulation::diagnostics() const {
   double overlap = last_overlap_ratio_;
   MPI_Allreduce(MPI_IN_PLACE, &overlap, 1, MPI_DOUBLE, MPI_MAX, comm());
   // step() checks each evaluation at the next step's reduction; this covers a run's last one.
-  const std::string runaway = runaway_overlap(overlap, kRunawayOverlapRatio, last_overlap_step_,
-                                              static_cast<double>(last_overlap_step_) * dt_, scene_);
-  if (!runaway.empty()) throw CollectiveError(runaway);
+  check_overlap(overlap);
   StepDiagnostics d;
   d.particle_contacts = counts[0];
   d.wall_contacts = counts[1];

@@ -207,6 +207,10 @@ class Simulation {
               const EngineOptions& options);
   void rebuild();
   void evaluate_forces();
+  // The runaway-overlap guard (guards.h) for the largest overlap ratio over the ranks: when it
+  // exceeds the limit, every rank throws the diagnosis, naming the contact of the rank that
+  // holds it. Collective (every rank has the same `global_max`).
+  void check_overlap(double global_max) const;
   [[nodiscard]] int owner_of_local(std::size_t i) const;
   static double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -256,6 +260,7 @@ class Simulation {
   bool record_next_ = false;
   bool recorded_ = false;
   double last_overlap_ratio_ = 0.0;
+  GlobalId last_overlap_particle_ = -1, last_overlap_partner_ = -1;  // its contact (ForceOutput)
   std::optional<WallLoads> restored_wall_loads_;  // after a restore, until the first evaluation
   long last_overlap_step_ = 0;
 

@@ -50,6 +50,32 @@ TEST(WeightOverlap, NoneWithoutGravity) {
   EXPECT_EQ(weight_overlap_ratio(s), 0.0);
 }
 
+TEST(ImpactOverlap, HertzMatchesTheClosedFormAndDoesNotDependOnTheSize) {
+  for (double v : {1.0, 50.0, 100.0})
+    for (double r : {0.5e-3, 2e-3}) {
+      SceneConfig s = resting_scene(5e9);
+      s.particles.radius = r;
+      const double e_star = effective_youngs_modulus(s.particles.material, s.particles.material);
+      // m v^2 / 2 = 8/15 E* sqrt(R) delta^(5/2), m = 4/3 pi rho R^3 (Johnson 1985, eq. 11.23).
+      const double expected =
+          std::pow(5.0 * std::numbers::pi * s.particles.material.density * v * v / (4.0 * e_star), 0.4);
+      EXPECT_NEAR(impact_overlap_ratio(s, v), expected, 1e-9 * expected) << v << " m/s, r " << r;
+    }
+}
+
+// Stiff grains at a step below the safe one, but an impact speed whose Hertz overlap passes
+// the limit: the guard names the impacts, not the step.
+TEST(RunawayOverlap, TellsTooFastImpactsFromATooLargeTimeStep) {
+  SceneConfig s = resting_scene(5e9);
+  s.time_step_rule.impact_speed = 100.0;  // 0.273 of a radius by Hertz
+  s.time_step = 0.5 * estimate_time_step(s).safe_step;
+  const std::string m = runaway_overlap(0.3, 0.25, 100, 1e-3, s);
+  EXPECT_NE(m.find("too soft for the impacts of this scene"), std::string::npos) << m;
+  EXPECT_NE(m.find("100 m/s sinks 0.273"), std::string::npos) << m;
+  s.time_step_rule.impact_speed = 50.0;  // 0.157 (the overlap goes as v^(4/5))
+  EXPECT_NE(runaway_overlap(0.3, 0.25, 100, 1e-3, s).find("is too large for the impacts"), std::string::npos);
+}
+
 // Soft grains (E = 1e3 Pa) with a time step far below the safe one: the guard blames the
 // stiffness; stiff grains: the time step.
 TEST(RunawayOverlap, TellsSoftGrainsFromATooLargeTimeStep) {

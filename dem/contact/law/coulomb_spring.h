@@ -34,14 +34,15 @@ struct CoulombSpring {
     const double k_t = m.k_t, f_n = m.f_n;
     Vec3& f_t = spring.force;
     carry_into_plane<Energy>(f_t, n, spring.stiffness, k_t, energy.tangential_stiffness_change);
+    const Vec3 before = f_t;  // the previous force, in the present plane
     f_t -= k_t * p.dt * v_t;  // incremental: dF_t = -k_t du_t
     spring.stiffness = k_t;
     const double limit = p.friction * f_n;
     const double trial2 = f_t.squaredNorm();
     if (trial2 > limit * limit) {
-      const double trial = std::sqrt(trial2);
-      if constexpr (Energy) energy.dissipated_friction += limit * (trial - limit) / k_t;
-      f_t *= limit / trial;  // Coulomb: the stored spring is rescaled on slip
+      const Vec3 trial = f_t;
+      f_t *= limit / std::sqrt(trial2);  // Coulomb: the stored spring is rescaled on slip
+      if constexpr (Energy) energy.dissipated_friction += slip_dissipation(before, trial, f_t, k_t);
     }
     if constexpr (Energy) energy.elastic_tangential += 0.5 * f_t.squaredNorm() / k_t;
     return f_t;
