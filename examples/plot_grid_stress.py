@@ -3,13 +3,14 @@
 formula and any column of the table:
 
   plot_grid_stress.py OUTPUT_FOLDER [--formula bagi] [--field s_zz] [--time T] [--cells "i,j,k;..."]
-                      [--out DIR]
+                      [--mark T] [--out DIR]
 
 <field>_<formula>_slices.png    horizontal slices: one map per layer k of the grid (x right, y up)
 <field>_<formula>_sections.png  vertical sections through the middle row (x-z) and column (y-z)
 <field>_<formula>_history.png   the field over time in chosen cells (default: the centre column)
 
---time picks the evaluation nearest to T (default: the last). --field is a column of
+--time picks the evaluation nearest to T (default: the last); --mark T (repeatable) draws a line at
+T in the history (a gate's opening). --field is a column of
 grid_stress.csv: s_xx ... s_zz, rai, solid_fraction, particles, ... (compression is negative).
 The functions are used by the examples' own scripts (examples/*/plot_*.py)."""
 import argparse
@@ -142,6 +143,7 @@ def main():
     p.add_argument("--time", type=float, default=None)
     p.add_argument("--cells", default=None, help='"i,j,k;i,j,k" (default: the centre column)')
     p.add_argument("--out", default=None, help="folder for the figures (default: the output folder)")
+    p.add_argument("--mark", type=float, action="append", default=[], help="a time to mark in the history (s)")
     a = p.parse_args()
     rows = read_table(a.folder)
     out = a.out or a.folder
@@ -155,7 +157,8 @@ def main():
         cells = [tuple(int(c) for c in s.split(",")) for s in a.cells.split(";")]
     else:
         cells = [(v.shape[2] // 2, v.shape[1] // 2, k) for k in range(v.shape[0])]
-    plot_histories(rows, a.formula, a.field, cells, f"{a.field}, {a.formula}", stem + "_history.png", unit)
+    plot_histories(rows, a.formula, a.field, cells, f"{a.field}, {a.formula}", stem + "_history.png", unit,
+                   a.mark)
     print(f"{a.field} ({a.formula}) at t = {t:g} s, by layer (bottom first): "
           + "; ".join(f"z = {100 * z[k]:.1f} cm: centre {v[k, v.shape[1] // 2, v.shape[2] // 2]:.0f}, "
                       f"mean {np.nanmean(v[k]):.0f}" for k in range(v.shape[0])))
