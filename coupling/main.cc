@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -182,6 +183,7 @@ upgrain::coupling::SceneInput restart_input(const std::string& dir, const std::s
   if (!file.empty()) {
     // The given file's values for what a restart may change, the checkpoint's for the rest.
     coupling::SceneInput given = coupling::parse_scene_text(coupling::read_scene_bytes(file), file);
+    in.scene_folder = std::filesystem::path(file).parent_path().string();
     const std::vector<std::string> differ =
         coupling::differing_parameters(scene, given.output.checkpoint.scene);
     if (!differ.empty()) {
@@ -279,6 +281,7 @@ int run(int argc, char** argv) {
       std::printf("    %-20s %-3s  %s\n", c.entry.c_str(), c.on ? "on" : "off", c.reason.c_str());
     std::printf("  %d MPI rank%s, %s summation (Parallel/summation)\n", ranks, ranks > 1 ? "s" : "",
                 dem::to_string(in.parallel.summation).c_str());
+    if (!in.packing_note.empty()) std::printf("  %s\n", in.packing_note.c_str());
     for (const std::string& w : in.warnings) std::printf("  warning: %s\n", w.c_str());
     if (in.parallel.legacy_engine != "auto")
       std::printf(

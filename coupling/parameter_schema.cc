@@ -94,6 +94,14 @@ const std::vector<ParameterSpec>& parameter_schema() {
        "after '@' (equal shares without), e.g. '1:1:1, 1:0.8:0.6, 1:0.8:0.4, 1:0.6:0.4' (the paper's four). "
        "Empty: spheres. The radius (or gradation) is each grain's major semi-axis a; orientations are "
        "uniformly random."},
+      {"Particles", "initial packing", "", K::text, 0, 0, "", "-",
+       "Start from the grains of this file instead of a fill: a text table (CSV or whitespace; columns id, "
+       "x, "
+       "y, z, r or d or a, b, c, optional qw, qx, qy, qz, vx, vy, vz, wx, wy, wz), a LAMMPS/LIGGGHTS data "
+       "file "
+       "(atom_style sphere or granular) or an Upgrain snapshot (HDF5). A relative path starts at the scene "
+       "file's folder. count, radius, gradation, shapes and the Fill section are then not used; the grains "
+       "take this section's material. Empty: fill the container (docs/input.md)."},
       {"Particles", "density", "2650", K::real, 1.0, 1e5, "", "kg/m^3",
        "Grain density (specific gravity 2.65 in the paper)."},
       {"Particles", "youngs modulus", "5e9", K::real, 1e3, 1e13, "", "Pa",
@@ -165,6 +173,11 @@ const std::vector<ParameterSpec>& parameter_schema() {
        "Simulated time between HDF5 snapshots; 0 = first and last only."},
       {"Output", "time series interval", "0.002", K::real, 0.0, 1e6, "", "s",
        "Simulated time between rows of time_series.csv."},
+      {"Output", "force network", "false", K::boolean, 0, 0, "", "-",
+       "Write every contact with each snapshot after the first: force_network/contacts_<step>.h5 (ids, "
+       "point, "
+       "normal and tangential force, overlap) and force_network.xdmf, the contacts as lines between the "
+       "centres for ParaView (docs/output.md)."},
       {"Output", "energy balance", "true", K::boolean, 0, 0, "", "-",
        "Write the elastic energies, the dissipation and the balance error into time_series.csv and "
        "summary.json. false: with Effects/energy tracking = auto the contacts track no energy (faster), and "

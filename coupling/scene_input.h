@@ -28,6 +28,11 @@ struct ParallelInput {
 
 struct SceneInput {
   std::string source;  // file name, or "built-in default scene"
+  // The folder of the scene file, where a relative Particles/initial packing path starts (empty:
+  // the working folder).
+  std::string scene_folder;
+  std::string initial_packing;  // Particles/initial packing as written (empty: a fill)
+  std::string packing_note;     // what validate_scene read from it, for the log
   dem::SceneConfig scene;
   dem::EffectSwitches
       effect_switches;  // the Effects section as written; validate_scene derives scene.effects

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <regex>
@@ -188,6 +189,7 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   s.particles.radius = prm.get_double("radius");
   s.particles.gradation = parse_gradation(prm.get("gradation"));
   s.particles.shapes = parse_shapes(prm.get("shapes"));
+  in.initial_packing = prm.get("initial packing");
   s.particles.material.density = prm.get_double("density");
   s.particles.material.youngs_modulus = prm.get_double("youngs modulus");
   s.particles.material.poisson_ratio = prm.get_double("poisson ratio");
@@ -240,6 +242,7 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   in.output.snapshot_interval = prm.get_double("snapshot interval");
   in.output.series_interval = prm.get_double("time series interval");
   in.output.energy_balance = prm.get_bool("energy balance");
+  in.output.force_network = prm.get_bool("force network");
   prm.leave_subsection();
 
   prm.enter_subsection("Accuracy");
@@ -469,6 +472,7 @@ std::vector<std::string> differing_parameters(const std::string& run, const std:
 
 SceneInput read_scene_file(const std::string& filename) {
   SceneInput in = parse_scene_text(read_scene_bytes(filename), filename);
+  in.scene_folder = std::filesystem::path(filename).parent_path().string();
   validate_scene(in);
   return in;
 }

@@ -1,5 +1,7 @@
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <memory>
 #include <optional>
 #include <sstream>
 
@@ -7,6 +9,7 @@
 #include "coupling/scene_input.h"
 #include "coupling/scene_limits.h"
 #include "dem/core/error.h"
+#include "dem/io/packing_file.h"
 #include "dem/scene/fill.h"
 #include "dem/scene/gradation.h"
 #include "dem/scene/grain_shape.h"
@@ -121,12 +124,62 @@ void validate_continuum(ContinuumOptions& c, const std::string& where) {
   }
 }
 
+// The shapes of a packing's grains that set the safe time step (dem/time_step.cc): the thinnest
+// (smallest c/a), the flattest (largest b/c) and the lightest for its size (smallest b c / a^2).
+// Empty when every grain is a sphere.
+std::vector<dem::GrainShape> limiting_shapes(const dem::ParticleStore& p) {
+  std::vector<dem::GrainShape> out;
+  if (!p.has_shapes()) return out;
+  const dem::GrainShape none{2.0, 2.0, 1.0};
+  dem::GrainShape thinnest = none, flattest = none, lightest = none;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (!p.oriented(i)) continue;
+    const dem::Vec3& ax = p.semi_axes[i];
+    const dem::GrainShape g{ax.y() / ax.x(), ax.z() / ax.x(), 1.0};
+    if (g.c_over_a < thinnest.c_over_a) thinnest = g;
+    if (flattest.b_over_a > 1.0 || g.b_over_a / g.c_over_a > flattest.b_over_a / flattest.c_over_a)
+      flattest = g;
+    if (g.b_over_a * g.c_over_a < lightest.b_over_a * lightest.c_over_a) lightest = g;
+  }
+  for (const dem::GrainShape& g : {thinnest, flattest, lightest})
+    if (g.b_over_a <= 1.0) out.push_back(g);
+  return out;
+}
+
+// Particles/initial packing: the grains read and checked against the container, and the
+// Particles entries made to describe them (count, smallest radius, the limiting shapes), so
+// that every later check (fit, time step, stiffness, memory) sees the grains of the file.
+void load_initial_packing(SceneInput& in, const std::string& where) {
+  dem::SceneConfig& s = in.scene;
+  s.particles.packing.reset();
+  in.packing_note.clear();
+  if (in.initial_packing.empty()) return;
+  std::filesystem::path path = in.initial_packing;
+  if (path.is_relative() && !in.scene_folder.empty()) path = std::filesystem::path(in.scene_folder) / path;
+  dem::io::Packing p;
+  try {
+    p = dem::io::read_packing(path, s.particles.material.density);
+    dem::io::check_packing(p, s.container, path.string(), dem::io::kPackingOverlapLimit);
+  } catch (const Error& e) {
+    throw Error(where + "Particles/initial packing: " + e.what());
+  }
+  for (const std::string& note : p.notes) in.warnings.push_back(where + note);
+  s.particles.count = static_cast<long>(p.grains.size());
+  s.particles.radius = p.grains.min_radius();
+  s.particles.gradation.clear();
+  s.particles.shapes = limiting_shapes(p.grains);
+  in.packing_note = "initial packing: " + path.string() + " (" + p.format + ", " +
+                    std::to_string(p.grains.size()) + " grains)";
+  s.particles.packing = std::make_shared<const dem::ParticleStore>(std::move(p.grains));
+}
+
 }  // namespace
 
 void validate_scene(SceneInput& in) {
   const dem::SceneConfig& s = in.scene;
   const std::string where = in.source + ": ";
   in.warnings.clear();
+  load_initial_packing(in, where);
   // The effect set first: the time-step estimate below depends on it (gravity).
   try {
     dem::ChosenEffects chosen = dem::choose_effects(s, in.effect_switches, {in.output.energy_balance});
@@ -146,8 +199,7 @@ void validate_scene(SceneInput& in) {
   } catch (const Error& e) {
     throw Error(where + "Particles/shapes: " + e.what());
   }
-  const double r_max =
-      s.particles.gradation.empty() ? s.particles.radius : s.particles.gradation.back().radius;
+  const double r_max = s.particles.largest_radius();
   if (2.0 * r_max >= std::min(s.container.lx, s.container.ly)) {
     std::ostringstream m;
     m << where << "the largest grain (diameter " << 2 * r_max << " m, Particles/radius or gradation) "

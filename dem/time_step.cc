@@ -18,7 +18,7 @@ double expected_impact_speed(const SceneConfig& s, double fill_top) {
 TimeStepEstimate estimate_time_step(const SceneConfig& s) {
   SceneTimeScales t;
   t.material = s.particles.material;
-  t.r_min = s.particles.gradation.empty() ? s.particles.radius : s.particles.gradation.front().radius;
+  t.r_min = s.particles.smallest_radius();
   // Ellipsoids (docs/ellipsoids.md): the thinnest semi-axis c, the flattest point of a grain
   // (Gaussian radius a b / c at the c pole) and the lightest grain's mass. Spheres: 1.
   double mass_factor = 1.0;

@@ -36,6 +36,9 @@ struct OutputOptions {
   // The effect set and its reasons, for summary.json; empty: the scene's set as given.
   std::vector<dem::EffectChoice> effect_choices;
   CheckpointOptions checkpoint;
+  // Output/force network: every contact with each snapshot after the first
+  // (force_network/contacts_<step>.h5, force_network.xdmf; dem/io/force_network.h).
+  bool force_network = false;
   // The states kept for the coarse-grained fields (docs/coarse-graining.md).
   CoarseGrainingCapture coarse_graining;
 };

@@ -3,7 +3,11 @@
 namespace upgrain::coupling {
 
 RunFiles::RunFiles(dem::Simulation& sim, const std::optional<OutputOptions>& output) : output_(output) {
-  if (output_) sim.on_root([&] { recorder_.emplace(output_->folder); });
+  if (output_)
+    sim.on_root([&] {
+      recorder_.emplace(output_->folder);
+      if (output_->force_network) network_.emplace(output_->folder);
+    });
 }
 
 void RunFiles::record_series(dem::Simulation& sim) {
@@ -21,6 +25,11 @@ void RunFiles::write_snapshot(dem::Simulation& sim) {
   const std::vector<dem::Vec3> forces = sim.wall_forces();
   const dem::ParticleStore& all = sim.whole_state();
   sim.on_root([&] { recorder_->write_snapshot(all, sim.walls(), forces, sim.time(), sim.step_count()); });
+  if (!output_->force_network || !sim.contacts_recorded()) return;
+  // Every contact once, gathered to rank 0 in the order of the ids: the same file on any rank
+  // count with the deterministic summation.
+  const std::vector<dem::ContactRecord> contacts = sim.gather_contacts_by_id();
+  sim.on_root([&] { network_->write(all, sim.walls(), contacts, sim.time(), sim.step_count()); });
 }
 
 dem::io::RunRecorder::State RunFiles::state() {
@@ -30,7 +39,11 @@ dem::io::RunRecorder::State RunFiles::state() {
 }
 
 void RunFiles::resume(dem::Simulation& sim, const dem::io::RunRecorder::State& s) {
-  if (output_) sim.on_root([&] { recorder_->resume(s); });
+  if (output_)
+    sim.on_root([&] {
+      recorder_->resume(s);
+      if (network_) network_->resume();
+    });
 }
 
 void RunFiles::write_summary(const dem::Simulation& sim, const RunResult& r) {

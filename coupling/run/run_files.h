@@ -7,6 +7,7 @@
 #include "coupling/run/output_options.h"
 #include "coupling/run/run_result.h"
 #include "dem/engine/simulation.h"
+#include "dem/io/force_network.h"
 #include "dem/io/run_recorder.h"
 
 namespace upgrain::coupling {
@@ -18,8 +19,11 @@ class RunFiles {
   [[nodiscard]] bool enabled() const { return output_.has_value(); }
   // A row of time_series.csv: energies, balance error, contacts.
   void record_series(dem::Simulation& sim);
-  // snapshots/particles_<step>.h5 of the checked whole state, with the wall forces.
+  // snapshots/particles_<step>.h5 of the checked whole state, with the wall forces; with
+  // Output/force network, the contacts of the step when it recorded them (request_contacts()).
   void write_snapshot(dem::Simulation& sim);
+  // Whether the step before a snapshot must record its contacts (for the force network).
+  [[nodiscard]] bool wants_contacts() const { return output_ && output_->force_network; }
   // The last rows and summary.json.
   void write_summary(const dem::Simulation& sim, const RunResult& r);
 
@@ -30,7 +34,8 @@ class RunFiles {
 
  private:
   const std::optional<OutputOptions>& output_;
-  std::optional<dem::io::RunRecorder> recorder_;  // rank 0
+  std::optional<dem::io::RunRecorder> recorder_;          // rank 0
+  std::optional<dem::io::ForceNetworkRecorder> network_;  // rank 0, with Output/force network
 };
 
 }  // namespace upgrain::coupling

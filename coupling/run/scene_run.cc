@@ -76,7 +76,8 @@ void release_walls(dem::Simulation& sim, const RunSchedule& schedule, ScheduleSt
 void remove_outputs_after(const fs::path& folder, long step) {
   static const std::regex numbered(R"(.*_(\d+)\.h5)");
   static const std::regex temporary(R"(.*\.tmp\.\d+)");
-  for (const char* sub : {"snapshots", "grid_stress", "grid_strain", "compute_grid_strain", "checkpoints"}) {
+  for (const char* sub :
+       {"snapshots", "grid_stress", "grid_strain", "compute_grid_strain", "checkpoints", "force_network"}) {
     std::error_code ec;
     for (const fs::directory_entry& e : fs::directory_iterator(folder / sub, ec)) {
       const std::string name = e.path().filename().string();
@@ -133,7 +134,8 @@ class SceneRun {
       release_walls(sim_, schedule_, state_);
       const bool walls_pending = state_.next_release < schedule_.releases.size();
       const bool evaluate = schedule_.evaluation_due(s);
-      if (evaluate) sim_.request_contacts();
+      const bool record = evaluate || (files_.wants_contacts() && schedule_.snapshot_due(s));
+      if (record) sim_.request_contacts();
       sim_.step();
       if (evaluate) grids_->evaluate(sim_);
       const bool series_now = schedule_.series_due(s);
@@ -150,8 +152,9 @@ class SceneRun {
       }
       clock_.dynamics(s, schedule_.total, control_.rest_ratio > 0.0, r.stopped_at_rest);
       if (r.stopped_at_rest) {
-        // One more step, recorded, so that the final state has its stress.
-        if (grids_ && !evaluate && !control_.relax_at_end) final_step();
+        // One more step, recorded, so that the final state has its stress and force network.
+        if (((grids_ && !evaluate) || (files_.wants_contacts() && !record)) && !control_.relax_at_end)
+          final_step();
         break;
       }
       const CheckpointClock::Decision d = checkpoints_.at(s, series_now, sim_.comm());
@@ -186,7 +189,7 @@ class SceneRun {
   // A recorded step of the final state (after the run stopped at rest between evaluations, or
   // after the relaxation): its stress, series row and snapshot.
   void final_step() {
-    if (grids_) sim_.request_contacts();
+    if (grids_ || files_.wants_contacts()) sim_.request_contacts();
     sim_.step();
     if (grids_) grids_->evaluate(sim_);
     files_.record_series(sim_);

@@ -9,7 +9,7 @@ namespace upgrain::dem {
 
 double weight_overlap_ratio(const SceneConfig& s) {
   if (!s.effects.gravity || s.gravity <= 0.0) return 0.0;
-  const double r = s.particles.gradation.empty() ? s.particles.radius : s.particles.gradation.back().radius;
+  const double r = s.particles.largest_radius();
   const double mass = s.particles.material.density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
   const double weight = mass * s.gravity;
   ContactMaterial m = ContactMaterial::from(s.particles.material, s.friction, s.damping_ratio);

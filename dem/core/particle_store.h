@@ -67,6 +67,12 @@ struct ParticleStore {
     return has_shapes() ? semi_axes[i].z() : radius[i];
   }
   [[nodiscard]] double volume(std::size_t i) const;
+  // How far grain i reaches from its centre along the unit direction n: the support function
+  // sqrt(n^T M n), M = Q diag(a^2, b^2, c^2) Q^T (docs/ellipsoid-contact.md); r for a sphere.
+  [[nodiscard]] double reach(std::size_t i, const Vec3& n) const {
+    if (!oriented(i)) return radius[i];
+    return (orientation[i].conjugate() * n).cwiseProduct(semi_axes[i]).norm();
+  }
   // Inertia tensor about the centroid in the world frame, Q J_body Q^T.
   [[nodiscard]] Mat3 inertia_world(std::size_t i) const;
   // (1/2) w^T I w for an angular velocity w of grain i (its own by default).

@@ -51,6 +51,14 @@ double random_fill_height(const SceneConfig& s, const std::vector<double>& radii
 
 FillPlan plan_fill(const SceneConfig& s) {
   FillPlan plan;
+  if (s.particles.packing) {
+    // The grains of an initial packing, as they lie.
+    const ParticleStore& p = *s.particles.packing;
+    plan.radii = p.radius;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      plan.top = std::max(plan.top, p.x[i].z() + p.reach(i, Vec3::UnitZ()));
+    return plan;
+  }
   if (s.particles.count < 1) throw Error("Particles/count must be at least 1");
   if (s.particles.gradation.empty()) {
     plan.radii.assign(static_cast<std::size_t>(s.particles.count), s.particles.radius);
@@ -72,6 +80,7 @@ FillPlan plan_fill(const SceneConfig& s) {
 double fill_top_height(const SceneConfig& s) { return plan_fill(s).top; }
 
 ParticleStore fill_container(const SceneConfig& s) {
+  if (s.particles.packing) return *s.particles.packing;
   const FillPlan plan = plan_fill(s);
   const std::vector<double>& radii = plan.radii;
   const double r_max = *std::max_element(radii.begin(), radii.end());

@@ -2,12 +2,14 @@
 // A complete, validated description of a deposition scene, as plain data. The driver
 // (coupling/) fills it from a parameter file; tests fill it directly.
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "dem/boundary/container.h"
 #include "dem/core/effect_set.h"
 #include "dem/core/material.h"
+#include "dem/core/particle_store.h"
 #include "dem/core/types.h"
 #include "dem/scene/grain_shape.h"
 
@@ -28,6 +30,20 @@ struct ParticleSpec {
   // semi-axis a, and orientations are uniformly random.
   std::vector<GrainShape> shapes;
   Material material;
+  // An initial packing (docs/input.md, "Starting from a packing"): when set, the run starts
+  // from these grains instead of a fill; count, radius and shapes then describe them (radius
+  // the smallest major semi-axis, shapes the most demanding of theirs, for the time step).
+  std::shared_ptr<const ParticleStore> packing;
+
+  // The largest and smallest major semi-axis a grain of the scene can have.
+  [[nodiscard]] double largest_radius() const {
+    if (packing) return packing->max_radius();
+    return gradation.empty() ? radius : gradation.back().radius;
+  }
+  [[nodiscard]] double smallest_radius() const {
+    if (packing) return packing->min_radius();
+    return gradation.empty() ? radius : gradation.front().radius;
+  }
 };
 
 enum class FillMethod { lattice, random };

@@ -1,0 +1,73 @@
+#pragma once
+// The force network of a recorded step: every contact once, with its normal and tangential
+// force and its overlap, written per snapshot as HDF5 with an XDMF file that draws each
+// particle-particle contact as a line between the two centres (ParaView: force chains).
+// docs/output.md, "Force network".
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "dem/core/particle_store.h"
+#include "dem/core/plane_wall.h"
+#include "dem/parallel/records.h"
+
+namespace upgrain::dem::io {
+
+// One contact. For a pair: a < b (global ids), the force is the one on a; for a wall: a is the
+// particle, wall the wall's index. The normal points from a to b (or into the wall).
+struct NetworkContact {
+  GlobalId a = 0;
+  GlobalId b = -1;  // -1 for a wall contact
+  int wall = -1;    // the wall's index, or -1 for a pair
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::UnitZ();
+  Vec3 normal_force = Vec3::Zero();      // on a: (f . n) n
+  Vec3 tangential_force = Vec3::Zero();  // on a: f - (f . n) n
+  double overlap = 0.0;                  // m, > 0 in contact
+};
+
+// The contacts of `records` (Simulation::gather_contacts_by_id: every contact once, sorted by
+// key) resolved against the whole state sorted by id (ids 0..N-1 index `particles`): the normal
+// and overlap from the contact geometry of the two shapes (docs/ellipsoid-contact.md; spheres
+// in closed form), the force split along it.
+std::vector<NetworkContact> force_network(const ParticleStore& particles, const std::vector<PlaneWall>& walls,
+                                          const std::vector<ContactRecord>& records);
+
+struct NetworkInfo {
+  std::string file;  // relative to the XDMF file's folder
+  double time = 0.0;
+  long step = 0;
+  long particles = 0;
+  long pairs = 0;
+};
+
+// force_network/contacts_<step>.h5: /particles/position (N x 3, by id: the lines' ends) and
+// /contacts/{ids (M x 2), point, normal, normal_force, tangential_force (M x 3), overlap,
+// normal_force_magnitude, tangential_force_magnitude (M)} for the pairs; /wall_contacts/{particle,
+// wall, point, normal, normal_force, tangential_force, overlap} for the walls. Root attributes
+// time and step. Atomic (atomic_file.h).
+NetworkInfo write_force_network(const std::filesystem::path& path, const ParticleStore& particles,
+                                const std::vector<NetworkContact>& contacts, double time, long step);
+
+// An XDMF 3 temporal collection: each pair a two-node polyline between the centres, with the
+// contact's values as cell data.
+void write_force_network_xdmf(const std::filesystem::path& path, const std::vector<NetworkInfo>& files);
+
+// The force network files of a run: force_network/contacts_<step>.h5 and force_network.xdmf in
+// `folder`, rewritten with each file.
+class ForceNetworkRecorder {
+ public:
+  explicit ForceNetworkRecorder(std::filesystem::path folder) : folder_(std::move(folder)) {}
+  void write(const ParticleStore& sorted_by_id, const std::vector<PlaneWall>& walls,
+             const std::vector<ContactRecord>& records, double time, long step);
+  // A restart: the files already in the folder (those after the checkpoint are gone) listed
+  // again, by step.
+  void resume();
+
+ private:
+  std::filesystem::path folder_;
+  std::vector<NetworkInfo> files_;
+};
+
+}  // namespace upgrain::dem::io
