@@ -140,6 +140,33 @@ const std::vector<ParameterSpec>& parameter_schema() {
       {"Container", "side walls open time", "0", K::real, 0.0, 1e6, "", "s",
        "Simulated time at which all side walls are removed (with 'collapse = unconstrained')."},
 
+      {"Lid", "mode", "none", K::selection, 0, 0, "none|velocity|servo", "-",
+       "A lid on the bed (docs/scenes.md, Lid): a horizontal wall placed at 'place time' just above the "
+       "highest grain, then driven down at 'speed' (velocity) or servo-controlled to hold 'target stresses' "
+       "(servo; docs/calibration.md). A run with a lid does not stop at rest. none: no lid."},
+      {"Lid", "place time", "0", K::real, 0.0, 1e6, "", "s",
+       "Simulated time at which the lid is placed; before Simulation/end time."},
+      {"Lid", "gap", "0", K::real, 0.0, 1e4, "", "m",
+       "Distance between the highest grain's top (its bounding sphere's) and the lid when it is placed."},
+      {"Lid", "friction", "0", K::real, 0.0, 10.0, "", "-",
+       "Coulomb coefficient particle-lid (0 when Effects/wall friction is off)."},
+      {"Lid", "speed", "0.01", K::real, -1e3, 1e3, "", "m/s",
+       "Speed of the lid downwards, into the bed (mode velocity); negative lifts it."},
+      {"Lid", "target stresses", "", K::text, 0, 0, "", "Pa",
+       "Normal stresses on the lid (its force over the container's footprint) the servo holds in turn, "
+       "comma-separated, each for 'step duration' after the placement, the last to the end (mode servo)."},
+      {"Lid", "step duration", "0", K::real, 0.0, 1e6, "", "s",
+       "Simulated time each target stress is held (mode servo); > 0 with more than one target."},
+      {"Lid", "gain factor", "0.5", K::real, 1e-6, 1.0, "", "-",
+       "alpha of the servo's gain G = alpha A / (K dt), K a bound of the lid's contact stiffness: the error "
+       "shrinks by (1 - alpha) per update on a linear spring; <= 1 for a stable servo "
+       "(docs/calibration.md)."},
+      {"Lid", "max speed", "0.01", K::real, 1e-9, 1e3, "", "m/s",
+       "Largest speed of the servo lid, also its speed of approach before it touches the bed."},
+      {"Lid", "update interval", "10", K::integer, 1, 1000000, "", "steps",
+       "Steps between servo updates; the lid keeps its velocity in between, and the gain takes the "
+       "interval as its dt."},
+
       {"Fill", "method", "lattice", K::selection, 0, 0, "lattice|random", "-",
        "Initial placement: a jittered cubic lattice, or random sequential addition."},
       {"Fill", "bottom gap", "0.01", K::real, 0.0, 1e4, "", "m",

@@ -234,6 +234,25 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   s.fill.seed = static_cast<std::uint64_t>(prm.get_integer("seed"));
   prm.leave_subsection();
 
+  prm.enter_subsection("Lid");
+  {
+    LidControl& lid = in.control.lid;
+    const std::string mode = prm.get("mode");
+    lid.mode = mode == "velocity" ? LidControl::Mode::velocity
+               : mode == "servo"  ? LidControl::Mode::servo
+                                  : LidControl::Mode::none;
+    lid.place_time = prm.get_double("place time");
+    lid.gap = prm.get_double("gap");
+    lid.friction = prm.get_double("friction");
+    lid.speed = prm.get_double("speed");
+    lid.target_stresses = numbers_of(prm.get("target stresses"), "Lid/target stresses");
+    lid.step_duration = prm.get_double("step duration");
+    lid.gain_factor = prm.get_double("gain factor");
+    lid.max_speed = prm.get_double("max speed");
+    lid.update_every = prm.get_integer("update interval");
+  }
+  prm.leave_subsection();
+
   prm.enter_subsection("Output");
   in.output.folder = prm.get("folder");
   in.overwrite = prm.get_bool("overwrite");

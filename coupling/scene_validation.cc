@@ -201,6 +201,15 @@ void validate_scene(SceneInput& in) {
     m << where << "Simulation/end time = " << s.end_time << " s is shorter than one time step";
     throw Error(m.str());
   }
+  try {
+    validate_lid(in.control.lid, s);
+  } catch (const Error& e) {
+    throw Error(where + e.what());
+  }
+  if (in.control.lid.enabled() && in.control.lid.friction > 0.0 && !in.scene.effects.wall_friction)
+    throw Error(where +
+                "Lid/friction > 0, but Effects/wall friction is off: the lid would be frictionless; set "
+                "'Lid/friction = 0' or turn wall friction on");
   if (const upscale::GridStrainOutputOptions& st = in.output.grid_strain; st.enabled) {
     if (!in.output.grid_stress.enabled())
       throw Error(where +
