@@ -12,6 +12,7 @@
 #include <string>
 
 #include "coupling/accuracy/accuracy_study.h"
+#include "coupling/calibration/calibration_study.h"
 #include "coupling/dem_run.h"
 #include "coupling/quiet_p4est.h"
 #include "coupling/run/output_folder.h"
@@ -49,6 +50,10 @@ constexpr const char* kUsage =
     "  --study accuracy              run the accuracy study of the scene (its Accuracy section,\n"
     "                                docs/accuracy.md): every knob's values against wall time,\n"
     "                                into <Output/folder>/accuracy/\n"
+    "  --study calibration           deposit the scene's bed and compress it under a servo lid in\n"
+    "                                stress steps (its Calibration section, docs/calibration.md):\n"
+    "                                the stress-strain path and the equivalent elastic material,\n"
+    "                                into <Output/folder>/calibration/\n"
     "  --restart DIR                 continue the run in DIR from its newest valid checkpoint\n"
     "                                (DIR/checkpoints/, docs/restart.md), with the scene it was\n"
     "                                started with; a scene file given as well may change only\n"
@@ -205,9 +210,10 @@ int run(int argc, char** argv) {
     } else if (a == "--check") {
       check_only = true;
     } else if (a == "--study") {
-      if (k + 1 >= argc) throw Error("--study needs the name of a study (accuracy)");
+      if (k + 1 >= argc) throw Error("--study needs the name of a study (accuracy, calibration)");
       study = argv[++k];
-      if (study != "accuracy") throw Error("--study: unknown study '" + study + "' (known: accuracy)");
+      if (study != "accuracy" && study != "calibration")
+        throw Error("--study: unknown study '" + study + "' (known: accuracy, calibration)");
     } else if (a == "--restart") {
       if (k + 1 >= argc) throw CollectiveError("--restart needs the output folder of the run");
       restart_dir = argv[++k];
@@ -291,6 +297,7 @@ int run(int argc, char** argv) {
   };
   try {
     if (study == "accuracy") return coupling::run_accuracy_study(in, MPI_COMM_WORLD);
+    if (study == "calibration") return coupling::run_calibration_study(in, MPI_COMM_WORLD, progress);
     if (in.study.compare_with_continuum) {
       return coupling::run_study(in, MPI_COMM_WORLD, progress,
                                  [&](const coupling::RunResult& r) { print_deposition(in, r); });

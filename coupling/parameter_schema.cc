@@ -307,6 +307,22 @@ const std::vector<ParameterSpec>& parameter_schema() {
       {"Accuracy", "tolerance", "0.01", K::real, 0.0, 1.0, "", "-",
        "Relative change a setting may make in every measure of the bed (or the noise floor, if larger) "
        "for the report to call it within tolerance."},
+      {"Calibration", "lid stresses", "0.5, 1, 2, 4", K::text, 0, 0, "", "bed weight / footprint",
+       "Targets of the oedometric test's servo lid (upgrain --study calibration, docs/calibration.md), as "
+       "multiples of the bed's weight over the box's footprint, comma-separated, ascending; at least two."},
+      {"Calibration", "hold time", "0.05", K::real, 1e-9, 1e6, "", "s",
+       "Simulated time each lid target is held before the bed's stress and strain are taken."},
+      {"Calibration", "seating time", "0.1", K::real, 0.0, 1e6, "", "s",
+       "Simulated time before the first hold in which the lid comes down onto the bed and seats at the "
+       "first target (its first contacts with the uneven top are impacts); not recorded."},
+      {"Calibration", "gain factor", "0.5", K::real, 1e-6, 1.0, "", "-",
+       "alpha of the lid's servo (as Lid/gain factor)."},
+      {"Calibration", "max speed", "0.05", K::real, 1e-9, 1e3, "", "m/s", "Largest speed of the lid."},
+      {"Calibration", "update interval", "10", K::integer, 1, 1000000, "", "steps",
+       "Steps between the lid's servo updates."},
+      {"Calibration", "side wall friction", "0", K::real, 0.0, 10.0, "", "-",
+       "Coulomb coefficient of the side walls in the calibration's bed (0: a lubricated oedometer ring, so "
+       "that the test measures the grains, not the walls); the floor keeps Container/floor friction."},
       {"CoarseGraining", "fields",
        "density, velocity, stress, wall force density, displacement, momentum balance", K::multiple_selection,
        0, 0, "density|velocity|stress|wall force density|displacement|momentum balance", "-",

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "coupling/accuracy/accuracy_options.h"
+#include "coupling/calibration/calibration_options.h"
 #include "coupling/run/output_options.h"
 #include "coupling/run/scene_run.h"
 #include "coupling/study_options.h"
@@ -37,7 +38,8 @@ struct SceneInput {
   std::string stress_box = "auto";  // Stress/box as written; applied by validate_scene
   std::string collapse = "none";    // Container/collapse: none, constrained or unconstrained
   StudyOptions study;
-  AccuracyOptions accuracy;  // the Accuracy section (upgrain --study accuracy)
+  AccuracyOptions accuracy;        // the Accuracy section (upgrain --study accuracy)
+  CalibrationOptions calibration;  // the Calibration section (upgrain --study calibration)
   ParallelInput parallel;
   // A restart (upgrain --restart): the run continues from `resume` (rank 0's; null elsewhere)
   // in its own output folder, which then holds results by design.

@@ -253,6 +253,19 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   }
   prm.leave_subsection();
 
+  prm.enter_subsection("Calibration");
+  {
+    CalibrationOptions& c = in.calibration;
+    c.lid_stress_factors = numbers_of(prm.get("lid stresses"), "Calibration/lid stresses");
+    c.hold_time = prm.get_double("hold time");
+    c.seating_time = prm.get_double("seating time");
+    c.gain_factor = prm.get_double("gain factor");
+    c.max_speed = prm.get_double("max speed");
+    c.update_every = prm.get_integer("update interval");
+    c.side_wall_friction = prm.get_double("side wall friction");
+  }
+  prm.leave_subsection();
+
   prm.enter_subsection("Output");
   in.output.folder = prm.get("folder");
   in.overwrite = prm.get_bool("overwrite");

@@ -42,7 +42,8 @@ std::vector<OedometerRecord> run_oedometer(dem::Simulation& sim, const Oedometer
   control.update_every = o.update_every;
   validate_lid(control, [&] {
     dem::SceneConfig s = sim.scene();
-    s.end_time = sim.time() + o.hold_time * static_cast<double>(o.lid_stresses.size()) + sim.time_step();
+    s.end_time = sim.time() + o.seating_time + o.hold_time * static_cast<double>(o.lid_stresses.size()) +
+                 sim.time_step();
     return s;
   }());
   Lid lid(control);
@@ -57,8 +58,13 @@ std::vector<OedometerRecord> run_oedometer(dem::Simulation& sim, const Oedometer
   sim.request_contacts();
   sim.step();
   records.push_back(measure(sim, 0.0, first_height));
-  // The holds begin now: target k from k hold times after this step.
-  control.place_time = sim.time();
+  // The seating at the first target, then the holds: target k from k hold times after it.
+  const long seating = std::lround(o.seating_time / sim.time_step());
+  control.place_time = sim.time() + static_cast<double>(seating) * sim.time_step();
+  for (long s = 0; s < seating; ++s) {
+    lid.before_step(sim);
+    sim.step();
+  }
   for (double target : o.lid_stresses) {
     for (long s = 0; s < hold; ++s) {
       lid.before_step(sim);

@@ -16,6 +16,9 @@ namespace upgrain::coupling {
 struct OedometerOptions {
   std::vector<double> lid_stresses;  // Pa, each held in turn
   double hold_time = 0.05;           // s of simulated time per target
+  // s before the first hold in which the lid comes down onto the bed and seats at the first
+  // target: the bed's top is uneven, and the lid's first contacts are impacts (not recorded).
+  double seating_time = 0.1;
   double gain_factor = 0.5;
   double max_speed = 0.05;  // m/s
   long update_every = 10;   // steps
@@ -30,7 +33,8 @@ struct OedometerRecord {
   dem::OedometerState state;           // from the Bagi stress; strain from the lid's first height
 };
 
-// Record 0 is the bed as it is (the lid just placed, touching nothing), then one per target.
+// Record 0 is the bed as it is (the lid just placed, touching nothing), then one per target, at
+// the end of its hold (the first after the seating).
 // Throws upgrain::Error when the scene has no floor at z = 0 or the run fails.
 std::vector<OedometerRecord> run_oedometer(dem::Simulation& sim, const OedometerOptions& o);
 

@@ -58,7 +58,7 @@ double Lid::stress(const dem::Simulation& sim) {
   if (w < 0) return 0.0;
   const dem::PlaneWall& lid = sim.walls()[static_cast<std::size_t>(w)];
   const double area = sim.scene().container.lx * sim.scene().container.ly;
-  return -forces[static_cast<std::size_t>(w)].dot(lid.normal) / area;
+  return -forces[static_cast<std::size_t>(w)].dot(lid.normal) / area + 0.0;  // + 0.0: no -0
 }
 
 void Lid::place(dem::Simulation& sim) {
