@@ -312,7 +312,7 @@ const std::vector<ParameterSpec>& parameter_schema() {
        "multiples of the bed's weight over the box's footprint, comma-separated, ascending; at least two."},
       {"Calibration", "hold time", "0.05", K::real, 1e-9, 1e6, "", "s",
        "Simulated time each lid target is held before the bed's stress and strain are taken."},
-      {"Calibration", "seating time", "0.1", K::real, 0.0, 1e6, "", "s",
+      {"Calibration", "seating time", "0.2", K::real, 0.0, 1e6, "", "s",
        "Simulated time before the first hold in which the lid comes down onto the bed and seats at the "
        "first target (its first contacts with the uneven top are impacts); not recorded."},
       {"Calibration", "gain factor", "0.5", K::real, 1e-6, 1.0, "", "-",

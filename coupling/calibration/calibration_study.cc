@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 
 #include "coupling/calibration/oedometer_run.h"
@@ -38,6 +39,13 @@ double weight_stress(dem::Simulation& sim) {
   return mass * s.gravity / (s.container.lx * s.container.ly);
 }
 
+// A state in which the servo held its target (within kHeldTolerance): the bed is then at rest
+// under the lid, not still being pushed into. Only those enter the fit.
+constexpr double kHeldTolerance = 0.05;
+bool holds_target(const OedometerRecord& r) {
+  return r.target > 0.0 && std::abs(r.lid_stress - r.target) <= kHeldTolerance * r.target;
+}
+
 std::string number(double v) {
   if (!std::isfinite(v)) return "";
   char b[40];
@@ -51,14 +59,17 @@ std::string path_table(const std::vector<OedometerRecord>& rec,
   t << "# Upgrain oedometric test (docs/calibration.md). SI units. State 0: the deposited bed, the lid just "
        "placed; then one state per lid target, at the end of its hold. sigma_v, sigma_h: the bed's mean Bagi "
        "stress (compression positive; sigma_h the mean of xx and yy); vertical_strain from the lid's height "
-       "at state 0; M, nu, E: the step from the previous loaded state (states >= 2)\n"
-       "state,time,target,lid_stress,height,vertical_strain,sigma_v,sigma_h,K0,M,nu,E\n";
+       "at state 0; held: the lid within 5 % of its target (only held states enter the fit); M, nu, E: the "
+       "step "
+       "from the previous loaded state (states >= 2)\n"
+       "state,time,target,lid_stress,held,height,vertical_strain,sigma_v,sigma_h,K0,M,nu,E\n";
   for (std::size_t k = 0; k < rec.size(); ++k) {
     const OedometerRecord& r = rec[k];
     const dem::OedometerState& s = r.state;
     t << k << ',' << number(r.time) << ',' << number(r.target) << ',' << number(r.lid_stress) << ','
-      << number(r.height) << ',' << number(s.vertical_strain) << ',' << number(s.vertical_stress) << ','
-      << number(s.horizontal_stress) << ',' << number(s.horizontal_stress / s.vertical_stress);
+      << (holds_target(r) ? 1 : 0) << ',' << number(r.height) << ',' << number(s.vertical_strain) << ','
+      << number(s.vertical_stress) << ',' << number(s.horizontal_stress) << ','
+      << number(s.horizontal_stress / s.vertical_stress);
     if (k >= 2 && k - 2 < steps.size()) {
       const dem::OedometerStep& q = steps[k - 2];
       t << ',' << number(q.modulus) << ',' << number(q.poisson) << ',' << number(q.youngs);
@@ -113,16 +124,25 @@ int run_calibration_study(const SceneInput& in, MPI_Comm comm,
   const auto t1 = Clock::now();
   const std::vector<OedometerRecord> rec = run_oedometer(sim, o);
   const double test_seconds = seconds_since(t1);
-  std::vector<dem::OedometerState> loaded;
-  for (std::size_t k = 1; k < rec.size(); ++k) loaded.push_back(rec[k].state);
+  std::vector<dem::OedometerState> loaded, held;
+  for (std::size_t k = 1; k < rec.size(); ++k) {
+    loaded.push_back(rec[k].state);
+    if (holds_target(rec[k])) held.push_back(rec[k].state);
+  }
   const double sigma_mean = rec.front().state.vertical_stress;
   // The path is written whatever the fit makes of it: a path without a modulus is refused after.
   std::vector<dem::OedometerStep> steps;
-  dem::ElasticEquivalent eq;
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  dem::ElasticEquivalent eq{nan, nan, nan, nan, nan, nan, nan};
   std::string fit_error;
   try {
     steps = dem::oedometer_steps(loaded);
-    eq = dem::elastic_equivalent(loaded, sigma_mean);
+    if (held.size() < 2)
+      throw Error(
+          "only " + std::to_string(held.size()) + " of the " + std::to_string(loaded.size()) +
+          " targets were held (the lid within 5 % of its target at the end of the hold); a modulus needs "
+          "two: lengthen Calibration/hold time or seating time");
+    eq = dem::elastic_equivalent(held, sigma_mean);
   } catch (const Error& e) {
     fit_error = e.what();
   }
@@ -130,6 +150,21 @@ int run_calibration_study(const SceneInput& in, MPI_Comm comm,
     const fs::path folder = fs::path(in.output.folder) / "calibration";
     dem::io::create_folder(folder);
     dem::io::write_text_atomically(folder / "oedometer.csv", path_table(rec, steps));
+    // The headline figures (null without a fit); summary.json also marks the folder as a run's
+    // (Output/overwrite), so a refused calibration can be run again over it.
+    std::ostringstream j;
+    j << "{\n  \"study\": \"calibration\",\n  \"particles\": " << sim.particle_count()
+      << ",\n  \"deposition_steps\": " << dep.steps
+      << ",\n  \"deposition_wall_time_s\": " << dem::io::json_number(deposition_seconds)
+      << ",\n  \"oedometer_wall_time_s\": " << dem::io::json_number(test_seconds)
+      << ",\n  \"bed_mean_vertical_stress_Pa\": " << dem::io::json_number(sigma_mean)
+      << ",\n  \"constrained_modulus_Pa\": " << dem::io::json_number(eq.modulus)
+      << ",\n  \"modulus_exponent\": " << dem::io::json_number(eq.exponent)
+      << ",\n  \"modulus_taken_at_Pa\": " << dem::io::json_number(eq.modulus_stress)
+      << ",\n  \"k0\": " << dem::io::json_number(eq.k0)
+      << ",\n  \"youngs_modulus_Pa\": " << dem::io::json_number(eq.youngs)
+      << ",\n  \"poisson_ratio\": " << dem::io::json_number(eq.poisson) << "\n}\n";
+    dem::io::write_text_atomically(fs::path(in.output.folder) / "summary.json", j.str());
     if (!fit_error.empty())
       throw Error("calibration: " + fit_error + "; the path is in " + (folder / "oedometer.csv").string());
     if (!(eq.poisson >= 0.0 && eq.poisson <= 0.499) || !(eq.youngs > 0.0))
@@ -141,7 +176,8 @@ int run_calibration_study(const SceneInput& in, MPI_Comm comm,
     m << "# Upgrain calibrated material (docs/calibration.md) of " << in.source << ": the linear elastic\n"
       << "# material equivalent to its bed in oedometric compression at the bed's mean vertical stress\n"
       << "# sigma_v = " << number(sigma_mean) << " Pa: M = " << number(eq.modulus)
-      << " Pa (power law M ~ sigma^" << number(eq.exponent) << "), K0 = " << number(eq.k0)
+      << " Pa (power law M ~ sigma^" << number(eq.exponent) << " through the held states, taken at "
+      << number(eq.modulus_stress) << " Pa), K0 = " << number(eq.k0)
       << " (the deposited bed's: " << number(rec.front().state.horizontal_stress / sigma_mean) << ").\n"
       << "# nu = K0 / (1 + K0), E = M (1 + nu)(1 - 2 nu) / (1 - nu). The path: oedometer.csv.\n"
       << "subsection Continuum\n"
@@ -149,30 +185,18 @@ int run_calibration_study(const SceneInput& in, MPI_Comm comm,
       << "  set poisson ratio = " << number(eq.poisson) << "\n"
       << "end\n";
     dem::io::write_text_atomically(folder / "material.prm", m.str());
-    // The headline figures; summary.json also marks the folder as a run's (Output/overwrite).
-    std::ostringstream j;
-    j << "{\n  \"study\": \"calibration\",\n  \"particles\": " << sim.particle_count()
-      << ",\n  \"deposition_steps\": " << dep.steps
-      << ",\n  \"deposition_wall_time_s\": " << dem::io::json_number(deposition_seconds)
-      << ",\n  \"oedometer_wall_time_s\": " << dem::io::json_number(test_seconds)
-      << ",\n  \"bed_mean_vertical_stress_Pa\": " << dem::io::json_number(sigma_mean)
-      << ",\n  \"constrained_modulus_Pa\": " << dem::io::json_number(eq.modulus)
-      << ",\n  \"modulus_exponent\": " << dem::io::json_number(eq.exponent)
-      << ",\n  \"k0\": " << dem::io::json_number(eq.k0)
-      << ",\n  \"youngs_modulus_Pa\": " << dem::io::json_number(eq.youngs)
-      << ",\n  \"poisson_ratio\": " << dem::io::json_number(eq.poisson) << "\n}\n";
-    dem::io::write_text_atomically(fs::path(in.output.folder) / "summary.json", j.str());
     std::printf(
         "  calibration: deposition %.1f s (%ld steps%s), oedometric test %.1f s (seating %g s, %zu targets x "
         "%g s)\n",
         deposition_seconds, dep.steps, dep.stopped_at_rest ? ", stopped at rest" : "", test_seconds,
         o.seating_time, o.lid_stresses.size(), o.hold_time);
-    std::printf("  %-6s %12s %12s %12s %8s %12s %8s %12s\n", "state", "target Pa", "sigma_v Pa", "strain",
-                "K0", "M Pa", "nu", "E Pa");
+    std::printf("  %-6s %12s %12s %5s %12s %12s %8s %12s %8s %12s\n", "state", "target Pa", "lid Pa", "held",
+                "sigma_v Pa", "strain", "K0", "M Pa", "nu", "E Pa");
     for (std::size_t k = 0; k < rec.size(); ++k) {
       const dem::OedometerState& s = rec[k].state;
-      std::printf("  %-6zu %12.4g %12.4g %12.4e %8.3f", k, rec[k].target, s.vertical_stress,
-                  s.vertical_strain, s.horizontal_stress / s.vertical_stress);
+      std::printf("  %-6zu %12.4g %12.4g %5s %12.4g %12.4e %8.3f", k, rec[k].target, rec[k].lid_stress,
+                  holds_target(rec[k]) ? "yes" : "no", s.vertical_stress, s.vertical_strain,
+                  s.horizontal_stress / s.vertical_stress);
       if (k >= 2)
         std::printf(" %12.4g %8.3f %12.4g\n", steps[k - 2].modulus, steps[k - 2].poisson,
                     steps[k - 2].youngs);
@@ -180,8 +204,10 @@ int run_calibration_study(const SceneInput& in, MPI_Comm comm,
         std::printf("\n");
     }
     std::printf(
-        "  at the bed's mean stress %.4g Pa: M %.4g Pa (exponent %.3f), K0 %.3f -> E %.4g Pa, nu %.3f\n",
-        sigma_mean, eq.modulus, eq.exponent, eq.k0, eq.youngs, eq.poisson);
+        "  at the bed's mean stress %.4g Pa (fit through the %zu held states): M %.4g Pa (exponent %.3f, "
+        "taken at "
+        "%.4g Pa), K0 %.3f -> E %.4g Pa, nu %.3f\n",
+        sigma_mean, held.size(), eq.modulus, eq.exponent, eq.modulus_stress, eq.k0, eq.youngs, eq.poisson);
     std::printf("  results: %s/{oedometer.csv,material.prm}, %s/summary.json\n", folder.c_str(),
                 in.output.folder.c_str());
   });

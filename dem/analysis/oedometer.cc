@@ -1,5 +1,6 @@
 #include "dem/analysis/oedometer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -66,6 +67,10 @@ ElasticEquivalent elastic_equivalent(const std::vector<OedometerState>& path, do
     lm.push_back(std::log(s.modulus));
   }
   const Line m = fit_line(ls, lm);
+  // Evaluated within the measured range: a stress outside it takes the fit at the nearer end
+  // (a power law through a few noisy steps extrapolates badly).
+  const double ln_m_at = std::clamp(std::log(stress), *std::min_element(ls.begin(), ls.end()),
+                                    *std::max_element(ls.begin(), ls.end()));
   std::vector<double> xs, k0;
   for (const OedometerState& s : path) {
     if (!(s.vertical_stress > 0.0)) continue;
@@ -73,11 +78,14 @@ ElasticEquivalent elastic_equivalent(const std::vector<OedometerState>& path, do
     k0.push_back(k0_of(s));
   }
   const Line k = fit_line(xs, k0);
+  const double ln_k_at = std::clamp(std::log(stress), *std::min_element(xs.begin(), xs.end()),
+                                    *std::max_element(xs.begin(), xs.end()));
   ElasticEquivalent e;
   e.stress = stress;
   e.exponent = m.c1;
-  e.modulus = std::exp(m.c0 + m.c1 * std::log(stress));
-  e.k0 = k.c0 + k.c1 * std::log(stress);
+  e.modulus_stress = std::exp(ln_m_at);
+  e.modulus = std::exp(m.c0 + m.c1 * ln_m_at);
+  e.k0 = k.c0 + k.c1 * ln_k_at;
   e.poisson = poisson_from_k0(e.k0);
   e.youngs = youngs_from_constrained(e.modulus, e.poisson);
   return e;

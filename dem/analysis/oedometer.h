@@ -38,10 +38,13 @@ std::vector<OedometerStep> oedometer_steps(const std::vector<OedometerState>& pa
 // M = a sigma^b through the steps (granular media stiffen as a power of the stress: b = 1/3 for
 // a Hertz lattice, about 1/2 for real sands), K0 from the least-squares line of K0 against
 // ln sigma_v through the states; nu and E from those. One step: its M, the states' mean K0.
+// Each fit is evaluated within its data's stress range: a stress below (above) it takes the fit
+// at the lowest (highest) stress, where `modulus_stress` says.
 struct ElasticEquivalent {
   double stress = 0.0;
   double modulus = 0.0;
-  double exponent = 0.0;  // b of the power law (0 with one step)
+  double modulus_stress = 0.0;  // the stress M was evaluated at
+  double exponent = 0.0;        // b of the power law (0 with one step)
   double k0 = 0.0;
   double poisson = 0.0;
   double youngs = 0.0;

@@ -41,6 +41,11 @@ assert len(rows) == 5, len(rows)
 assert float(rows[0]['target']) == 0 and float(rows[0]['vertical_strain']) == 0
 strain = [float(r['vertical_strain']) for r in rows]
 assert all(b > a for a, b in zip(strain, strain[1:])), strain
+held = [r for r in rows if r['held'] == '1']
+assert len(held) >= 2, 'fewer than two held states: no modulus'
+for r in rows:
+    t, s = float(r['target']), float(r['lid_stress'])
+    assert (r['held'] == '1') == (t > 0 and abs(s - t) <= 0.05 * t), r
 lid = [float(r['lid_stress']) for r in rows[1:]]
 assert all(b > a for a, b in zip(lid, lid[1:])), lid
 assert abs(lid[-1] - float(rows[-1]['target'])) < 0.5 * float(rows[-1]['target']), (lid, rows[-1]['target'])

@@ -50,6 +50,12 @@ TEST(Oedometer, HertzLatticePathGivesItsPowerLawAndTangentModulus) {
   EXPECT_EQ(q.k0, 0.0);
   EXPECT_EQ(q.poisson, 0.0);
   EXPECT_NEAR(q.youngs, q.modulus, 1e-12 * q.modulus);  // nu = 0: E = M
+  EXPECT_NEAR(q.modulus_stress, at, 1e-12 * at);        // within the range: exp(ln(at))
+  // Below the measured range the fit is taken at its lowest step's stress, not extrapolated.
+  const ElasticEquivalent low = elastic_equivalent(path, 10.0);
+  const std::vector<OedometerStep> steps = oedometer_steps(path);
+  EXPECT_NEAR(low.modulus_stress, steps.front().stress, 1e-9 * steps.front().stress);
+  EXPECT_NEAR(low.modulus, std::cbrt(e_star * e_star * 1.5 * steps.front().stress), 2e-3 * low.modulus);
 }
 
 TEST(Oedometer, HertzColumnTendsToTheLattice) {
