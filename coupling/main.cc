@@ -184,6 +184,8 @@ upgrain::coupling::SceneInput restart_input(const std::string& dir, const std::s
   }
   // Later errors name what the user ran, not the checkpoint's copy of the scene.
   in.source = file.empty() ? "upgrain --restart " + dir : file;
+  // A calibrated material file: from the given scene file's folder, or the current one.
+  coupling::apply_material_file(in, file);
   in.output.folder = dir;
   in.restarting = true;
   in.resume = checkpoint;
@@ -262,6 +264,10 @@ int run(int argc, char** argv) {
       std::printf(
           "  study: DEM deposition -> grid stress -> continuum column (Q%u) -> comparison and report\n",
           in.study.continuum.degree);
+    if (!in.study.continuum.material_file.empty())
+      std::printf("  continuum material: E %.9g Pa, nu %.9g (Continuum/material file %s)\n",
+                  in.study.continuum.youngs_modulus, in.study.continuum.poisson_ratio,
+                  in.study.continuum.material_file.c_str());
     std::printf("  effects (Effects section; auto = derived from the scene):\n");
     for (const dem::EffectChoice& c : in.output.effect_choices)
       std::printf("    %-20s %-3s  %s\n", c.entry.c_str(), c.on ? "on" : "off", c.reason.c_str());

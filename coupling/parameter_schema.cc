@@ -361,6 +361,10 @@ const std::vector<ParameterSpec>& parameter_schema() {
       {"Continuum", "poisson ratio", "0.3", K::real, 0.0, 0.499, "", "-",
        "Poisson's ratio of every continuum; it sets K0 = nu / (1 - nu), and the lateral ratio of the Janssen "
        "line."},
+      {"Continuum", "material file", "", K::text, 0, 0, "", "-",
+       "A calibrated material file (calibration/material.prm of `upgrain --study calibration`, "
+       "docs/calibration.md) whose Continuum/youngs modulus and poisson ratio replace the two entries above; "
+       "a relative path is taken from the scene file's folder. Empty: the entries above."},
       {"Continuum", "refinements", "1", K::integer, 0, 6, "", "-",
        "Global refinements of the mesh whose coarse cells are the stress grid's cells."},
       {"Continuum", "degree", "2", K::integer, 1, 4, "", "-",

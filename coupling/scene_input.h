@@ -67,6 +67,12 @@ SceneInput parse_scene_text(const std::string& text, const std::string& source);
 // Checkpoint section, the Parallel section but its summation, and Output/folder and overwrite.
 std::vector<std::string> differing_parameters(const std::string& run, const std::string& given);
 
+// Continuum/material file (docs/calibration.md): E and nu read from the calibrated material file,
+// a scene-file fragment read as a scene (its other entries are ignored), replacing the Continuum
+// entries; a relative path is taken from the folder of `scene_file` (the current folder when it
+// is empty). Throws upgrain::Error naming the file. read_scene_file applies it.
+void apply_material_file(SceneInput& in, const std::string& scene_file);
+
 // Checks that involve several parameters or the file system: gradation curve, the fill
 // fits the container, the time step is safe, the stress grid's box, the output folder
 // holds no earlier results. Fills in what depends on several entries. Nothing is written.

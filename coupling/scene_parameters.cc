@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <regex>
@@ -386,6 +387,7 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
     ContinuumOptions& c = in.study.continuum;
     c.youngs_modulus = prm.get_double("youngs modulus");
     c.poisson_ratio = prm.get_double("poisson ratio");
+    c.material_file = prm.get("material file");
     c.refinements = static_cast<unsigned>(prm.get_integer("refinements"));
     c.degree = static_cast<unsigned>(prm.get_integer("degree"));
     c.variants.clear();
@@ -499,8 +501,26 @@ std::vector<std::string> differing_parameters(const std::string& run, const std:
   return out;
 }
 
+void apply_material_file(SceneInput& in, const std::string& scene_file) {
+  ContinuumOptions& c = in.study.continuum;
+  if (c.material_file.empty()) return;
+  std::filesystem::path file(c.material_file);
+  if (file.is_relative() && !scene_file.empty())
+    file = std::filesystem::path(scene_file).parent_path() / file;
+  SceneInput material;
+  try {
+    material = parse_scene_text(read_scene_bytes(file.string()), file.string());
+  } catch (const Error& e) {
+    throw Error(in.source + ": Continuum/material file: " + e.what());
+  }
+  c.youngs_modulus = material.study.continuum.youngs_modulus;
+  c.poisson_ratio = material.study.continuum.poisson_ratio;
+  c.material_file = file.string();
+}
+
 SceneInput read_scene_file(const std::string& filename) {
   SceneInput in = parse_scene_text(read_scene_bytes(filename), filename);
+  apply_material_file(in, filename);
   validate_scene(in);
   return in;
 }

@@ -6,7 +6,8 @@
   this loose tiny bed, not within one hold: measured 575 Pa for 735 Pa), and the strain grows; K0 and nu = K0 / (1 + K0) in the columns agree; the M, nu and E columns satisfy
   E = M (1 + nu)(1 - 2 nu) / (1 - nu);
 - material.prm holds a Continuum section whose E and nu are those of summary.json, and which the
-  driver reads as a scene file (upgrain --check).
+  driver reads as a scene file (upgrain --check); a scene naming it as Continuum/material file
+  takes its E (the driver says so), and one naming a missing file is refused.
 
 Usage: check_calibration.py UPGRAIN SCENE WORK [MPIEXEC]
 """
@@ -69,5 +70,20 @@ assert abs(values['poisson ratio'] - summary['poisson_ratio']) < 1e-8
 r = subprocess.run([upgrain, '--check', os.path.abspath(os.path.join(folders[1], 'material.prm'))],
                    capture_output=True, text=True, cwd=work)
 assert r.returncode == 0, r.stderr
+# A study's scene takes E and nu from the material file (Continuum/material file, a path
+# relative to the scene file's folder), and names the file; a missing file is refused.
+scene_with_material = os.path.join(work, 'study_with_material.prm')
+with open(scene_with_material, 'w') as f:
+    f.write('subsection Continuum\n  set material file = ranks_1/calibration/material.prm\nend\n')
+r = subprocess.run([upgrain, '--check', scene_with_material], capture_output=True, text=True, cwd=work)
+assert r.returncode == 0, r.stderr
+line = [l for l in r.stdout.splitlines() if 'continuum material:' in l]
+assert line and 'material.prm' in line[0], r.stdout
+e_read = float(line[0].split('E ')[1].split(' Pa')[0])
+assert e_read == values['youngs modulus'], (e_read, values)
+with open(scene_with_material, 'w') as f:
+    f.write('subsection Continuum\n  set material file = no_such_material.prm\nend\n')
+r = subprocess.run([upgrain, '--check', scene_with_material], capture_output=True, text=True, cwd=work)
+assert r.returncode != 0 and 'Continuum/material file' in r.stderr and 'no_such_material.prm' in r.stderr, r.stderr
 print(f"calibration: E {summary['youngs_modulus_Pa']:.4g} Pa, nu {summary['poisson_ratio']:.3f}, "
       f"wall time {summary['deposition_wall_time_s']:.1f} + {summary['oedometer_wall_time_s']:.1f} s")
