@@ -13,6 +13,7 @@
 #include <string>
 
 #include "coupling/accuracy/accuracy_study.h"
+#include "coupling/calibration/calibration_study.h"
 #include "coupling/dem_run.h"
 #include "coupling/quiet_p4est.h"
 #include "coupling/run/output_folder.h"
@@ -50,6 +51,10 @@ constexpr const char* kUsage =
     "  --study accuracy              run the accuracy study of the scene (its Accuracy section,\n"
     "                                docs/accuracy.md): every knob's values against wall time,\n"
     "                                into <Output/folder>/accuracy/\n"
+    "  --study calibration           deposit the scene's bed and compress it under a servo lid in\n"
+    "                                stress steps (its Calibration section, docs/calibration.md):\n"
+    "                                the stress-strain path and the equivalent elastic material,\n"
+    "                                into <Output/folder>/calibration/\n"
     "  --restart DIR                 continue the run in DIR from its newest valid checkpoint\n"
     "                                (DIR/checkpoints/, docs/restart.md), with the scene it was\n"
     "                                started with; a scene file given as well may change only\n"
@@ -199,6 +204,8 @@ upgrain::coupling::SceneInput restart_input(const std::string& dir, const std::s
   }
   // Later errors name what the user ran, not the checkpoint's copy of the scene.
   in.source = file.empty() ? "upgrain --restart " + dir : file;
+  // A calibrated material file: from the given scene file's folder, or the current one.
+  coupling::apply_material_file(in, file);
   in.output.folder = dir;
   in.restarting = true;
   in.resume = checkpoint;
@@ -225,9 +232,10 @@ int run(int argc, char** argv) {
     } else if (a == "--check") {
       check_only = true;
     } else if (a == "--study") {
-      if (k + 1 >= argc) throw Error("--study needs the name of a study (accuracy)");
+      if (k + 1 >= argc) throw Error("--study needs the name of a study (accuracy, calibration)");
       study = argv[++k];
-      if (study != "accuracy") throw Error("--study: unknown study '" + study + "' (known: accuracy)");
+      if (study != "accuracy" && study != "calibration")
+        throw Error("--study: unknown study '" + study + "' (known: accuracy, calibration)");
     } else if (a == "--restart") {
       if (k + 1 >= argc) throw CollectiveError("--restart needs the output folder of the run");
       restart_dir = argv[++k];
@@ -276,6 +284,10 @@ int run(int argc, char** argv) {
       std::printf(
           "  study: DEM deposition -> grid stress -> continuum column (Q%u) -> comparison and report\n",
           in.study.continuum.degree);
+    if (!in.study.continuum.material_file.empty())
+      std::printf("  continuum material: E %.9g Pa, nu %.9g (Continuum/material file %s)\n",
+                  in.study.continuum.youngs_modulus, in.study.continuum.poisson_ratio,
+                  in.study.continuum.material_file.c_str());
     std::printf("  effects (Effects section; auto = derived from the scene):\n");
     for (const dem::EffectChoice& c : in.output.effect_choices)
       std::printf("    %-20s %-3s  %s\n", c.entry.c_str(), c.on ? "on" : "off", c.reason.c_str());
@@ -312,6 +324,7 @@ int run(int argc, char** argv) {
   };
   try {
     if (study == "accuracy") return coupling::run_accuracy_study(in, MPI_COMM_WORLD);
+    if (study == "calibration") return coupling::run_calibration_study(in, MPI_COMM_WORLD, progress);
     if (in.study.compare_with_continuum) {
       return coupling::run_study(in, MPI_COMM_WORLD, progress,
                                  [&](const coupling::RunResult& r) { print_deposition(in, r); });

@@ -148,6 +148,33 @@ const std::vector<ParameterSpec>& parameter_schema() {
       {"Container", "side walls open time", "0", K::real, 0.0, 1e6, "", "s",
        "Simulated time at which all side walls are removed (with 'collapse = unconstrained')."},
 
+      {"Lid", "mode", "none", K::selection, 0, 0, "none|velocity|servo", "-",
+       "A lid on the bed (docs/scenes.md, Lid): a horizontal wall placed at 'place time' just above the "
+       "highest grain, then driven down at 'speed' (velocity) or servo-controlled to hold 'target stresses' "
+       "(servo; docs/calibration.md). A run with a lid does not stop at rest. none: no lid."},
+      {"Lid", "place time", "0", K::real, 0.0, 1e6, "", "s",
+       "Simulated time at which the lid is placed; before Simulation/end time."},
+      {"Lid", "gap", "0", K::real, 0.0, 1e4, "", "m",
+       "Distance between the highest grain's top (its bounding sphere's) and the lid when it is placed."},
+      {"Lid", "friction", "0", K::real, 0.0, 10.0, "", "-",
+       "Coulomb coefficient particle-lid (0 when Effects/wall friction is off)."},
+      {"Lid", "speed", "0.01", K::real, -1e3, 1e3, "", "m/s",
+       "Speed of the lid downwards, into the bed (mode velocity); negative lifts it."},
+      {"Lid", "target stresses", "", K::text, 0, 0, "", "Pa",
+       "Normal stresses on the lid (its force over the container's footprint) the servo holds in turn, "
+       "comma-separated, each for 'step duration' after the placement, the last to the end (mode servo)."},
+      {"Lid", "step duration", "0", K::real, 0.0, 1e6, "", "s",
+       "Simulated time each target stress is held (mode servo); > 0 with more than one target."},
+      {"Lid", "gain factor", "0.5", K::real, 1e-6, 1.0, "", "-",
+       "alpha of the servo's gain G = alpha A / (K dt), K a bound of the lid's contact stiffness: the error "
+       "shrinks by (1 - alpha) per update on a linear spring; <= 1 for a stable servo "
+       "(docs/calibration.md)."},
+      {"Lid", "max speed", "0.01", K::real, 1e-9, 1e3, "", "m/s",
+       "Largest speed of the servo lid, also its speed of approach before it touches the bed."},
+      {"Lid", "update interval", "10", K::integer, 1, 1000000, "", "steps",
+       "Steps between servo updates; the lid keeps its velocity in between, and the gain takes the "
+       "interval as its dt."},
+
       {"Fill", "method", "lattice", K::selection, 0, 0, "lattice|random", "-",
        "Initial placement: a jittered cubic lattice, or random sequential addition."},
       {"Fill", "bottom gap", "0.01", K::real, 0.0, 1e4, "", "m",
@@ -293,6 +320,22 @@ const std::vector<ParameterSpec>& parameter_schema() {
       {"Accuracy", "tolerance", "0.01", K::real, 0.0, 1.0, "", "-",
        "Relative change a setting may make in every measure of the bed (or the noise floor, if larger) "
        "for the report to call it within tolerance."},
+      {"Calibration", "lid stresses", "0.5, 1, 2, 4", K::text, 0, 0, "", "bed weight / footprint",
+       "Targets of the oedometric test's servo lid (upgrain --study calibration, docs/calibration.md), as "
+       "multiples of the bed's weight over the box's footprint, comma-separated, ascending; at least two."},
+      {"Calibration", "hold time", "0.05", K::real, 1e-9, 1e6, "", "s",
+       "Simulated time each lid target is held before the bed's stress and strain are taken."},
+      {"Calibration", "seating time", "0.2", K::real, 0.0, 1e6, "", "s",
+       "Simulated time before the first hold in which the lid comes down onto the bed and seats at the "
+       "first target (its first contacts with the uneven top are impacts); not recorded."},
+      {"Calibration", "gain factor", "0.5", K::real, 1e-6, 1.0, "", "-",
+       "alpha of the lid's servo (as Lid/gain factor)."},
+      {"Calibration", "max speed", "0.05", K::real, 1e-9, 1e3, "", "m/s", "Largest speed of the lid."},
+      {"Calibration", "update interval", "10", K::integer, 1, 1000000, "", "steps",
+       "Steps between the lid's servo updates."},
+      {"Calibration", "side wall friction", "0", K::real, 0.0, 10.0, "", "-",
+       "Coulomb coefficient of the side walls in the calibration's bed (0: a lubricated oedometer ring, so "
+       "that the test measures the grains, not the walls); the floor keeps Container/floor friction."},
       {"CoarseGraining", "fields",
        "density, velocity, stress, wall force density, displacement, momentum balance", K::multiple_selection,
        0, 0, "density|velocity|stress|wall force density|displacement|momentum balance", "-",
@@ -331,6 +374,10 @@ const std::vector<ParameterSpec>& parameter_schema() {
       {"Continuum", "poisson ratio", "0.3", K::real, 0.0, 0.499, "", "-",
        "Poisson's ratio of every continuum; it sets K0 = nu / (1 - nu), and the lateral ratio of the Janssen "
        "line."},
+      {"Continuum", "material file", "", K::text, 0, 0, "", "-",
+       "A calibrated material file (calibration/material.prm of `upgrain --study calibration`, "
+       "docs/calibration.md) whose Continuum/youngs modulus and poisson ratio replace the two entries above; "
+       "a relative path is taken from the scene file's folder. Empty: the entries above."},
       {"Continuum", "refinements", "1", K::integer, 0, 6, "", "-",
        "Global refinements of the mesh whose coarse cells are the stress grid's cells."},
       {"Continuum", "degree", "2", K::integer, 1, 4, "", "-",

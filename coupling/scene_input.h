@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "coupling/accuracy/accuracy_options.h"
+#include "coupling/calibration/calibration_options.h"
 #include "coupling/run/output_options.h"
 #include "coupling/run/scene_run.h"
 #include "coupling/study_options.h"
@@ -42,7 +43,8 @@ struct SceneInput {
   std::string stress_box = "auto";  // Stress/box as written; applied by validate_scene
   std::string collapse = "none";    // Container/collapse: none, constrained or unconstrained
   StudyOptions study;
-  AccuracyOptions accuracy;  // the Accuracy section (upgrain --study accuracy)
+  AccuracyOptions accuracy;        // the Accuracy section (upgrain --study accuracy)
+  CalibrationOptions calibration;  // the Calibration section (upgrain --study calibration)
   ParallelInput parallel;
   // A restart (upgrain --restart): the run continues from `resume` (rank 0's; null elsewhere)
   // in its own output folder, which then holds results by design.
@@ -69,6 +71,12 @@ SceneInput parse_scene_text(const std::string& text, const std::string& source);
 // as "Section/entry: 'a' -> 'b'", but those a restart may change: Simulation/end time, the
 // Checkpoint section, the Parallel section but its summation, and Output/folder and overwrite.
 std::vector<std::string> differing_parameters(const std::string& run, const std::string& given);
+
+// Continuum/material file (docs/calibration.md): E and nu read from the calibrated material file,
+// a scene-file fragment read as a scene (its other entries are ignored), replacing the Continuum
+// entries; a relative path is taken from the folder of `scene_file` (the current folder when it
+// is empty). Throws upgrain::Error naming the file. read_scene_file applies it.
+void apply_material_file(SceneInput& in, const std::string& scene_file);
 
 // Checks that involve several parameters or the file system: gradation curve, the fill
 // fits the container, the time step is safe, the stress grid's box, the output folder

@@ -236,6 +236,38 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   s.fill.seed = static_cast<std::uint64_t>(prm.get_integer("seed"));
   prm.leave_subsection();
 
+  prm.enter_subsection("Lid");
+  {
+    LidControl& lid = in.control.lid;
+    const std::string mode = prm.get("mode");
+    lid.mode = mode == "velocity" ? LidControl::Mode::velocity
+               : mode == "servo"  ? LidControl::Mode::servo
+                                  : LidControl::Mode::none;
+    lid.place_time = prm.get_double("place time");
+    lid.gap = prm.get_double("gap");
+    lid.friction = prm.get_double("friction");
+    lid.speed = prm.get_double("speed");
+    lid.target_stresses = numbers_of(prm.get("target stresses"), "Lid/target stresses");
+    lid.step_duration = prm.get_double("step duration");
+    lid.gain_factor = prm.get_double("gain factor");
+    lid.max_speed = prm.get_double("max speed");
+    lid.update_every = prm.get_integer("update interval");
+  }
+  prm.leave_subsection();
+
+  prm.enter_subsection("Calibration");
+  {
+    CalibrationOptions& c = in.calibration;
+    c.lid_stress_factors = numbers_of(prm.get("lid stresses"), "Calibration/lid stresses");
+    c.hold_time = prm.get_double("hold time");
+    c.seating_time = prm.get_double("seating time");
+    c.gain_factor = prm.get_double("gain factor");
+    c.max_speed = prm.get_double("max speed");
+    c.update_every = prm.get_integer("update interval");
+    c.side_wall_friction = prm.get_double("side wall friction");
+  }
+  prm.leave_subsection();
+
   prm.enter_subsection("Output");
   in.output.folder = prm.get("folder");
   in.overwrite = prm.get_bool("overwrite");
@@ -357,6 +389,7 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
     ContinuumOptions& c = in.study.continuum;
     c.youngs_modulus = prm.get_double("youngs modulus");
     c.poisson_ratio = prm.get_double("poisson ratio");
+    c.material_file = prm.get("material file");
     c.refinements = static_cast<unsigned>(prm.get_integer("refinements"));
     c.degree = static_cast<unsigned>(prm.get_integer("degree"));
     c.variants.clear();
@@ -470,9 +503,27 @@ std::vector<std::string> differing_parameters(const std::string& run, const std:
   return out;
 }
 
+void apply_material_file(SceneInput& in, const std::string& scene_file) {
+  ContinuumOptions& c = in.study.continuum;
+  if (c.material_file.empty()) return;
+  std::filesystem::path file(c.material_file);
+  if (file.is_relative() && !scene_file.empty())
+    file = std::filesystem::path(scene_file).parent_path() / file;
+  SceneInput material;
+  try {
+    material = parse_scene_text(read_scene_bytes(file.string()), file.string());
+  } catch (const Error& e) {
+    throw Error(in.source + ": Continuum/material file: " + e.what());
+  }
+  c.youngs_modulus = material.study.continuum.youngs_modulus;
+  c.poisson_ratio = material.study.continuum.poisson_ratio;
+  c.material_file = file.string();
+}
+
 SceneInput read_scene_file(const std::string& filename) {
   SceneInput in = parse_scene_text(read_scene_bytes(filename), filename);
   in.scene_folder = std::filesystem::path(filename).parent_path().string();
+  apply_material_file(in, filename);
   validate_scene(in);
   return in;
 }

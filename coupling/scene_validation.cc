@@ -253,6 +253,24 @@ void validate_scene(SceneInput& in) {
     m << where << "Simulation/end time = " << s.end_time << " s is shorter than one time step";
     throw Error(m.str());
   }
+  try {
+    validate_lid(in.control.lid, s);
+  } catch (const Error& e) {
+    throw Error(where + e.what());
+  }
+  if (in.control.lid.enabled() && in.control.lid.friction > 0.0 && !in.scene.effects.wall_friction)
+    throw Error(where +
+                "Lid/friction > 0, but Effects/wall friction is off: the lid would be frictionless; set "
+                "'Lid/friction = 0' or turn wall friction on");
+  {
+    const std::vector<double>& f = in.calibration.lid_stress_factors;
+    if (f.size() < 2)
+      throw Error(where +
+                  "Calibration/lid stresses: give at least two targets (a modulus needs two loaded states)");
+    for (std::size_t k = 0; k < f.size(); ++k)
+      if (!(f[k] > 0.0) || (k > 0 && !(f[k] > f[k - 1])))
+        throw Error(where + "Calibration/lid stresses: the targets must be > 0 and ascending");
+  }
   if (const upscale::GridStrainOutputOptions& st = in.output.grid_strain; st.enabled) {
     if (!in.output.grid_stress.enabled())
       throw Error(where +

@@ -21,8 +21,11 @@ enum class ContinuumVariant {
 struct ContinuumOptions {
   double youngs_modulus = 1e8;  // Pa; the stresses of the confined column do not depend on it
   double poisson_ratio = 0.3;   // K0 = nu / (1 - nu)
-  unsigned refinements = 1;     // global refinements of the mesh that matches the stress grid
-  unsigned degree = 2;          // Q2 reproduces the analytic column exactly
+  // Where E and nu came from: empty for the Continuum entries, else the calibrated material
+  // file (Continuum/material file, docs/calibration.md) they were read from.
+  std::string material_file;
+  unsigned refinements = 1;  // global refinements of the mesh that matches the stress grid
+  unsigned degree = 2;       // Q2 reproduces the analytic column exactly
   std::vector<ContinuumVariant> variants = {ContinuumVariant::elastic_friction,
                                             ContinuumVariant::drucker_prager};
   // Mohr–Coulomb strength of the Drucker–Prager continuum.

@@ -67,6 +67,9 @@ void parameters_section(std::ostringstream& m, const StudyRecord& s) {
     << " cells up to z = " << fmt(d.grid.hi.z())
     << " m (top of the highest grain), V = " << fmt(d.stress.cell_volume) << " m^3 |\n"
     << "| continua | E " << p.youngs_modulus << " Pa, nu " << p.poisson_ratio
+    << (s.in.study.continuum.material_file.empty()
+            ? std::string(" (Continuum entries)")
+            : " (calibrated: " + s.in.study.continuum.material_file + ")")
     << " (K0 = " << fmt(s.comparison.k0) << "), Q" << p.degree << ", " << p.refinements << " refinement(s), "
     << s.rollers.n_dofs << " dofs |\n"
     << "| elastic on rollers | " << s.rollers.cg_iterations << " CG iterations |\n";

@@ -106,6 +106,8 @@ fs::path write_checkpoint(const fs::path& folder, const Checkpoint& c, int keep)
     hdf5::write_attribute(run, "next_release", static_cast<double>(s.next_release));
     hdf5::write_attribute(run, "rest_check_from", static_cast<double>(s.rest_check_from));
     hdf5::write_attribute(run, "series_rows", static_cast<double>(c.run.files.series_rows));
+    hdf5::write_attribute(run, "wall_rows", static_cast<double>(c.run.files.wall_rows));
+    if (!c.run.files.wall_origins.empty()) hdf5::write_vectors(run, "wall_origins", c.run.files.wall_origins);
     dem::io::write_snapshot_list(run, "snapshots", c.run.files.snapshots);
     if (c.run.grids) write_grid_state(run, c.run.grid_state);
     if (c.run.cg_reference) {
@@ -168,6 +170,8 @@ Checkpoint read_checkpoint(const fs::path& file) {
   r.schedule.next_release = static_cast<std::size_t>(in.whole_attribute("next_release", "/run", 0));
   r.schedule.rest_check_from = in.whole_attribute("rest_check_from", "/run");
   r.files.series_rows = in.whole_attribute("series_rows", "/run", 0);
+  r.files.wall_rows = in.whole_attribute("wall_rows", "/run", 0);
+  r.files.wall_origins = in.read_vectors("/run/wall_origins", true);
   r.files.snapshots = dem::io::read_snapshot_list(in, "/run/snapshots");
   r.grids = in.exists("/run/grids");
   if (r.grids) {

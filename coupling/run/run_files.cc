@@ -14,8 +14,12 @@ void RunFiles::record_series(dem::Simulation& sim) {
   if (!output_) return;
   const dem::EnergyBalance e = sim.energy();
   const dem::StepDiagnostics d = sim.diagnostics();
+  const std::vector<dem::Vec3> forces = sim.wall_forces();
   sim.on_root([&] {
     recorder_->record_series(sim.time(), sim.step_count(), e, dem::balance_error(sim.initial_energy(), e), d);
+    std::vector<bool> present(sim.walls().size());
+    for (std::size_t w = 0; w < present.size(); ++w) present[w] = !sim.wall_removed(w);
+    recorder_->record_walls(sim.time(), sim.step_count(), sim.walls(), present, forces);
   });
 }
 

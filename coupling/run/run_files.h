@@ -17,7 +17,7 @@ class RunFiles {
   RunFiles(dem::Simulation& sim, const std::optional<OutputOptions>& output);
 
   [[nodiscard]] bool enabled() const { return output_.has_value(); }
-  // A row of time_series.csv: energies, balance error, contacts.
+  // A row of time_series.csv (energies, balance error, contacts) and the rows of walls.csv.
   void record_series(dem::Simulation& sim);
   // snapshots/particles_<step>.h5 of the checked whole state, with the wall forces; with
   // Output/force network, the contacts of the step when it recorded them (request_contacts()).

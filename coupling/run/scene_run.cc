@@ -103,7 +103,8 @@ class SceneRun {
         files_(sim, output),
         checkpoints_(output ? output->checkpoint : no_checkpoints_, sim.time_step(), output.has_value()),
         clock_(sim.is_root() ? on_progress : ProgressReport{}, resume ? resume->schedule.step : 0),
-        states_(output ? output->coarse_graining : CoarseGrainingCapture{}) {
+        states_(output ? output->coarse_graining : CoarseGrainingCapture{}),
+        lid_(control.lid) {
     if (resume) {
       files_.resume(sim, resume->files);
       states_.resume(sim, resume->cg_reference);
@@ -132,7 +133,8 @@ class SceneRun {
       state_.step = s;
       states_.at_step(sim_);
       release_walls(sim_, schedule_, state_);
-      const bool walls_pending = state_.next_release < schedule_.releases.size();
+      lid_.before_step(sim_);
+      const bool walls_pending = state_.next_release < schedule_.releases.size() || control_.lid.enabled();
       const bool evaluate = schedule_.evaluation_due(s);
       const bool record = evaluate || (files_.wants_contacts() && schedule_.snapshot_due(s));
       if (record) sim_.request_contacts();
@@ -163,6 +165,8 @@ class SceneRun {
       if (d.stop != 0) throw RunStopped(d.stop, s, written);
     }
     if (control_.relax_at_end) {
+      if (const long lid = Lid::index(sim_); lid >= 0)
+        sim_.set_wall_velocity(static_cast<std::size_t>(lid), dem::Vec3::Zero());
       dem::RelaxationOptions relaxation = control_.relaxation;
       relaxation.on_step = [&](const dem::RelaxationResult& now) {
         clock_.relaxation(now.steps, relaxation.max_steps,
@@ -226,6 +230,7 @@ class SceneRun {
   CheckpointClock checkpoints_;
   ProgressClock clock_;
   StateCapture states_;
+  Lid lid_;
   ScheduleState state_;
   long first_step_ = 0;  // the engine's step when this run began (a resumed run's checkpoint)
 };

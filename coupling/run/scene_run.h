@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "coupling/run/checkpoint.h"
+#include "coupling/run/lid.h"
 #include "coupling/run/output_options.h"
 #include "coupling/run/progress_clock.h"
 #include "coupling/run/run_result.h"
@@ -27,6 +28,9 @@ struct RunControl {
   // write the final snapshot and grid stress of the relaxed state.
   bool relax_at_end = false;
   dem::RelaxationOptions relaxation;
+  // A lid placed on the bed and driven or servo-controlled (lid.h). A run with a lid does not
+  // stop at rest, and a relaxation at the end holds the lid still.
+  LidControl lid;
 };
 
 // From the scene's fill (made on rank 0), collective over `comm`: every rank keeps the grains

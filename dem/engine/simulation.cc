@@ -369,10 +369,9 @@ void Simulation::settle_dissipation() {
 void Simulation::remove_wall(const std::string& name) {
   for (PlaneWall& w : walls_) {
     if (w.name != name) continue;
-    // Far along its own normal's opposite side: every grain is then at a distance of order
-    // 1e100 inside the domain, and no contact can form (distance() stays finite).
+    // Far along its own normal's opposite side (kRemovedWallDistance).
     set_wall_velocity(static_cast<std::size_t>(&w - walls_.data()), Vec3::Zero());
-    w.point -= 1e100 * w.normal;
+    w.point -= kRemovedWallDistance * w.normal;
     // Its wall entries go at the next step's rebuild: rebuilding now would reorder the
     // particles under the last evaluation's per-particle output, whose damping work the next
     // step still books.

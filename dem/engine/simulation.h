@@ -55,6 +55,10 @@ struct EngineOptions : DomainOptions {
 // beyond it the contact law is far outside its validity and the step is too large.
 inline constexpr double kRunawayOverlapRatio = 0.25;
 
+// How far behind its plane remove_wall() puts a wall: every grain is then at a distance of
+// order 1e100 inside the domain, and no contact can form (distance() stays finite).
+inline constexpr double kRemovedWallDistance = 1e100;
+
 class Simulation {
  public:
   // The particles of rank 0 are the scene (other ranks may pass the same or an empty store);
@@ -122,6 +126,10 @@ class Simulation {
   // behind its own plane, and the next step() rebuilds the lists before it evaluates forces,
   // so no contact with it remains. Throws when no wall has that name.
   void remove_wall(const std::string& name);
+  // Whether a wall was taken out by remove_wall() (it stays in walls(), far behind its plane).
+  [[nodiscard]] bool wall_removed(std::size_t wall) const {
+    return walls_.at(wall).distance(Vec3::Zero()) > 0.5 * kRemovedWallDistance;
+  }
   // Puts a wall into the scene (a lid, a piston); its entries come with the next step's
   // rebuild. Names are unique: throws when the name is taken.
   void add_wall(const PlaneWall& wall);

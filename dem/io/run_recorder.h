@@ -1,6 +1,7 @@
 #pragma once
 // What a run leaves in its output folder: HDF5 snapshots with an XDMF companion, a CSV
-// time series of energies and contacts, and a JSON summary. Every file is written
+// time series of energies and contacts, a CSV series of the walls' motion and loads, and a JSON
+// summary. Every file is written
 // atomically; the time series is appended to at each snapshot (csv_series.h).
 #include <filesystem>
 #include <map>
@@ -25,18 +26,26 @@ class RunRecorder {
                      const StepDiagnostics& d);
   void write_snapshot(const ParticleStore& p, const std::vector<PlaneWall>& walls,
                       const std::vector<Vec3>& wall_forces, double time, long step);
-  // Appends the new rows to time_series.csv and rewrites particles.xdmf.
+  // One row of walls.csv per wall in the scene (not removed), at a time-series row: where the
+  // wall is and how fast it moves, and the force the particles exert on it (wall_forces). The
+  // displacement is from the wall's point at its first row.
+  void record_walls(double time, long step, const std::vector<PlaneWall>& walls,
+                    const std::vector<bool>& present, const std::vector<Vec3>& wall_forces);
+  // Appends the new rows to time_series.csv and walls.csv and rewrites particles.xdmf.
   void flush();
   void write_summary(const std::map<std::string, std::string>& entries) const;
 
   [[nodiscard]] const std::filesystem::path& folder() const { return folder_; }
 
-  // What a checkpoint keeps (after a flush): the rows of time_series.csv and the snapshots.
+  // What a checkpoint keeps (after a flush): the rows of time_series.csv and walls.csv, the
+  // walls' points at their first rows (by wall index) and the snapshots.
   struct State {
     long series_rows = 0;
+    long wall_rows = 0;
+    std::vector<Vec3> wall_origins;
     std::vector<SnapshotInfo> snapshots;
   };
-  [[nodiscard]] State state() const { return {series_.rows(), snapshots_}; }
+  [[nodiscard]] State state() const { return {series_.rows(), walls_.rows(), wall_origins_, snapshots_}; }
   // A restart: the series cut back to the checkpoint's rows and particles.xdmf rewritten with
   // its snapshots.
   void resume(const State& s);
@@ -47,6 +56,10 @@ class RunRecorder {
   std::vector<std::string> rows_;
   std::size_t rows_written_ = 0;
   CsvSeries series_;
+  std::vector<std::string> wall_rows_;
+  std::size_t wall_rows_written_ = 0;
+  CsvSeries walls_;
+  std::vector<Vec3> wall_origins_;
   std::vector<SnapshotInfo> snapshots_;
 };
 

@@ -50,6 +50,25 @@ with open("time_series.csv") as f:
     rows = [r for r in csv.reader(l for l in f if not l.startswith("#"))]
 header, data = rows[0], rows[1:]
 assert len(data) >= 40 and all(len(r) == len(header) for r in data), "time series malformed"
+# walls.csv: one row per wall and time-series row, at the series' times; the normal and shear
+# columns are the parts of the force columns along the wall's normal and across it.
+with open("walls.csv") as f:
+    wrows = [r for r in csv.reader(l for l in f if not l.startswith("#"))]
+wheader, wdata = wrows[0], wrows[1:]
+walls = sorted({r[wheader.index("wall")] for r in wdata})
+assert walls and len(wdata) == len(walls) * len(data), ("walls.csv rows", len(wdata), len(walls), len(data))
+assert sorted({r[0] for r in wdata}) == sorted({r[0] for r in data}), "walls.csv times are not the series'"
+with h5py.File("snapshots/" + sorted(os.listdir("snapshots"))[-1], "r") as h:
+    names = h["/walls"].attrs["names"]
+    normals = h["/walls/normal"][:]
+names = (names.decode() if isinstance(names, bytes) else str(names)).split(",")
+for r in wdata:
+    n = normals[names.index(r[wheader.index("wall")])]
+    force = np.array([float(r[wheader.index(c)]) for c in ("force_x", "force_y", "force_z")])
+    fn = force.dot(n)
+    assert float(r[wheader.index("normal_force")]) == -fn + 0.0, r
+    assert abs(float(r[wheader.index("shear_force")]) - np.linalg.norm(force - fn * n)) <= 1e-12 * (
+        1 + np.linalg.norm(force)), r
 summary = json.load(open("summary.json"), parse_constant=lambda c: sys.exit(f"summary.json: {c} is not JSON"))
 for key in ("particles", "steps", "energy_balance_error", "bed_solid_fraction", "particle_steps_per_second"):
     assert key in summary, key

@@ -1,0 +1,74 @@
+// The oedometric test (coupling/calibration/oedometer_run.h, docs/calibration.md) on the case
+// with a closed form: a simple-cubic lattice of frictionless Hertz spheres, 2 x 2 columns of 4,
+// touching each other and the box's walls, without gravity. Under the servo lid each column
+// shortens by 3 sphere-pair and 2 wall closures of the Hertz law (dem::hertz_column_strain);
+// the side walls and the lateral contacts carry nothing (K0 = 0, nu = 0, E = M).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "../common/scenes.h"
+#include "coupling/calibration/oedometer_run.h"
+#include "dem/boundary/container.h"
+#include "dem/core/material.h"
+
+using namespace upgrain;
+using namespace upgrain::dem;
+
+TEST(OedometerLattice, HertzLatticeFollowsItsClosedForm) {
+  constexpr double r = 1e-3, rho = 2650.0;
+  constexpr int layers = 4;
+  SceneConfig s = test::bare_scene(2e-6);
+  s.effects.damping = true;
+  s.damping_ratio = 0.5;
+  s.friction = 0.0;
+  s.container.lx = s.container.ly = 4.0 * r;
+  for (double& f : s.container.friction) f = 0.0;
+  ParticleStore p;
+  long id = 0;
+  for (int k = 0; k < layers; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i)
+        p.add_sphere(id++, r, rho, Vec3(r + 2 * r * i, r + 2 * r * j, r + 2 * r * k), Vec3::Zero(),
+                     Vec3::Zero());
+  Simulation sim(s, p, make_open_box(s.container));
+  coupling::OedometerOptions o;
+  o.lid_stresses = {2.0e4, 4.0e4, 8.0e4};
+  o.hold_time = 0.02;
+  o.seating_time = 0.0;  // a flat top: the lid seats without impacts
+  o.max_speed = 0.01;
+  const std::vector<coupling::OedometerRecord> rec = coupling::run_oedometer(sim, o);
+  ASSERT_EQ(rec.size(), 4U);
+  const double e_star = effective_youngs_modulus(s.particles.material, s.particles.material);
+  EXPECT_EQ(rec[0].height, 2.0 * layers * r);
+  EXPECT_EQ(rec[0].lid_stress, 0.0);
+  std::vector<OedometerState> loaded;
+  for (std::size_t k = 1; k < rec.size(); ++k) {
+    const coupling::OedometerRecord& q = rec[k];
+    const double exact = hertz_column_strain(q.lid_stress, e_star, r, layers);
+    std::printf(
+        "target %.0f Pa: lid %.2f Pa, Bagi sigma_v %.2f Pa, sigma_h %.3g Pa, strain %.6e (closed form "
+        "%.6e)\n",
+        q.target, q.lid_stress, q.state.vertical_stress, q.state.horizontal_stress, q.state.vertical_strain,
+        exact);
+    // The servo holds the target; the bed's mean stress is the lid's (no gravity, at rest);
+    // the strain is the closed form's at that stress.
+    EXPECT_NEAR(q.lid_stress, q.target, 1e-5 * q.target);
+    EXPECT_NEAR(q.state.vertical_stress, q.lid_stress, 1e-5 * q.lid_stress);
+    EXPECT_NEAR(q.state.vertical_strain, exact, 1e-5 * exact);
+    EXPECT_LT(std::abs(q.state.horizontal_stress), 1e-9 * q.lid_stress);
+    loaded.push_back(q.state);
+  }
+  // The secant moduli against the closed form's.
+  const std::vector<OedometerStep> steps = oedometer_steps(loaded);
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    const double s0 = rec[k + 1].lid_stress, s1 = rec[k + 2].lid_stress;
+    const double m =
+        (s1 - s0) / (hertz_column_strain(s1, e_star, r, layers) - hertz_column_strain(s0, e_star, r, layers));
+    std::printf("step %zu: M %.5e Pa (closed form %.5e Pa), K0 %.2e, E %.5e Pa\n", k, steps[k].modulus, m,
+                steps[k].k0, steps[k].youngs);
+    EXPECT_NEAR(steps[k].modulus, m, 1e-4 * m);
+    EXPECT_NEAR(steps[k].poisson, 0.0, 1e-9);
+  }
+}
