@@ -11,40 +11,11 @@
 #include <string>
 #include <vector>
 
+#include "coupling/run/lid_control.h"
 #include "dem/boundary/servo_wall.h"
 #include "dem/engine/simulation.h"
 
 namespace upgrain::coupling {
-
-inline constexpr const char* kLidWallName = "lid";
-
-struct LidControl {
-  enum class Mode { none, velocity, servo };
-  Mode mode = Mode::none;
-  double place_time = 0.0;  // s of simulated time
-  double gap = 0.0;         // m between the highest grain's top and the lid when it is placed
-  double friction = 0.0;    // Coulomb coefficient particle-lid
-  double speed = 0.0;       // m/s downwards (velocity mode)
-  // Servo mode: the targets (Pa, compression positive), each held for step_duration after the
-  // placement, the last one to the end; the gain factor alpha and the maximum speed.
-  std::vector<double> target_stresses;
-  double step_duration = 0.0;
-  double gain_factor = 0.5;
-  double max_speed = 0.01;
-  long update_every = 10;  // steps between servo updates (the gain takes the update's interval)
-
-  [[nodiscard]] bool enabled() const { return mode != Mode::none; }
-  // The target at time t (servo mode; t after the placement).
-  [[nodiscard]] double target_at(double t) const;
-  // The end of target k's hold: place_time + (k + 1) step_duration.
-  [[nodiscard]] double step_end(std::size_t k) const {
-    return place_time + static_cast<double>(k + 1) * step_duration;
-  }
-};
-
-// Checks a lid's settings against its scene's end time and contact law; throws upgrain::Error
-// naming the Lid entry.
-void validate_lid(const LidControl& lid, const dem::SceneConfig& scene);
 
 // The lid during a run; every rank holds one alike.
 class Lid {
