@@ -48,6 +48,42 @@ def resumed(log_name, offset):
     return f'resumed at step {m.group(1)}, ' if m else ''
 
 
+def kill_leftovers(folder, limit=10.0):
+    """SIGKILLs every process whose command line names `folder` and waits until none is left."""
+    key = folder.encode()  # as it stands on the command lines the script gave
+    t0 = time.monotonic()
+    while True:
+        left = []
+        for pid in filter(str.isdigit, os.listdir('/proc')):
+            try:
+                with open(f'/proc/{pid}/cmdline', 'rb') as f:
+                    cmd = f.read()
+            except OSError:
+                continue
+            if int(pid) != os.getpid() and key in cmd:
+                left.append(int(pid))
+        if not left:
+            return
+        if time.monotonic() - t0 > limit:
+            sys.exit(f'processes of the killed run still alive after {limit} s: {left}')
+        for pid in left:
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except OSError:
+                pass
+        time.sleep(0.05)
+
+
+def wait_for_checkpoint(proc, folder, limit):
+    """The time at which `folder` first holds a checkpoint, or the run ended, or `limit` s passed."""
+    t0 = time.monotonic()
+    while proc.poll() is None and time.monotonic() - t0 < limit:
+        if os.path.isdir(folder) and any(f.endswith('.h5') for f in os.listdir(folder)):
+            break
+        time.sleep(0.01)
+    return time.monotonic()
+
+
 def main():
     p = argparse.ArgumentParser()
     p.add_argument('upgrain')
@@ -81,12 +117,19 @@ def main():
     for k in range(a.kills):
         args = ['--output', broken, a.scene] if k == 0 else ['--restart', broken]
         ranks = a.ranks if k == 0 else restart_ranks
-        delay = rng.uniform(0.1, 0.8) * wall if k == 0 else rng.uniform(*a.delays) * wall
+        delay = rng.uniform(0.0, 0.5) * wall if k == 0 else rng.uniform(*a.delays) * wall
         log.flush()
         where = log.tell()
+        started = time.monotonic()
         proc = subprocess.Popen(command(a.upgrain, ranks, args), stdout=log, stderr=log, start_new_session=True)
+        if k == 0:
+            # The first start is killed after its first checkpoint (a run killed before it has
+            # nothing to continue from, and the start-up time of the ranks varies with the
+            # machine's load); then after `delay` more.
+            first = wait_for_checkpoint(proc, os.path.join(broken, 'checkpoints'), 4.0 * wall + 30.0)
+            delay += first - started
         try:
-            code = proc.wait(timeout=delay)
+            code = proc.wait(timeout=max(delay - (time.monotonic() - started), 0.0))
             print(f'start {k + 1}: ended by itself ({code}) before its signal at {delay:.2f} s')
             if code != 0:
                 sys.exit(f'start {k + 1} failed with {code}; see {log.name}')
@@ -95,6 +138,11 @@ def main():
         except subprocess.TimeoutExpired:
             os.killpg(proc.pid, sig)  # the launcher and every rank
             code = proc.wait()
+            if sig == signal.SIGKILL:
+                # Ranks that mpiexec started outside its process group outlive a SIGKILL of the
+                # launcher for a moment; a batch system kills them too (cgroups). Without this
+                # they would append rows beside the restarted run.
+                kill_leftovers(broken)
             print(f'start {k + 1}: {resumed(log.name, where)}signal {a.signal} at {delay:.2f} s, exit {code}')
             # One process: 128 + 15. Under mpiexec the launcher reports its own code.
             if sig == signal.SIGTERM and ranks == 1 and code != 143:
