@@ -85,8 +85,6 @@ std::string path_table(const std::vector<OedometerRecord>& rec,
 
 int run_calibration_study(const SceneInput& in, MPI_Comm comm,
                           const std::function<void(const Progress&)>& on_progress) {
-  int rank = 0;
-  MPI_Comm_rank(comm, &rank);
   const CalibrationOptions& c = in.calibration;
   if (in.scene.contact_law != "hertz-mindlin")
     throw Error(in.source + ": the calibration's servo lid needs Contact/law = hertz-mindlin, not " +
@@ -96,17 +94,7 @@ int run_calibration_study(const SceneInput& in, MPI_Comm comm,
   dem::SceneConfig scene = in.scene;
   for (int w = 1; w < 5; ++w) scene.container.friction[w] = c.side_wall_friction;
   const auto t0 = Clock::now();
-  dem::ParticleStore fill;
-  std::string error;
-  if (rank == 0) {
-    try {
-      fill = dem::fill_container(scene);
-    } catch (const std::exception& e) {
-      error = e.what();
-    }
-  }
-  dem::throw_if_any(comm, error);
-  dem::Simulation sim(scene, std::move(fill), comm, engine_options(in));
+  dem::Simulation sim(scene, fill_on_root(scene, comm), comm, engine_options(in));
   // The deposition, as the scene runs it (to its end time or to rest), without output.
   RunControl deposition = in.control;
   deposition.relax_at_end = false;

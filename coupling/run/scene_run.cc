@@ -237,9 +237,7 @@ class SceneRun {
 
 }  // namespace
 
-RunResult run_scene(const dem::SceneConfig& scene, const RunControl& control,
-                    const std::optional<OutputOptions>& output, const ProgressReport& on_progress,
-                    MPI_Comm comm, const dem::EngineOptions& options) {
+dem::ParticleStore fill_on_root(const dem::SceneConfig& scene, MPI_Comm comm) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   dem::ParticleStore fill;
@@ -252,7 +250,13 @@ RunResult run_scene(const dem::SceneConfig& scene, const RunControl& control,
     }
   }
   dem::throw_if_any(comm, error);
-  dem::Simulation sim(scene, std::move(fill), comm, options);
+  return fill;
+}
+
+RunResult run_scene(const dem::SceneConfig& scene, const RunControl& control,
+                    const std::optional<OutputOptions>& output, const ProgressReport& on_progress,
+                    MPI_Comm comm, const dem::EngineOptions& options) {
+  dem::Simulation sim(scene, fill_on_root(scene, comm), comm, options);
   return run_scene(sim, control, output, on_progress);
 }
 

@@ -33,6 +33,10 @@ struct RunControl {
   LidControl lid;
 };
 
+// The scene's fill, made on rank 0 (empty on the others); collective: a fill that fails fails
+// on every rank.
+dem::ParticleStore fill_on_root(const dem::SceneConfig& scene, MPI_Comm comm);
+
 // From the scene's fill (made on rank 0), collective over `comm`: every rank keeps the grains
 // of its block. The output is written by rank 0 and holds the same bytes on any rank count
 // with deterministic summation (docs/parallel.md, "Runs from the driver"); the result is
