@@ -118,6 +118,13 @@ const std::vector<ParameterSpec>& parameter_schema() {
        "stiffness 2.25 k_n mu_r^2 R*^2. Particle-particle and particle-wall."},
       {"Contact", "rolling damping ratio", "0.3", K::real, 0.0, 10.0, "", "-",
        "eta_r of the rolling dashpot C_r = eta_r 2 sqrt(I_r k_r), active below the plastic limit."},
+      {"Contact", "solver gradient tolerance", "16", K::real, 16.0, 1e12, "", "eps x size",
+       "Ellipsoid contact solver: Newton stops when the gradient of the support-function gap is below "
+       "this many machine epsilons times the pair's size (16: round-off; docs/ellipsoid-contact.md, "
+       "\"Stopping rules\"). Scenes of spheres do not use it."},
+      {"Contact", "solver iterations", "30", K::integer, 1, 1000, "", "-",
+       "Ellipsoid contact solver: Newton steps per start before it gives up (a warm start takes 2-3; the "
+       "force loop's straight-line path at most min(4, this))."},
 
       {"Container", "length x", "0.045", K::real, 1e-6, 1e4, "", "m",
        "Inner length of the box along x (walls at x = 0 and x = length x)."},
@@ -291,11 +298,11 @@ const std::vector<ParameterSpec>& parameter_schema() {
        "Upper bound on the FIRE steps; the residual reached is reported."},
 
       {"Accuracy", "knobs",
-       "time step, youngs modulus, skin, summation, ranks, shape, rotation, relaxation tolerance, grid, fem, "
-       "outputs",
+       "time step, youngs modulus, skin, summation, ranks, shape, rotation, solver tolerance, solver "
+       "iterations, relaxation tolerance, grid, fem, outputs",
        K::multiple_selection, 0, 0,
-       "time step|youngs modulus|skin|summation|ranks|shape|rotation|rolling resistance|relaxation "
-       "tolerance|grid|fem|outputs",
+       "time step|youngs modulus|skin|summation|ranks|shape|rotation|rolling resistance|solver "
+       "tolerance|solver iterations|relaxation tolerance|grid|fem|outputs",
        "-",
        "What `upgrain --study accuracy` turns, one at a time, every other setting as the scene gives it "
        "(docs/accuracy.md). Knobs that do not apply to the scene are skipped with a note."},
@@ -306,6 +313,10 @@ const std::vector<ParameterSpec>& parameter_schema() {
        "fraction of it)."},
       {"Accuracy", "skins", "0.1, 0.2, 0.5", K::text, 0, 0, "", "-",
        "Neighbour skins to try, in largest diameters: every result must be the same bits."},
+      {"Accuracy", "solver tolerances", "16, 1e8, 1e10", K::text, 0, 0, "", "eps x size",
+       "Ellipsoid contact solver gradient tolerances to try (Contact/solver gradient tolerance)."},
+      {"Accuracy", "solver iteration caps", "30, 4, 2", K::text, 0, 0, "", "-",
+       "Ellipsoid contact solver iteration caps to try (Contact/solver iterations)."},
       {"Accuracy", "relaxation tolerances", "1e-5, 1e-7, 1e-9", K::text, 0, 0, "", "-",
        "FIRE tolerances to try (Study/relaxation tolerance)."},
       {"Accuracy", "grids", "3 3 5; 5 5 9; 7 7 13", K::text, 0, 0, "", "-",

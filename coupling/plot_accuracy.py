@@ -11,6 +11,7 @@ import matplotlib
 
 matplotlib.use('Agg')
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.ticker import NullFormatter, ScalarFormatter  # noqa: E402
 
 
 def main():
@@ -34,7 +35,13 @@ def main():
                 ax.annotate(s, (t, e), fontsize=7, xytext=(4, 4), textcoords='offset points')
                 if d:
                     ax.plot([t], [e], 's', color='tab:red', markersize=9, label='the scene as given')
-            ax.set_xscale('log')
+            times = [p[0] for p in shown]
+            # Wall times of a knob often span less than a decade, where a log axis has no labelled
+            # tick: plain seconds then.
+            if max(times) > 10 * min(times):
+                ax.set_xscale('log')
+                ax.xaxis.set_major_formatter(ScalarFormatter())
+                ax.xaxis.set_minor_formatter(NullFormatter())
             ax.set_yscale('log')
         else:
             ax.text(0.5, 0.5, 'no change to plot (cost only)', transform=ax.transAxes, ha='center')

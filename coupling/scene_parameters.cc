@@ -200,6 +200,8 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   s.damping_ratio = prm.get_double("damping ratio");
   s.rolling_friction = prm.get_double("rolling friction coefficient");
   s.rolling_damping_ratio = prm.get_double("rolling damping ratio");
+  s.contact_solver.gradient_tolerance = prm.get_double("solver gradient tolerance");
+  s.contact_solver.max_iterations = static_cast<int>(prm.get_integer("solver iterations"));
   s.contact_law = prm.get("law");
   for (const dem::LawInfo& law : dem::contact_law_table())
     for (const dem::LawParameter& p : law.parameters)
@@ -285,6 +287,8 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
     a.modulus_factors = numbers_of(prm.get("modulus factors"), "Accuracy/modulus factors");
     a.skins = numbers_of(prm.get("skins"), "Accuracy/skins");
     a.relaxation_tolerances = numbers_of(prm.get("relaxation tolerances"), "Accuracy/relaxation tolerances");
+    a.solver_tolerances = numbers_of(prm.get("solver tolerances"), "Accuracy/solver tolerances");
+    a.solver_iteration_caps = numbers_of(prm.get("solver iteration caps"), "Accuracy/solver iteration caps");
     for (const std::string& g : split_list(prm.get("grids"), ';')) {
       const std::vector<double> n = numbers_of(g, "Accuracy/grids", ' ');
       if (n.size() != 3) throw Error("Accuracy/grids: '" + g + "' is not three cell counts");

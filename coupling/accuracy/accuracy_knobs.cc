@@ -37,9 +37,20 @@ double step_at(const dem::SceneConfig& scene, double fraction) {
 }  // namespace
 
 const std::vector<std::string>& knob_names() {
-  static const std::vector<std::string> names = {
-      "time step",          "youngs modulus",       "skin", "summation", "ranks",  "shape", "rotation",
-      "rolling resistance", "relaxation tolerance", "grid", "fem",       "outputs"};
+  static const std::vector<std::string> names = {"time step",
+                                                 "youngs modulus",
+                                                 "skin",
+                                                 "summation",
+                                                 "ranks",
+                                                 "shape",
+                                                 "rotation",
+                                                 "rolling resistance",
+                                                 "solver tolerance",
+                                                 "solver iterations",
+                                                 "relaxation tolerance",
+                                                 "grid",
+                                                 "fem",
+                                                 "outputs"};
   return names;
 }
 
@@ -160,6 +171,39 @@ std::vector<KnobSetting> knob_settings(const SceneInput& base, const AccuracyOpt
                              s.effects.rolling_resistance);
     on.apply = [](SceneInput& in) { in.effect_switches.rolling_resistance = dem::EffectSwitch::on; };
     out.push_back(std::move(on));
+  }
+  // The ellipsoid contact solver's stopping rules (dem/contact/contact_solver_settings.h).
+  const dem::ContactSolverSettings& solver = s.contact_solver;
+  if (chosen("solver tolerance")) {
+    if (!has_ellipsoids(base)) {
+      skipped.push_back("solver tolerance: the scene has spheres only (no contact solver)");
+    } else {
+      nonempty(o.solver_tolerances, "solver tolerances");
+      for (double x : o.solver_tolerances) {
+        if (!(x >= 16.0 && x <= 1e12))
+          throw Error("Accuracy/solver tolerances: " + number(x) + " is not in [16, 1e12]");
+        KnobSetting k =
+            setting("solver tolerance", number(x) + " eps x size", x, x == solver.gradient_tolerance);
+        k.apply = [x](SceneInput& in) { in.scene.contact_solver.gradient_tolerance = x; };
+        out.push_back(std::move(k));
+      }
+    }
+  }
+  if (chosen("solver iterations")) {
+    if (!has_ellipsoids(base)) {
+      skipped.push_back("solver iterations: the scene has spheres only (no contact solver)");
+    } else {
+      nonempty(o.solver_iteration_caps, "solver iteration caps");
+      for (double x : o.solver_iteration_caps) {
+        if (!(x >= 1.0 && x <= 1000.0 && x == std::floor(x)))
+          throw Error("Accuracy/solver iteration caps: " + number(x) + " is not a whole number in 1..1000");
+        const int cap = static_cast<int>(x);
+        KnobSetting k = setting("solver iterations", std::to_string(cap) + " Newton steps", x,
+                                cap == solver.max_iterations);
+        k.apply = [cap](SceneInput& in) { in.scene.contact_solver.max_iterations = cap; };
+        out.push_back(std::move(k));
+      }
+    }
   }
   if (chosen("relaxation tolerance")) {
     if (!base.control.relax_at_end) {

@@ -14,7 +14,9 @@ struct AccuracyOptions {
   std::vector<double> modulus_factors;      // Young's modulus scaled, with the safe step it allows
   std::vector<double> skins;                // neighbour skin, in largest diameters
   std::vector<double> relaxation_tolerances;
-  std::vector<std::array<int, 3>> grids;  // stress grid cells
+  std::vector<double> solver_tolerances;      // ellipsoid contact solver, in eps x pair size
+  std::vector<double> solver_iteration_caps;  // ellipsoid contact solver, Newton steps
+  std::vector<std::array<int, 3>> grids;      // stress grid cells
   std::vector<unsigned> fem_degrees;
   std::vector<unsigned> fem_refinements;
   int replicas = 3;         // runs of the reference that differ only in the fill's seed

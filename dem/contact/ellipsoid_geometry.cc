@@ -15,7 +15,6 @@ namespace upgrain::dem {
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
-constexpr int kMaxIterations = 30;        // per Newton run; a warm start takes 2-3
 constexpr double kAngleConverged = 1e-6;  // rad: a last step this small is taken unchecked
 // Smallest semi-axes (m) for which the solver runs in metres: beyond, 1/h^3 could leave the
 // range of doubles.
@@ -29,7 +28,7 @@ constexpr double kUnscaledLow = 0x1p-200, kUnscaledHigh = 0x1p200;
 // could leave the range of doubles, is carried to a unit that brings it into [1, 2).
 class PairFrame {
  public:
-  PairFrame(const PosedEllipsoid& e1, const PosedEllipsoid& e2);
+  PairFrame(const PosedEllipsoid& e1, const PosedEllipsoid& e2, const ContactSolverSettings& settings);
   PairFrame(const PairFrame&) = delete;  // m1, m2 may point into the frame itself
   PairFrame& operator=(const PairFrame&) = delete;
 
@@ -42,6 +41,8 @@ class PairFrame {
   Vec3 ax1, ax2;         // semi-axes, scaled
   double size = 1.0;     // |d|_1 + a1 + a2: bounds the terms of f and its gradient (round-off scale)
   double certify = 0.0;  // c1^2/a1 + c2^2/a2: smallest radius of curvature of B1 - B2 (D4)
+  double tol_g = 0.0;    // Newton's stopping gradient (ContactSolverSettings), scaled
+  int max_iterations = 0;
 
  private:
   Mat3 m1_scaled_, m2_scaled_;  // only for grain sizes outside [2^-200, 2^200] m
@@ -56,7 +57,8 @@ Vec3 inverse_shape_times(const Mat3& rot, const Vec3& axes, const Vec3& v) {
 // 2^-floor(log2 c): the power of two that brings c into [1, 2).
 double scale_for(double c) { return std::ldexp(1.0, -std::ilogb(c)); }
 
-PairFrame::PairFrame(const PosedEllipsoid& e1, const PosedEllipsoid& e2) {
+PairFrame::PairFrame(const PosedEllipsoid& e1, const PosedEllipsoid& e2,
+                     const ContactSolverSettings& settings) {
   const double minor = std::min(e1.minor, e2.minor);
   scale = (minor >= kUnscaledLow && minor <= kUnscaledHigh) ? 1.0 : scale_for(minor);
   d = e1.centre - e2.centre;
@@ -81,6 +83,8 @@ PairFrame::PairFrame(const PosedEllipsoid& e1, const PosedEllipsoid& e2) {
   }
   size = d.cwiseAbs().sum() + major;
   certify = min_radius;
+  tol_g = settings.gradient_tolerance * kEps * size;
+  max_iterations = settings.max_iterations;
 }
 
 // f(n) and the pieces its derivatives and the contact points reuse (D2): u = M1 n,
@@ -176,7 +180,7 @@ NewtonResult newton_on_sphere(const PairFrame& p, const Vec3& start, const Eval*
   NewtonResult r;
   r.n = at_start ? start : start.normalized();
   r.e = at_start ? *at_start : evaluate(p, r.n);
-  const double tol_g = 16.0 * kEps * p.size;    // round-off level of the gradient
+  const double tol_g = p.tol_g;
   const double noise_f = 64.0 * kEps * p.size;  // round-off level of f
   const Mat3& m1 = *p.m1;
   const Mat3& m2 = *p.m2;
@@ -230,7 +234,7 @@ NewtonResult newton_on_sphere(const PairFrame& p, const Vec3& start, const Eval*
       r.converged = true;
       return r;
     }
-    if (r.iterations >= kMaxIterations) return r;
+    if (r.iterations >= p.max_iterations) return r;
     if (step2 > 0.25) {
       const double cap = 0.5 / std::sqrt(step2);
       x1 *= cap;
@@ -388,12 +392,13 @@ ContactGeometry sphere_sphere_contact(const Vec3& c1, double r1, const Vec3& c2,
 }
 
 ContactGeometry ellipsoid_contact(const Ellipsoid& e1, const Ellipsoid& e2, ContactSolverStats& stats,
-                                  const std::optional<Vec3>& initial_normal) {
+                                  const std::optional<Vec3>& initial_normal,
+                                  const ContactSolverSettings& settings) {
   if (e1.is_sphere() && e2.is_sphere()) {
     ++stats.calls;
     return sphere_sphere_contact(e1.centre, e1.semi_axes.x(), e2.centre, e2.semi_axes.x());
   }
-  return support_function_contact(e1, e2, stats, initial_normal);
+  return support_function_contact(e1, e2, stats, initial_normal, settings);
 }
 
 namespace {
@@ -464,11 +469,12 @@ bool separated_frame(const PairFrame& p, double margin, Vec3* witness = nullptr)
 }  // namespace
 
 ContactGeometry support_function_contact(const Ellipsoid& e1, const Ellipsoid& e2, ContactSolverStats& stats,
-                                         const std::optional<Vec3>& initial_normal) {
+                                         const std::optional<Vec3>& initial_normal,
+                                         const ContactSolverSettings& settings) {
   ++stats.calls;
   const PosedEllipsoid p1 = PosedEllipsoid::from(e1), p2 = PosedEllipsoid::from(e2);
   ContactGeometry g;
-  const PairFrame p(p1, p2);
+  const PairFrame p(p1, p2, settings);
   solve_frame(p, e1.centre, e2.centre, stats, initial_normal, true, g);
   return g;
 }
@@ -519,7 +525,8 @@ bool warm_path_applies(const PosedEllipsoid& e1, const PosedEllipsoid& e2) {
 // posed_contact() after the proof's evaluation q at the pair's last normal.
 bool warm_contact_after_proof(const PosedEllipsoid& e1, const PosedEllipsoid& e2,
                               const warm::PairLanes<double>& p, warm::PointLanes<double>& q, bool radius,
-                              ContactSolverStats& stats, PairContact& out);
+                              const ContactSolverSettings& settings, ContactSolverStats& stats,
+                              PairContact& out);
 
 namespace {
 
@@ -529,18 +536,19 @@ namespace {
 // nothing counted, `out` untouched; `q` is overwritten, so the caller keeps its own copy of
 // the start) whenever the general solver would do something else: an
 // indefinite model, a step above 0.1 rad or one that fails the Armijo test, more than
-// kFastIterations steps, or a result the certificate (D4) does not cover; the caller then runs
-// the general solver from the same start. `q` holds f at the unit start; the pieces are those of
-// warm_newton.h, which the force loop also runs two pairs at a time.
-bool warm_newton(const warm::PairLanes<double>& p, warm::PointLanes<double>& q, ContactSolverStats& stats,
-                 PairContact& out) {
-  const double tol_g = 16.0 * kEps * p.size, noise_f = 64.0 * kEps * p.size;
+// min(kFastIterations, settings.max_iterations) steps, or a result the certificate (D4) does not cover; the
+// caller then runs the general solver from the same start. `q` holds f at the unit start; the pieces are
+// those of warm_newton.h, which the force loop also runs two pairs at a time.
+bool warm_newton(const warm::PairLanes<double>& p, warm::PointLanes<double>& q,
+                 const ContactSolverSettings& settings, ContactSolverStats& stats, PairContact& out) {
+  const double tol_g = settings.gradient_tolerance * kEps * p.size, noise_f = 64.0 * kEps * p.size;
+  const int cap = std::min(kFastIterations, settings.max_iterations);
   int iterations = 0;
   for (;;) {
     warm::GradientLanes<double> g;
     warm::gradient(p, q, g);
     if (g.norm2 <= tol_g * tol_g) break;  // at the minimum to round-off
-    if (iterations == kFastIterations) return false;
+    if (iterations == cap) return false;
     bool definite;
     double x1, x2;
     warm::newton_step(p, q, g, definite, x1, x2);
@@ -588,7 +596,7 @@ bool to_pair_contact(const ContactGeometry& g, bool radius, PairContact& out) {
 }  // namespace
 
 bool posed_contact(const PosedEllipsoid& e1, const PosedEllipsoid& e2, const Vec3* last_normal, bool radius,
-                   ContactSolverStats& stats, PairContact& out) {
+                   const ContactSolverSettings& settings, ContactSolverStats& stats, PairContact& out) {
   if (e1.is_sphere() && e2.is_sphere()) {
     ++stats.calls;
     return to_pair_contact(sphere_sphere_contact(e1.centre, e1.semi_axes.x(), e2.centre, e2.semi_axes.x()),
@@ -596,7 +604,7 @@ bool posed_contact(const PosedEllipsoid& e1, const PosedEllipsoid& e2, const Vec
   }
   const bool warm = last_normal && last_normal->squaredNorm() > 0.5;
   if (!warm) {
-    const PairFrame p(e1, e2);
+    const PairFrame p(e1, e2, settings);
     Vec3 witness;
     if (separated_frame(p, 0.0, &witness)) {
       ++stats.proven_apart;
@@ -618,12 +626,13 @@ bool posed_contact(const PosedEllipsoid& e1, const PosedEllipsoid& e2, const Vec
   warm::PointLanes<double> q;
   for (int k = 0; k < 3; ++k) q.n[k] = m[k];
   warm::evaluate(p, q);
-  return warm_contact_after_proof(e1, e2, p, q, radius, stats, out);
+  return warm_contact_after_proof(e1, e2, p, q, radius, settings, stats, out);
 }
 
 bool warm_contact_after_proof(const PosedEllipsoid& e1, const PosedEllipsoid& e2,
                               const warm::PairLanes<double>& p, warm::PointLanes<double>& q, bool radius,
-                              ContactSolverStats& stats, PairContact& out) {
+                              const ContactSolverSettings& settings, ContactSolverStats& stats,
+                              PairContact& out) {
   const Vec3 m(q.n[0], q.n[1], q.n[2]);
   if (q.f < 0.0) {
     ++stats.proven_apart;
@@ -638,8 +647,9 @@ bool warm_contact_after_proof(const PosedEllipsoid& e1, const PosedEllipsoid& e2
   const Eval at_m{q.f, Vec3(q.u[0], q.u[1], q.u[2]), Vec3(q.v[0], q.v[1], q.v[2]), q.h1, q.h2};
   const double mm = m.squaredNorm();
   const bool unit = std::abs(mm - 1.0) <= 64.0 * kEps;
-  if (unit && !radius && warm_path_applies(e1, e2) && warm_newton(p, q, stats, out)) return out.depth > 0.0;
-  const PairFrame frame(e1, e2);
+  if (unit && !radius && warm_path_applies(e1, e2) && warm_newton(p, q, settings, stats, out))
+    return out.depth > 0.0;
+  const PairFrame frame(e1, e2, settings);
   const double inv_len = unit ? 1.0 : 1.0 / std::sqrt(mm);
   const Eval at_n = scaled(at_m, frame.scale, inv_len);
   ContactGeometry g;
@@ -647,7 +657,8 @@ bool warm_contact_after_proof(const PosedEllipsoid& e1, const PosedEllipsoid& e2
   return to_pair_contact(g, radius, out);
 }
 
-void posed_contacts_two(WarmPairSolve& pair_a, WarmPairSolve& pair_b, ContactSolverStats& stats) {
+void posed_contacts_two(WarmPairSolve& pair_a, WarmPairSolve& pair_b, const ContactSolverSettings& settings,
+                        ContactSolverStats& stats) {
   const PosedEllipsoid &a1 = *pair_a.first, &a2 = *pair_a.second, &b1 = *pair_b.first, &b2 = *pair_b.second;
   const Vec3 &last_a = pair_a.last_normal, &last_b = pair_b.last_normal;
   PairContact &out_a = pair_a.out, &out_b = pair_b.out;
@@ -689,8 +700,8 @@ void posed_contacts_two(WarmPairSolve& pair_a, WarmPairSolve& pair_b, ContactSol
       one.h2 = q.h2[lane];
       one.f = q.f[lane];
     }
-    touching_a = warm_contact_after_proof(a1, a2, pa, qa, false, stats, out_a);
-    touching_b = warm_contact_after_proof(b1, b2, pb, qb, false, stats, out_b);
+    touching_a = warm_contact_after_proof(a1, a2, pa, qa, false, settings, stats, out_a);
+    touching_b = warm_contact_after_proof(b1, b2, pb, qb, false, settings, stats, out_b);
   };
   const bool unit = std::abs(last_a.squaredNorm() - 1.0) <= 64.0 * kEps &&
                     std::abs(last_b.squaredNorm() - 1.0) <= 64.0 * kEps;
@@ -710,7 +721,8 @@ void posed_contacts_two(WarmPairSolve& pair_a, WarmPairSolve& pair_b, ContactSol
     q = at_m;
     alone();
   };
-  const Pair tol_g = 16.0 * kEps * p.size, noise_f = 64.0 * kEps * p.size;
+  const Pair tol_g = settings.gradient_tolerance * kEps * p.size, noise_f = 64.0 * kEps * p.size;
+  const int cap = std::min(kFastIterations, settings.max_iterations);
   Mask done = {0, 0};
   int iterations[2] = {0, 0};
   for (;;) {
@@ -725,7 +737,7 @@ void posed_contacts_two(WarmPairSolve& pair_a, WarmPairSolve& pair_b, ContactSol
     const Pair step2 = x1 * x1 + x2 * x2;
     const Mask stays = definite & (step2 <= 1e-2);
     for (int lane = 0; lane < 2; ++lane)
-      if (active[lane] && (iterations[lane] == kFastIterations || !stays[lane])) {
+      if (active[lane] && (iterations[lane] == cap || !stays[lane])) {
         give_up();
         return;
       }
@@ -788,9 +800,9 @@ void posed_contacts_two(WarmPairSolve& pair_a, WarmPairSolve& pair_b, ContactSol
 }
 
 ContactGeometry ellipsoid_sphere_contact(const Ellipsoid& e, const Vec3& centre, double radius,
-                                         ContactSolverStats& stats,
-                                         const std::optional<Vec3>& initial_normal) {
-  return ellipsoid_contact(e, Ellipsoid::sphere(centre, radius), stats, initial_normal);
+                                         ContactSolverStats& stats, const std::optional<Vec3>& initial_normal,
+                                         const ContactSolverSettings& settings) {
+  return ellipsoid_contact(e, Ellipsoid::sphere(centre, radius), stats, initial_normal, settings);
 }
 
 ContactGeometry ellipsoid_plane_contact(const Ellipsoid& e, const Plane& plane) {
@@ -822,13 +834,13 @@ ContactGeometry posed_plane_contact(const PosedEllipsoid& e, const Plane& plane,
 
 double support_gap_function(const Ellipsoid& e1, const Ellipsoid& e2, const Vec3& n) {
   const PosedEllipsoid p1 = PosedEllipsoid::from(e1), p2 = PosedEllipsoid::from(e2);
-  const PairFrame p(p1, p2);
+  const PairFrame p(p1, p2, {});
   return evaluate(p, n).f / p.scale;
 }
 
 bool proven_separated(const Ellipsoid& e1, const Ellipsoid& e2, double margin) {
   const PosedEllipsoid p1 = PosedEllipsoid::from(e1), p2 = PosedEllipsoid::from(e2);
-  const PairFrame p(p1, p2);
+  const PairFrame p(p1, p2, {});
   return separated_frame(p, margin);
 }
 

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <optional>
 
+#include "dem/contact/contact_solver_settings.h"
 #include "dem/core/types.h"
 
 namespace upgrain::dem {
@@ -136,7 +137,7 @@ struct PairContact {
 // law needs it only at first touch). Returns true when touching. `out.normal` is always set:
 // the direction of the proof or the solver's normal.
 bool posed_contact(const PosedEllipsoid& e1, const PosedEllipsoid& e2, const Vec3* last_normal, bool radius,
-                   ContactSolverStats& stats, PairContact& out);
+                   const ContactSolverSettings& settings, ContactSolverStats& stats, PairContact& out);
 
 // One warm pair of posed_contacts_two(): its grains and last normal, and what the solve gives.
 struct WarmPairSolve {
@@ -152,24 +153,30 @@ struct WarmPairSolve {
 // lanes of a vector while both stay on the straight-line path (docs/ellipsoid-contact.md, "Two
 // pairs at a time"). Precondition: each pair has an ellipsoid and its last normal is a unit
 // vector (a warm pair); others go through posed_contact().
-void posed_contacts_two(WarmPairSolve& pair_a, WarmPairSolve& pair_b, ContactSolverStats& stats);
+void posed_contacts_two(WarmPairSolve& pair_a, WarmPairSolve& pair_b, const ContactSolverSettings& settings,
+                        ContactSolverStats& stats);
 
 // Ellipsoid-plane on a posed ellipsoid, optionally without curvatures.
 ContactGeometry posed_plane_contact(const PosedEllipsoid& e, const Plane& plane, bool curvatures);
 
 // Ellipsoid-ellipsoid (either may be a sphere). `initial_normal`: the previous step's normal
 // of a persisting pair (warm start); without it, a cold start from a few candidate normals.
+// `settings`: the stopping rules (contact_solver_settings.h), the defaults unless a scene sets
+// them.
 ContactGeometry ellipsoid_contact(const Ellipsoid& e1, const Ellipsoid& e2, ContactSolverStats& stats,
-                                  const std::optional<Vec3>& initial_normal = std::nullopt);
+                                  const std::optional<Vec3>& initial_normal = std::nullopt,
+                                  const ContactSolverSettings& settings = {});
 
 // The same without the sphere-sphere shortcut: always the support-function solver (tests).
 ContactGeometry support_function_contact(const Ellipsoid& e1, const Ellipsoid& e2, ContactSolverStats& stats,
-                                         const std::optional<Vec3>& initial_normal = std::nullopt);
+                                         const std::optional<Vec3>& initial_normal = std::nullopt,
+                                         const ContactSolverSettings& settings = {});
 
 // Ellipsoid-sphere: body 1 the ellipsoid, body 2 the sphere.
 ContactGeometry ellipsoid_sphere_contact(const Ellipsoid& e, const Vec3& centre, double radius,
                                          ContactSolverStats& stats,
-                                         const std::optional<Vec3>& initial_normal = std::nullopt);
+                                         const std::optional<Vec3>& initial_normal = std::nullopt,
+                                         const ContactSolverSettings& settings = {});
 
 // Sphere-sphere in closed form: depth = r1 + r2 - |c2 - c1|, normal = (c2 - c1)/|c2 - c1|.
 ContactGeometry sphere_sphere_contact(const Vec3& c1, double r1, const Vec3& c2, double r2);

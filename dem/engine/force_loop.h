@@ -83,6 +83,7 @@ struct ForceInput {
   // Ellipsoid scenes: every local grain posed once per evaluation, and this rank's contact
   // solver counters, cumulative.
   GrainPoses* posed = nullptr;
+  ContactSolverSettings solver_settings;  // the scene's (SceneConfig::contact_solver)
   ContactSolverStats* solver_stats = nullptr;
   ForceOutput* out = nullptr;
 };

@@ -256,7 +256,9 @@ void compute(const ForceInput& in) {
         }
         [&]<class... G>(std::tuple<G...>*) {
           int g = 0;
-          ((out.shaped_pairs[g].empty() ? void() : G::solve(*in.posed, out.shaped_pairs[g], *in.solver_stats),
+          ((out.shaped_pairs[g].empty()
+                ? void()
+                : G::solve(*in.posed, out.shaped_pairs[g], in.solver_settings, *in.solver_stats),
             ++g),
            ...);
         }(static_cast<BatchedPairGeometries*>(nullptr));

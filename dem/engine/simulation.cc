@@ -317,6 +317,7 @@ void Simulation::evaluate_forces() {
   in.rolling = rolling_;
   in.dt = dt_;
   in.posed = &posed_;
+  in.solver_settings = scene_.contact_solver;
   in.solver_stats = &solver_stats_;
   in.out = &out_;
   recorded_ = record_next_;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "dem/boundary/container.h"
+#include "dem/contact/contact_solver_settings.h"
 #include "dem/core/effect_set.h"
 #include "dem/core/material.h"
 #include "dem/core/particle_store.h"
@@ -91,6 +92,8 @@ struct SceneConfig {
   double rolling_friction = 0.05;      // mu_r: plastic limit |M_r| <= mu_r R* F_n
   double rolling_damping_ratio = 0.3;  // eta_r: dashpot C_r = eta_r 2 sqrt(I_r k_r)
   TimeStepRule time_step_rule;
+  // The ellipsoid contact solver's stopping rules (docs/ellipsoid-contact.md).
+  ContactSolverSettings contact_solver;
 };
 
 }  // namespace upgrain::dem

@@ -9,10 +9,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 
+#include "dem/contact/ellipsoid_reference.h"
 #include "tests/unit/ellipsoid_cases.h"
-#include "tests/unit/ellipsoid_reference.h"
 
 namespace upgrain::dem {
 namespace {
@@ -274,6 +275,89 @@ TEST(EllipsoidGeometry, WarmStartConvergesInThreeIterations) {
     EXPECT_LE(worst, move < 5e-4 ? 3 : 4);
     EXPECT_LE(static_cast<double>(total) / count, 3.0);
   }
+}
+
+// The stopping rules (ContactSolverSettings): a looser gradient bound stops Newton earlier, on
+// the force loop's warm path (a normal 1e-4 rad from the exact one) and from cold, and the error
+// it leaves is first order in the bound for the normal, second order for the depth
+// (docs/ellipsoid-contact.md, "Stopping rules"): at a gradient |g| <= tau eps size the normal is
+// off by at most about |g| / lambda_min, and the tangent Hessian's eigenvalues lie between
+// rho - f and R_max - f (rho = c1^2/a1 + c2^2/a2 and R_max = a1^2/c1 + a2^2/c2, the smallest and
+// largest radii of curvature of the Minkowski difference, D4), so the depth is off by at most
+// about R_max/2 times the normal's error squared. A cap below the steps a cold start needs shows
+// up as counted failures.
+struct StopResult {
+  Real depth = 0, normal = 0;  // largest |depth - exact| / c, largest normal angle
+  // Largest error over its bound above, per pair (round-off allowed for).
+  Real normal_over_bound = 0, depth_over_bound = 0;
+  double cold_iterations = 0, warm_iterations = 0;
+  std::int64_t failures = 0;
+};
+
+StopResult solve_with(const ContactSolverSettings& settings, int count) {
+  std::mt19937_64 rng(11);
+  StopResult r;
+  ContactSolverStats cold_stats, warm_stats;
+  for (int i = 0; i < count; ++i) {
+    const Case k = make_case(rng, kShapes[i % 3], Orientation::random, 1e-3);
+    const PosedEllipsoid p1 = PosedEllipsoid::from(k.e1), p2 = PosedEllipsoid::from(k.e2);
+    const Vec3 n = k.normal.cast<double>().normalized();
+    const Vec3 start = Eigen::AngleAxisd(1e-4, n.cross(random_unit(rng)).normalized()) * n;
+    PairContact cold, warm;
+    posed_contact(p1, p2, nullptr, true, settings, cold_stats, cold);
+    posed_contact(p1, p2, &start, false, settings, warm_stats, warm);
+    const Vec3 a1 = k.e1.semi_axes, a2 = k.e2.semi_axes;
+    const double size = (k.e1.centre - k.e2.centre).lpNorm<1>() + a1.maxCoeff() + a2.maxCoeff();
+    const double rho =
+        a1.minCoeff() * a1.minCoeff() / a1.maxCoeff() + a2.minCoeff() * a2.minCoeff() / a2.maxCoeff();
+    const double r_max =
+        a1.maxCoeff() * a1.maxCoeff() / a1.minCoeff() + a2.maxCoeff() * a2.maxCoeff() / a2.minCoeff();
+    const double eps = std::numeric_limits<double>::epsilon();
+    const double normal_bound = settings.gradient_tolerance * eps * size / rho + 1e-11;
+    const double depth_bound = 0.5 * r_max * normal_bound * normal_bound + 64 * eps * size;
+    for (const PairContact* c : {&cold, &warm}) {
+      const Real depth_error = std::abs(static_cast<Real>(c->depth) - k.depth);
+      const Real normal_error = angle(c->normal, k.normal);
+      r.depth = std::max(r.depth, depth_error / k.c_min);
+      r.normal = std::max(r.normal, normal_error);
+      r.normal_over_bound = std::max(r.normal_over_bound, normal_error / normal_bound);
+      r.depth_over_bound = std::max(r.depth_over_bound, depth_error / depth_bound);
+    }
+  }
+  r.cold_iterations = static_cast<double>(cold_stats.newton_iterations) / count;
+  r.warm_iterations = static_cast<double>(warm_stats.newton_iterations) / count;
+  r.failures = cold_stats.failures + warm_stats.failures;
+  return r;
+}
+
+TEST(EllipsoidGeometry, StoppingRulesTradeIterationsForError) {
+  const int count = 600 / kScale;
+  const StopResult exact = solve_with({}, count);
+  EXPECT_LE(exact.depth, 1e-12L);
+  EXPECT_LE(exact.normal, 1e-8L);
+  EXPECT_EQ(exact.failures, 0);
+  ContactSolverSettings loose;
+  loose.gradient_tolerance = 1e10;  // |g| <= 2.2e-6 size
+  const StopResult l = solve_with(loose, count);
+  std::printf("tolerance 16: depth error %.2Le c, normal %.2Le rad, %.2f cold / %.2f warm steps\n",
+              exact.depth, exact.normal, exact.cold_iterations, exact.warm_iterations);
+  std::printf("tolerance 1e10: depth error %.2Le c, normal %.2Le rad, %.2f cold / %.2f warm steps\n", l.depth,
+              l.normal, l.cold_iterations, l.warm_iterations);
+  EXPECT_LT(l.cold_iterations, exact.cold_iterations);
+  EXPECT_LT(l.warm_iterations, exact.warm_iterations);
+  EXPECT_GT(l.normal, 100 * exact.normal);  // the bound is felt
+  std::printf("error over its bound: normal %.2Lf, depth %.2Lf (tolerance 16: %.2Lf, %.2Lf)\n",
+              l.normal_over_bound, l.depth_over_bound, exact.normal_over_bound, exact.depth_over_bound);
+  EXPECT_LE(l.normal_over_bound, 1.0L);
+  EXPECT_LE(l.depth_over_bound, 1.0L);
+  EXPECT_LE(exact.normal_over_bound, 1.0L);
+  EXPECT_LE(exact.depth_over_bound, 1.0L);
+  EXPECT_EQ(l.failures, 0);
+  ContactSolverSettings capped;
+  capped.max_iterations = 2;  // below the 3-4 steps of a cold start
+  const StopResult c = solve_with(capped, count);
+  EXPECT_GT(c.failures, 0);
+  EXPECT_GT(c.depth, exact.depth);
 }
 
 TEST(EllipsoidGeometry, FailuresAndDeepOverlapsAreCounted) {

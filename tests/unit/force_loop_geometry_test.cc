@@ -9,10 +9,10 @@
 #include <limits>
 #include <random>
 
+#include "dem/contact/ellipsoid_reference.h"
 #include "dem/contact/geometry/support_function_pair.h"
 #include "dem/contact/grain_poses.h"
 #include "tests/unit/ellipsoid_cases.h"
-#include "tests/unit/ellipsoid_reference.h"
 
 namespace upgrain::dem {
 namespace {
@@ -57,7 +57,7 @@ TEST(ForceLoopGeometry, WarmPairsMeetTheAccuracyTargets) {
           GrainPoses poses;
           poses.update(store_of(k.e1, k.e2));
           PairContact c;
-          ASSERT_TRUE(posed_contact(poses[0], poses[1], &previous, false, stats, c));
+          ASSERT_TRUE(posed_contact(poses[0], poses[1], &previous, false, {}, stats, c));
           worst_depth = std::max(worst_depth, std::abs(static_cast<Real>(c.depth) - k.depth) / k.c_min);
           worst_angle = std::max(worst_angle, angle(c.normal, k.normal));
           // lever1 - lever2 = c2 - c1, to the rounding of the levers (size ~ a).
@@ -175,7 +175,7 @@ TEST(ForceLoopGeometry, SeparationBudgetNeverHidesAContact) {
         batch[0].i = i;
         batch[0].j = j;
         batch[0].memory = &memory;
-        shaped_pair_geometries(poses, batch, stats);
+        shaped_pair_geometries(poses, batch, {}, stats);
         const bool touching = batch[0].touching;
         ContactSolverStats reference_stats;
         const ContactGeometry truth = ellipsoid_contact(k.e1, k.e2, reference_stats);
@@ -221,10 +221,10 @@ TEST(ForceLoopGeometry, TwoPairsAtOnceAreBitwiseOnePairAtATime) {
     bool alone_touching[2], two_touching[2];
     for (int pair = 0; pair < 2; ++pair)
       alone_touching[pair] =
-          posed_contact(poses[pair][0], poses[pair][1], &previous[pair], false, alone_stats, alone[pair]);
+          posed_contact(poses[pair][0], poses[pair][1], &previous[pair], false, {}, alone_stats, alone[pair]);
     WarmPairSolve lanes[2] = {{&poses[0][0], &poses[0][1], previous[0], {}, false},
                               {&poses[1][0], &poses[1][1], previous[1], {}, false}};
-    posed_contacts_two(lanes[0], lanes[1], two_stats);
+    posed_contacts_two(lanes[0], lanes[1], {}, two_stats);
     for (int pair = 0; pair < 2; ++pair) {
       two[pair] = lanes[pair].out;
       two_touching[pair] = lanes[pair].touching;

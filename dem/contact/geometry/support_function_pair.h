@@ -69,14 +69,15 @@ inline void finish_pair(const GrainPoses& poses, const PairContact& c, bool touc
 // then posed_contact(), two pairs at once (posed_contacts_two: the same results bit for bit and
 // the same counts) where both were touching at the last step, then each pair's memory.
 void shaped_pair_geometries(const GrainPoses& poses, std::vector<ShapedPair>& pairs,
-                            ContactSolverStats& stats);
+                            const ContactSolverSettings& settings, ContactSolverStats& stats);
 
 // The support-function rows of the pair-geometry table (pair_geometries.h).
 struct SupportFunctionPair {
   static constexpr bool closed_form = false;
   static constexpr const char* name = "support function (sphere-ellipsoid, ellipsoid-ellipsoid)";
-  static void solve(const GrainPoses& poses, std::vector<ShapedPair>& pairs, ContactSolverStats& stats) {
-    shaped_pair_geometries(poses, pairs, stats);
+  static void solve(const GrainPoses& poses, std::vector<ShapedPair>& pairs,
+                    const ContactSolverSettings& settings, ContactSolverStats& stats) {
+    shaped_pair_geometries(poses, pairs, settings, stats);
   }
 };
 

@@ -1,6 +1,7 @@
 #pragma once
-// Independent long-double references for the ellipsoid contact geometry tests
-// (docs/ellipsoid-contact.md, "Verification"). Nothing here calls the solver.
+// Independent long-double references for the ellipsoid contact geometry (docs/ellipsoid-contact.md,
+// "Verification"): the tests' and the accuracy study's exact answers. Nothing here calls the
+// solver.
 //  - construct(): places body 2 so that a chosen unit n is a stationary point of f with the
 //    value delta. For |delta| below the smallest radius of curvature of B1 - B2 that point is
 //    the global minimum (D4), so depth and normal are known by construction.
@@ -8,7 +9,9 @@
 //    the whole sphere, then long-double Newton (finite-difference Hessian in a chart) from the
 //    best few lattice points; the lowest wins. Does not rely on D4.
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "dem/contact/ellipsoid_geometry.h"
@@ -150,6 +153,75 @@ inline Minimum dense_minimum(const Body& b1, const Body& b2, int lattice = 6000,
     if (m.f < best.f || static_cast<int>(tried.size()) == 1) best = m;
   }
   return best;
+}
+
+// ---- constructed pairs: a known depth and normal ----------------------------------------
+
+enum class Orientation { random, face_to_face, tip_to_tip };
+inline const char* name(Orientation o) {
+  return o == Orientation::random ? "random" : o == Orientation::face_to_face ? "face-to-face" : "tip-to-tip";
+}
+
+inline Vec3 random_unit(std::mt19937_64& rng) {
+  std::normal_distribution<double> g;
+  Vec3 v;
+  do v = Vec3(g(rng), g(rng), g(rng));
+  while (v.norm() < 1e-3);
+  return v.normalized();
+}
+
+inline Eigen::Quaterniond random_rotation(std::mt19937_64& rng) {
+  std::normal_distribution<double> g;
+  return Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized();
+}
+
+// A rotation taking the body axis `axis` onto n, with a random spin about n.
+inline Eigen::Quaterniond aligned(std::mt19937_64& rng, const Vec3& axis, const Vec3& n) {
+  std::uniform_real_distribution<double> spin(0.0, 2.0 * M_PI);
+  return (Eigen::AngleAxisd(spin(rng), n) * Eigen::Quaterniond::FromTwoVectors(axis, n)).normalized();
+}
+
+// A pair with a known signed depth: body 2 placed by construct_centre2() around a random normal.
+struct ConstructedPair {
+  Ellipsoid e1, e2;
+  V3 normal;     // exact normal
+  Real depth;    // exact depth of the rounded (double) configuration
+  double c_min;  // smallest semi-axis of the pair
+};
+
+// Shapes `ratio1`, `ratio2` (a : b : c, a = 1) with major semi-axes uniform in [a_min, a_max],
+// body 1 at `far_min` to `far_max` from the origin, and depth delta_over_c times the smaller c.
+inline ConstructedPair constructed_pair(std::mt19937_64& rng, const Vec3& ratio1, const Vec3& ratio2,
+                                        Orientation o, double delta_over_c, double a_min = 1e-3,
+                                        double a_max = 2.5e-3, double far_min = 1.5, double far_max = 2.0) {
+  std::uniform_real_distribution<double> size(a_min, a_max), far(far_min, far_max);
+  ConstructedPair k;
+  const Vec3 n = random_unit(rng);
+  k.e1.semi_axes = ratio1 * size(rng);
+  k.e2.semi_axes = ratio2 * size(rng);
+  k.e1.centre = random_unit(rng) * far(rng);
+  if (o == Orientation::random) {
+    k.e1.orientation = random_rotation(rng);
+    k.e2.orientation = random_rotation(rng);
+  } else {
+    const Vec3 axis = o == Orientation::face_to_face ? Vec3::UnitZ() : Vec3::UnitX();
+    k.e1.orientation = aligned(rng, axis, n);
+    k.e2.orientation = aligned(rng, axis, -n);
+  }
+  k.c_min = std::min(k.e1.semi_axes.minCoeff(), k.e2.semi_axes.minCoeff());
+  k.normal = widen(n).normalized();
+  const Real delta = static_cast<Real>(delta_over_c) * k.c_min;
+  const V3 c2 = construct_centre2(body(k.e1), body(k.e2), k.normal, delta);
+  k.e2.centre = c2.cast<double>();
+  // Rounding c2 to double moves it by e; to first order the depth changes by -n.e (D2), the
+  // second-order term is below 1e-30 m.
+  k.depth = delta - k.normal.dot(widen(k.e2.centre) - c2);
+  return k;
+}
+
+inline Real angle(const Vec3& a, const V3& b) {
+  const V3 aw = widen(a);
+  return std::atan2(aw.cross(b).norm(), aw.dot(b));
 }
 
 }  // namespace upgrain::dem::reference
