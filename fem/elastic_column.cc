@@ -160,8 +160,9 @@ void ElasticColumn::setup_system() {
   const std::pair<types::boundary_id, unsigned int> rollers[] = {
       {wall_x0, 0}, {wall_x1, 0}, {wall_y0, 1}, {wall_y1, 1}, {floor_z0, 2}};
   for (const auto& [boundary, component] : rollers)
-    VectorTools::interpolate_boundary_values(dof_handler_, boundary, zero, constraints_,
-                                             fe_.component_mask(FEValuesExtractors::Scalar(component)));
+    if (!(problem_.open_side_x1 && boundary == wall_x1))
+      VectorTools::interpolate_boundary_values(dof_handler_, boundary, zero, constraints_,
+                                               fe_.component_mask(FEValuesExtractors::Scalar(component)));
   constraints_.close();
 
   DynamicSparsityPattern dsp(locally_relevant_dofs_);

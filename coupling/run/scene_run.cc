@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <regex>
+#include <string>
 #include <utility>
 
 #include "coupling/run/grid_evaluation.h"
@@ -115,10 +116,12 @@ class SceneRun {
       MPI_Bcast(where, 3, MPI_LONG, 0, sim.comm());
       state_ = {where[0], static_cast<std::size_t>(where[1]), where[2]};
       clock_ = ProgressClock(sim.is_root() ? on_progress : ProgressReport{}, state_.step);
+      keep_replay_start();
       return;
     }
     files_.record_series(sim);
     files_.write_snapshot(sim);
+    keep_replay_start();
     // Grid stress needs the contacts of a force evaluation, which are recorded on request
     // before the step that computes them (Simulation::request_contacts()).
     if (schedule_.evaluation_every > 0) grids_.emplace(sim, *output);
@@ -138,7 +141,11 @@ class SceneRun {
       const bool evaluate = schedule_.evaluation_due(s);
       const bool record = evaluate || (files_.wants_contacts() && schedule_.snapshot_due(s));
       if (record) sim_.request_contacts();
-      sim_.step();
+      try {
+        sim_.step();
+      } catch (const CollectiveError& e) {
+        stop_with_last_good_state(e);
+      }
       if (evaluate) grids_->evaluate(sim_);
       const bool series_now = schedule_.series_due(s);
       if (series_now) {
@@ -151,6 +158,7 @@ class SceneRun {
       if (files_.enabled() && (schedule_.snapshot_due(s) || r.stopped_at_rest)) {
         if (!series_now) files_.record_series(sim_);
         files_.write_snapshot(sim_);
+        if (!r.stopped_at_rest) keep_replay_start();
       }
       clock_.dynamics(s, schedule_.total, control_.rest_ratio > 0.0, r.stopped_at_rest);
       if (r.stopped_at_rest) {
@@ -200,6 +208,59 @@ class SceneRun {
     files_.write_snapshot(sim_);
   }
 
+  // The state of the last snapshot, kept (on rank 0) for a replay to the last good state when
+  // a guard stops the run. Collective.
+  void keep_replay_start() {
+    if (!files_.enabled()) return;
+    replay_start_ = sim_.capture_state();
+    replay_schedule_ = state_;
+    replay_start_step_ = sim_.step_count();
+  }
+
+  // A guard stopped the run (runaway overlap, a non-finite state, a lost particle: dem/engine/
+  // guards.h) in the step after the evaluation of step k = step_count(), whose state the guard
+  // found wrong. The engine is then half-way into step k + 1, so its state is no longer one of
+  // the run's. The last good state is step k - 1: the run is replayed to it from the state kept
+  // at the last snapshot (the same steps, wall releases and lid; with the deterministic
+  // summation the same bits as the run had, docs/restart.md), checked against the guards, and
+  // written as the last snapshot. The error then says where it is. Collective.
+  [[noreturn]] void stop_with_last_good_state(const CollectiveError& e) {
+    const long good = sim_.step_count() - 1;
+    if (!files_.enabled() || good < replay_start_step_) throw e;
+    std::string where;
+    if (good == replay_start_step_) {
+      where = "; the last good state, step " + std::to_string(good) + ", is the last snapshot written";
+    } else {
+      dem::Simulation replay(sim_.scene(), replay_start_, sim_.comm(), sim_.options());
+      ScheduleState state = replay_schedule_;
+      Lid lid(control_.lid);
+      try {
+        while (replay.step_count() < good) {
+          ++state.step;
+          release_walls(replay, schedule_, state);
+          lid.before_step(replay);
+          if (replay.step_count() + 1 == good && files_.wants_contacts()) replay.request_contacts();
+          replay.step();
+        }
+      } catch (const CollectiveError&) {
+        throw CollectiveError(
+            std::string(e.what()) +
+            "; the replay from the last snapshot to the step before failed as well: the last "
+            "good state written is the last snapshot, step " +
+            std::to_string(replay_start_step_));
+      }
+      // The replayed evaluation is checked as the next step would check it.
+      if (!(replay.diagnostics().max_overlap_ratio <= dem::kRunawayOverlapRatio))
+        throw CollectiveError(std::string(e.what()) + "; the replayed step " + std::to_string(good) +
+                              " is not good either: the last good state written is the last snapshot, step " +
+                              std::to_string(replay_start_step_));
+      files_.write_snapshot(replay);  // checks that the state is finite and whole
+      where = "; the last good state, step " + std::to_string(good) + ", is written as the last snapshot";
+    }
+    throw CollectiveError(std::string(e.what()) + where + " (" + (output_->folder / "snapshots").string() +
+                          ")");
+  }
+
   // Collective: the engine's state and the run's, written by rank 0.
   fs::path write_checkpoint_now() {
     Checkpoint c;
@@ -232,6 +293,10 @@ class SceneRun {
   StateCapture states_;
   Lid lid_;
   ScheduleState state_;
+  // The replay's start (keep_replay_start()): the state on rank 0, the schedule and the step.
+  dem::EngineState replay_start_;
+  ScheduleState replay_schedule_;
+  long replay_start_step_ = 0;
   long first_step_ = 0;  // the engine's step when this run began (a resumed run's checkpoint)
 };
 

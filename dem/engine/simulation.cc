@@ -146,6 +146,7 @@ Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, std::v
 
 void Simulation::set_up(long count, double max_radius, bool shapes, const Box& box, MPI_Comm comm,
                         const EngineOptions& options) {
+  options_ = options;
   shapes_ = shapes;
   rotation_ = scene_.effects.integrates_rotation(shapes_);
   loops_ = select_force_loops(scene_.effects, shapes_, summation_, scene_.contact_law);

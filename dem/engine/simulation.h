@@ -81,6 +81,9 @@ class Simulation {
              const EngineOptions& options = {});
   // The state between two steps, gathered on rank 0 (empty elsewhere). Collective.
   [[nodiscard]] EngineState capture_state() const;
+  // The options the engine was made with (a restored engine's: the box and balance of its
+  // state), to make another engine of the same run from a captured state.
+  [[nodiscard]] const EngineOptions& options() const { return options_; }
 
   void step();
   void run(long steps);
@@ -225,6 +228,7 @@ class Simulation {
   }
 
   SceneConfig scene_;
+  EngineOptions options_;
   std::vector<PlaneWall> walls_;
   std::vector<Vec3> wall_points_at_build_;  // the walls' points when the lists were last built
   bool walls_move_ = false;                 // some wall has a velocity

@@ -7,8 +7,9 @@
    runaway-overlap guard stops it: exit 1 and a one-line diagnosis naming the step, the
    contact's particle, the time step against the safe one. The output folder is consistent:
    no temporary file is left, every HDF5 file opens with its particles whole, the time
-   series' rows are complete and end before the failure, and the last snapshot (the last
-   good state written) is from before it.
+   series' rows are complete, and the last snapshot is the last good state: the step before
+   the one the guard names, written by the driver when the guard stopped the run, and the same
+   bits as the state of a run of the same scene that ends at that step.
 
 Usage: run_unsafe_step.py UPGRAIN WORK FACTOR
 """
@@ -37,7 +38,7 @@ end
 subsection Simulation
   set time step = {dt!r}
   set allow unsafe time step = {unsafe}
-  set end time = 0.3
+  set end time = {end!r}
 end
 subsection Output
   set folder = {folder}
@@ -55,11 +56,11 @@ def fail(message):
     sys.exit('FAILED: ' + message)
 
 
-def write_scene(work, name, dt, unsafe):
+def write_scene(work, name, dt, unsafe, end=0.3):
     folder = os.path.join(work, name)
     path = os.path.join(work, name + '.prm')
     with open(path, 'w') as f:
-        f.write(SCENE.format(dt=dt, unsafe='true' if unsafe else 'false', folder=folder))
+        f.write(SCENE.format(dt=dt, unsafe='true' if unsafe else 'false', folder=folder, end=end))
     return path, folder
 
 
@@ -96,6 +97,9 @@ def main():
     if 'time step' not in p.stderr or 'too large' not in p.stderr:
         fail('the diagnosis does not name the time step as the likely cause')
     failed_at = int(m.group(1))
+    good = failed_at - 1
+    if f'the last good state, step {good}, is written as the last snapshot' not in p.stderr:
+        fail(f'the diagnosis does not say that the last good state (step {good}) is written')
 
     left = [f for f in glob.glob(os.path.join(folder, '**', '*'), recursive=True) if re.search(r'\.tmp\.\d+$', f)]
     if left:
@@ -111,14 +115,30 @@ def main():
                     fail(name + ' does not hold the 150 particles')
                 if 'snapshots' in name:
                     last_step = max(last_step, int(h.attrs['step']))
-    if not 0 <= last_step < failed_at:
-        fail(f'the last snapshot (step {last_step}) is not from before the failure (step {failed_at})')
+    if last_step != good:
+        fail(f'the last snapshot (step {last_step}) is not the last good state (step {good}, the guard named '
+             f'step {failed_at})')
+    # The same scene run to that step and no further: its final snapshot is the state the
+    # failed run had there, bit for bit (the driver replayed to it from its last snapshot).
+    scene, reference = write_scene(work, 'reference', factor * safe, True, end=good * factor * safe)
+    p = run(upgrain, scene)
+    if p.returncode != 0:
+        fail('the run to the last good step failed:\n' + p.stderr)
+    name = f'particles_{good:09d}.h5'
+    compared = 0
+    with h5py.File(os.path.join(folder, 'snapshots', name), 'r') as a, \
+            h5py.File(os.path.join(reference, 'snapshots', name), 'r') as b:
+        for key in b['particles']:
+            if not (a['particles/' + key][()] == b['particles/' + key][()]).all():
+                fail(f'the last good state differs from the run to step {good} in particles/{key}')
+            compared += 1
+    print(f'the last good state, step {good}, equals the run to that step in its {compared} particle datasets')
     with open(os.path.join(folder, 'time_series.csv')) as f:
         rows = [r for r in csv.reader(f) if r and not r[0].startswith('#')]
     widths = {len(r) for r in rows}
     if len(widths) != 1 or len(rows) < 2:
         fail(f'time_series.csv has rows of widths {widths}')
-    print(f'output folder: {len(snapshots)} snapshots, the last at step {last_step} < {failed_at}; '
+    print(f'output folder: {len(snapshots)} snapshots, the last at step {last_step} = {failed_at} - 1; '
           f'{len(rows) - 1} complete time-series rows; no temporary file')
     print('OK')
 
