@@ -13,6 +13,7 @@
 #include "dem/scene/fill.h"
 #include "dem/scene/gradation.h"
 #include "dem/scene/grain_shape.h"
+#include "dem/scene/insertion.h"
 #include "dem/time_step.h"
 
 namespace upgrain::coupling {
@@ -221,6 +222,15 @@ void validate_scene(SceneInput& in) {
         << " s must lie in (0, Simulation/end time = " << s.end_time << " s)";
       throw Error(m.str());
     }
+  }
+  if (s.insertion.enabled() && !in.initial_packing.empty())
+    throw Error(where +
+                "Insertion/count > 0 with Particles/initial packing: a pour takes the scene's gradation and "
+                "shapes, which a packing replaces; pour into a fill, or set 'Insertion/count = 0'");
+  try {
+    dem::validate_insertion(s);
+  } catch (const Error& e) {
+    throw Error(where + e.what());
   }
   check_memory(in, where);
   check_gradation_sampling(in, where);

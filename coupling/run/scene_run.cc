@@ -104,16 +104,18 @@ class SceneRun {
         checkpoints_(output ? output->checkpoint : no_checkpoints_, sim.time_step(), output.has_value()),
         clock_(sim.is_root() ? on_progress : ProgressReport{}, resume ? resume->schedule.step : 0),
         states_(output ? output->coarse_graining : CoarseGrainingCapture{}),
-        lid_(control.lid) {
+        lid_(control.lid),
+        pour_(sim.scene()) {
     if (resume) {
       files_.resume(sim, resume->files);
       states_.resume(sim, resume->cg_reference);
       if (schedule_.evaluation_every > 0) grids_.emplace(sim, *output, &resume->grid_state);
       // The schedule's state is rank 0's (the checkpoint is read there).
-      long where[3] = {resume->schedule.step, static_cast<long>(resume->schedule.next_release),
-                       resume->schedule.rest_check_from};
-      MPI_Bcast(where, 3, MPI_LONG, 0, sim.comm());
+      long where[5] = {resume->schedule.step, static_cast<long>(resume->schedule.next_release),
+                       resume->schedule.rest_check_from, resume->pour.inserted, resume->pour.batches};
+      MPI_Bcast(where, 5, MPI_LONG, 0, sim.comm());
       state_ = {where[0], static_cast<std::size_t>(where[1]), where[2]};
+      pour_ = dem::Pour(sim.scene(), {where[3], where[4]});
       clock_ = ProgressClock(sim.is_root() ? on_progress : ProgressReport{}, state_.step);
       return;
     }
@@ -134,7 +136,10 @@ class SceneRun {
       states_.at_step(sim_);
       release_walls(sim_, schedule_, state_);
       lid_.before_step(sim_);
-      const bool walls_pending = state_.next_release < schedule_.releases.size() || control_.lid.enabled();
+      pour_.before_step(sim_);
+      // Not at rest while walls are to go, a lid works or grains are still to come.
+      const bool walls_pending =
+          state_.next_release < schedule_.releases.size() || control_.lid.enabled() || !pour_.done();
       const bool evaluate = schedule_.evaluation_due(s);
       const bool record = evaluate || (files_.wants_contacts() && schedule_.snapshot_due(s));
       if (record) sim_.request_contacts();
@@ -178,6 +183,7 @@ class SceneRun {
       final_step();
     }
     measure_final_state(sim_, clock_.seconds(), sim_.step_count() - first_step_, r);
+    r.inserted = pour_.state().inserted;
     if (grids_) {
       r.final_stress = grids_->final_stress();
       r.final_grid = grids_->final_grid();
@@ -210,6 +216,7 @@ class SceneRun {
       c.time = sim_.time();
       c.scene = output_->checkpoint.scene;
       c.run.schedule = state_;
+      c.run.pour = pour_.state();
       c.run.files = files_.state();
       c.run.grids = grids_.has_value();
       if (grids_) c.run.grid_state = grids_->state();
@@ -231,6 +238,7 @@ class SceneRun {
   ProgressClock clock_;
   StateCapture states_;
   Lid lid_;
+  dem::Pour pour_;  // insertion during the run (docs/insertion.md)
   ScheduleState state_;
   long first_step_ = 0;  // the engine's step when this run began (a resumed run's checkpoint)
 };
