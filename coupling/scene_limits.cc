@@ -41,7 +41,9 @@ void check_memory(const SceneInput& in, const std::string& where) {
   const dem::io::GridStressOptions& gs = in.output.grid_stress;
   std::ostringstream m;
   m << where << "the scene needs at least " << format_bytes(need.total) << " of memory, this machine has "
-    << format_bytes(have) << " (Particles/count = " << in.scene.particles.count << ": "
+    << format_bytes(have) << " (Particles/count = " << in.scene.particles.count
+    << (in.scene.insertion.enabled() ? " + Insertion/count = " + std::to_string(in.scene.insertion.count) : "")
+    << ": "
     << format_bytes(need.grains);
   if (need.cells > 0.0)
     m << "; Stress/grid cells = " << gs.cells[0] << ", " << gs.cells[1] << ", " << gs.cells[2] << ": "
