@@ -227,13 +227,13 @@ void validate_scene(SceneInput& in) {
     throw Error(where +
                 "Insertion/count > 0 with Particles/initial packing: a pour takes the scene's gradation and "
                 "shapes, which a packing replaces; pour into a fill, or set 'Insertion/count = 0'");
+  check_memory(in, where);
+  check_gradation_sampling(in, where);
   try {
-    dem::validate_insertion(s);
+    dem::validate_insertion(s);  // after the memory check: it draws the pour's radii
   } catch (const Error& e) {
     throw Error(where + e.what());
   }
-  check_memory(in, where);
-  check_gradation_sampling(in, where);
   double fill_top = 0.0;
   try {
     fill_top = dem::plan_fill(s).top;
