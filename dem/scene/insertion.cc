@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <sstream>
@@ -14,10 +15,6 @@
 namespace upgrain::dem {
 
 namespace {
-
-// Random sequential addition jams near a solid fraction of 0.38 (Widom 1966; Feder 1980); a
-// batch that needs more than this share of the inlet would mostly wait for the next one.
-constexpr double kBatchFillLimit = 0.3;
 
 // SplitMix64 (Steele, Lea and Flood 2014): a seed per batch from the scene's and the batch
 // index, so that neighbouring batches draw unrelated streams.
@@ -88,22 +85,41 @@ void validate_insertion(const SceneConfig& s) {
       << 2.0 * r_max << " m";
     throw Error(m.str());
   }
-  // The volume one batch brings against the inlet's.
-  const PourPlan plan = plan_pour(s);
-  const long per_batch = std::max(1L, grains_due(in, plan, 0));
-  double volume = 0.0;
-  for (long k = 0; k < per_batch && k < static_cast<long>(plan.radius.size()); ++k)
-    volume += plan.cumulative_mass[k] - (k > 0 ? plan.cumulative_mass[k - 1] : 0.0);
-  volume /= s.particles.material.density;
-  const double inlet = (hi - lo).prod();
-  if (volume > kBatchFillLimit * inlet) {
+  const InletLoad load = inlet_load(s);
+  if (load.batch > kBatchFillLimit) {
     m.precision(3);
-    m << "a batch (" << per_batch << " grains: the rate times Insertion/interval = " << in.interval
-      << " s) fills " << volume / inlet << " of the inlet's volume " << inlet
+    m << "a batch (" << load.grains_per_batch
+      << " grains: the rate times Insertion/interval = " << in.interval << " s) fills " << load.batch
+      << " of the inlet's volume " << (hi - lo).prod()
       << " m^3; random placement jams near 0.38 and takes at most " << kBatchFillLimit
       << "; enlarge the inlet or shorten the interval";
     throw Error(m.str());
   }
+}
+
+InletLoad inlet_load(const SceneConfig& s) {
+  const InsertionSpec& in = s.insertion;
+  InletLoad load;
+  if (!in.enabled()) return load;
+  // The volume the first batch brings against the inlet's.
+  const PourPlan plan = plan_pour(s);
+  load.grains_per_batch = std::max(1L, grains_due(in, plan, 0));
+  double volume = 0.0;
+  for (long k = 0; k < load.grains_per_batch && k < static_cast<long>(plan.radius.size()); ++k)
+    volume += plan.cumulative_mass[k] - (k > 0 ? plan.cumulative_mass[k - 1] : 0.0);
+  volume /= s.particles.material.density;
+  const Vec3 size = in.inlet_hi - in.inlet_lo;
+  load.batch = volume / size.prod();
+  // How long a grain placed at the inlet's top takes to fall out of it: h = v t + g t^2 / 2
+  // with v the downward speed; the batches of that time lie in the inlet together.
+  const double g = s.effects.gravity ? s.gravity : 0.0;
+  const double v = std::max(0.0, -in.velocity.z());
+  const double h = size.z();
+  const double t = g > 0.0   ? (std::sqrt(v * v + 2.0 * g * h) - v) / g
+                   : v > 0.0 ? h / v
+                             : std::numeric_limits<double>::infinity();
+  load.held = load.batch * (1.0 + std::floor(t / in.interval));
+  return load;
 }
 
 PourPlan plan_pour(const SceneConfig& s) {
@@ -150,6 +166,13 @@ long grains_due(const InsertionSpec& in, const PourPlan& plan, long batch) {
     return n;
   }
   return std::min(in.count, static_cast<long>(std::floor(in.rate * elapsed + 0.5)));
+}
+
+double last_batch_time(const SceneConfig& s, const PourPlan& plan) {
+  const InsertionSpec& in = s.insertion;
+  long b = 0;
+  while (grains_due(in, plan, b) < in.count) ++b;
+  return in.start_time + static_cast<double>(b) * in.interval;
 }
 
 std::uint64_t batch_seed(const SceneConfig& s, long batch) {

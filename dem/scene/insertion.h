@@ -16,6 +16,21 @@ namespace upgrain::dem {
 // positive, a start after the end time, or a batch the inlet cannot take.
 void validate_insertion(const SceneConfig& scene);
 
+// Random sequential addition jams near a solid fraction of 0.38 (Widom 1966; Feder 1980): a
+// batch that needs more than this share of the inlet would mostly wait for the next one.
+inline constexpr double kBatchFillLimit = 0.3;
+
+// What a pour asks of its inlet: the share of the inlet's volume one batch fills, and the share
+// the batches fill that lie in it together while a grain placed at its top falls out of it
+// (from the insertion velocity under gravity). Above kBatchFillLimit grains wait, and the pour
+// falls behind its rate.
+struct InletLoad {
+  long grains_per_batch = 0;
+  double batch = 0.0;
+  double held = 0.0;
+};
+InletLoad inlet_load(const SceneConfig& scene);
+
 // The grains of the whole pour, drawn once from the scene's seed: grain k's major semi-axis
 // (Particles/radius or the gradation), its shape (a row of Particles/shapes) and the mass of
 // grains 0..k (for a mass rate).
@@ -31,6 +46,10 @@ PourPlan plan_pour(const SceneConfig& scene);
 // rate x elapsed time, or the grains whose mass fits under mass rate x elapsed time, at most
 // the count.
 long grains_due(const InsertionSpec& spec, const PourPlan& plan, long batch);
+
+// The time of the batch that brings the pour's last grain when every batch goes in whole (a
+// full inlet delays it).
+double last_batch_time(const SceneConfig& scene, const PourPlan& plan);
 
 // The seed of batch b's positions and orientations: the same for a batch whichever rank or run
 // draws it.

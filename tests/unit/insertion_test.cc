@@ -152,6 +152,21 @@ TEST(Insertion, GrainsDueFollowTheRateUpToTheCount) {
   EXPECT_EQ(grains_due(s.insertion, plan, 20), 300);
 }
 
+TEST(Insertion, InletLoadCountsTheBatchesStillFallingThroughTheInlet) {
+  SceneConfig s = pour_scene();
+  // 20 spheres of 1 mm per batch in an inlet of 18 x 18 x 10 mm.
+  const double batch = 20.0 * 4.0 / 3.0 * std::numbers::pi * 1e-9 / (0.018 * 0.018 * 0.01);
+  InletLoad load = inlet_load(s);
+  EXPECT_EQ(load.grains_per_batch, 20);
+  EXPECT_NEAR(load.batch, batch, 1e-12 * batch);
+  // From rest a grain falls 1 cm in sqrt(2 h / g) = 0.045 s: the batch placed then and the four
+  // before it lie in the inlet together.
+  EXPECT_DOUBLE_EQ(load.held, 5.0 * load.batch);
+  // At 1 m/s down it is out in 9.6 ms, before the next batch.
+  s.insertion.velocity = Vec3(0.0, 0.0, -1.0);
+  EXPECT_DOUBLE_EQ(inlet_load(s).held, load.batch);
+}
+
 TEST(Insertion, BadSettingsAreRefusedNamingTheEntry) {
   EXPECT_EQ(refusal(pour_scene()), "");
   auto refused = [](const std::function<void(SceneConfig&)>& change, const std::string& words) {
