@@ -97,10 +97,14 @@ void print_deposition(const upgrain::coupling::SceneInput& in, const upgrain::co
     std::printf("  relaxed to static equilibrium: %ld FIRE steps, residual force %.2e, torque %.2e%s\n",
                 r.relaxation->steps, r.relaxation->max_force_residual, r.relaxation->max_torque_residual,
                 r.relaxation->converged ? "" : " (not converged: step limit)");
+  if (in.scene.insertion.enabled())
+    std::printf("  poured: %ld of %ld grains (Insertion/count)\n", r.inserted, in.scene.insertion.count);
+  const long grains = in.scene.particles.count + r.inserted;
   std::printf("  bed: surface %.4f m, solid fraction %.4f, %.2f contacts per particle, %ld outside\n",
               r.bed.surface_height, r.bed.solid_fraction,
-              2.0 * static_cast<double>(r.diagnostics.particle_contacts) /
-                  static_cast<double>(in.scene.particles.count),
+              grains > 0
+                  ? 2.0 * static_cast<double>(r.diagnostics.particle_contacts) / static_cast<double>(grains)
+                  : 0.0,
               r.bed.particles_outside);
   if (std::isfinite(r.kinetic_to_released))
     std::printf("  energy: kinetic/released %.3e, balance error %.3e\n", r.kinetic_to_released,

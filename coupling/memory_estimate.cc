@@ -34,7 +34,8 @@ double cgroup_limit() {
 
 MemoryEstimate estimate_memory(const SceneInput& in) {
   MemoryEstimate m;
-  m.grains = kBytesPerGrain * static_cast<double>(in.scene.particles.count);
+  // With a pour (docs/insertion.md), the grains it brings too.
+  m.grains = kBytesPerGrain * static_cast<double>(in.scene.particles.count + in.scene.insertion.count);
   const dem::io::GridStressOptions& gs = in.output.grid_stress;
   if (gs.enabled()) {
     const double cells = static_cast<double>(gs.cells[0]) * gs.cells[1] * gs.cells[2];

@@ -83,7 +83,8 @@ const std::vector<ParameterSpec>& parameter_schema() {
        "Rolling resistance at every contact: elastic-plastic spring-dashpot (Iwashita and Oda 1998; Ai et "
        "al. 2011, model C), |M_r| <= mu_r R* F_n. Not part of the paper's law: auto is off. Needs rotation."},
 
-      {"Particles", "count", "2000", K::integer, 1, 1e9, "", "-", "Number of grains."},
+      {"Particles", "count", "2000", K::integer, 0, 1e9, "", "-",
+       "Number of grains of the initial fill (0: an empty container, for a pour: Insertion/count)."},
       {"Particles", "radius", "1.5e-3", K::real, 1e-9, 10.0, "", "m",
        "Radius of monodisperse spheres (used when 'gradation' is empty)."},
       {"Particles", "gradation", "", K::text, 0, 0, "", "m : -",
@@ -197,6 +198,22 @@ const std::vector<ParameterSpec>& parameter_schema() {
        "Amplitude of a uniform random velocity added to each grain."},
       {"Fill", "seed", "12345", K::integer, 0, 2147483647, "", "-",
        "Seed of the random numbers (radii, jitter)."},
+
+      {"Insertion", "count", "0", K::integer, 0, 1e9, "", "-",
+       "Grains poured in during the run from the inlet box (docs/insertion.md), with the scene's "
+       "gradation and shapes; 0: no insertion."},
+      {"Insertion", "rate", "0", K::real, 0.0, 1e12, "", "grains/s",
+       "Grains inserted per second (give this or 'mass rate')."},
+      {"Insertion", "mass rate", "0", K::real, 0.0, 1e9, "", "kg/s",
+       "Mass inserted per second (give this or 'rate')."},
+      {"Insertion", "start time", "0", K::real, 0.0, 1e6, "", "s", "Time of the first batch."},
+      {"Insertion", "interval", "0.01", K::real, 1e-12, 1e6, "", "s",
+       "Time between two batches; each brings the grains due by the rate."},
+      {"Insertion", "inlet min", "0, 0, 0", K::vector3, -1e4, 1e4, "", "m",
+       "Lower corner of the inlet box, inside the container, where new grains are placed."},
+      {"Insertion", "inlet max", "0, 0, 0", K::vector3, -1e4, 1e4, "", "m", "Upper corner of the inlet box."},
+      {"Insertion", "velocity", "0, 0, 0", K::vector3, -1e4, 1e4, "", "m/s",
+       "Initial velocity of every new grain."},
 
       {"Output", "folder", "upgrain-output", K::text, 0, 0, "", "-", "Folder for all results of the run."},
       {"Output", "overwrite", "false", K::boolean, 0, 0, "", "-",

@@ -23,14 +23,18 @@ void check_gradation_sampling(const SceneInput& in, const std::string& where) {
   // About 10^8 draws take a second; 10^9 is where --check would sit for half a minute.
   constexpr double kMostDraws = 1e9;
   const double acceptance = dem::sampling_acceptance(curve);
-  const double draws = static_cast<double>(in.scene.particles.count) / acceptance;
+  // The fill's grains and a pour's (docs/insertion.md), each drawn the same way.
+  const long count = std::max(in.scene.particles.count, in.scene.insertion.count);
+  const char* entry =
+      in.scene.particles.count >= in.scene.insertion.count ? "Particles/count" : "Insertion/count";
+  const double draws = static_cast<double>(count) / acceptance;
   if (draws <= kMostDraws) return;
   std::ostringstream m;
   m.precision(3);
   m << where << "Particles/gradation spans radii " << curve.front().radius << " to " << curve.back().radius
-    << " m: drawing Particles/count = " << in.scene.particles.count
-    << " grains by their mass fractions accepts one draw in " << 1.0 / acceptance << " (about " << draws
-    << " draws, more than " << kMostDraws << "); raise the smallest radius or use fewer grains";
+    << " m: drawing " << entry << " = " << count << " grains by their mass fractions accepts one draw in "
+    << 1.0 / acceptance << " (about " << draws << " draws, more than " << kMostDraws
+    << "); raise the smallest radius or use fewer grains";
   throw Error(m.str());
 }
 
@@ -41,8 +45,10 @@ void check_memory(const SceneInput& in, const std::string& where) {
   const dem::io::GridStressOptions& gs = in.output.grid_stress;
   std::ostringstream m;
   m << where << "the scene needs at least " << format_bytes(need.total) << " of memory, this machine has "
-    << format_bytes(have) << " (Particles/count = " << in.scene.particles.count << ": "
-    << format_bytes(need.grains);
+    << format_bytes(have) << " (Particles/count = " << in.scene.particles.count
+    << (in.scene.insertion.enabled() ? " + Insertion/count = " + std::to_string(in.scene.insertion.count)
+                                     : "")
+    << ": " << format_bytes(need.grains);
   if (need.cells > 0.0)
     m << "; Stress/grid cells = " << gs.cells[0] << ", " << gs.cells[1] << ", " << gs.cells[2] << ": "
       << format_bytes(need.cells);

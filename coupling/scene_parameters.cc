@@ -238,6 +238,25 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   s.fill.seed = static_cast<std::uint64_t>(prm.get_integer("seed"));
   prm.leave_subsection();
 
+  prm.enter_subsection("Insertion");
+  {
+    auto vector3 = [&](const char* name) {
+      const auto v = Patterns::Tools::Convert<std::vector<double>>::to_value(
+          prm.get(name), Patterns::List(Patterns::Double(), 3, 3, ","));
+      return dem::Vec3(v[0], v[1], v[2]);
+    };
+    dem::InsertionSpec& ins = s.insertion;
+    ins.count = prm.get_integer("count");
+    ins.rate = prm.get_double("rate");
+    ins.mass_rate = prm.get_double("mass rate");
+    ins.start_time = prm.get_double("start time");
+    ins.interval = prm.get_double("interval");
+    ins.inlet_lo = vector3("inlet min");
+    ins.inlet_hi = vector3("inlet max");
+    ins.velocity = vector3("velocity");
+  }
+  prm.leave_subsection();
+
   prm.enter_subsection("Lid");
   {
     LidControl& lid = in.control.lid;

@@ -13,6 +13,7 @@
 #include "dem/scene/fill.h"
 #include "dem/scene/gradation.h"
 #include "dem/scene/grain_shape.h"
+#include "dem/scene/insertion.h"
 #include "dem/time_step.h"
 
 namespace upgrain::coupling {
@@ -222,8 +223,26 @@ void validate_scene(SceneInput& in) {
       throw Error(m.str());
     }
   }
+  if (s.insertion.enabled() && !in.initial_packing.empty())
+    throw Error(where +
+                "Insertion/count > 0 with Particles/initial packing: a pour takes the scene's gradation and "
+                "shapes, which a packing replaces; pour into a fill, or set 'Insertion/count = 0'");
   check_memory(in, where);
   check_gradation_sampling(in, where);
+  try {
+    dem::validate_insertion(s);  // after the memory check: it draws the pour's radii
+  } catch (const Error& e) {
+    throw Error(where + e.what());
+  }
+  if (const dem::InletLoad load = dem::inlet_load(s); load.held > dem::kBatchFillLimit) {
+    std::ostringstream m;
+    m.precision(3);
+    m << where << "Insertion: the batches that lie in the inlet together before their grains fall out of it "
+      << "fill " << load.held << " of it (one batch " << load.batch
+      << "): grains will wait and the pour will fall behind its rate; make the inlet taller, give a "
+         "downward Insertion/velocity or a lower rate";
+    in.warnings.push_back(m.str());
+  }
   double fill_top = 0.0;
   try {
     fill_top = dem::plan_fill(s).top;
@@ -322,6 +341,21 @@ void validate_scene(SceneInput& in) {
     }
     CoarseGrainingCapture& capture = in.output.coarse_graining;
     capture.enabled = in.study.compare_with_continuum && cg.any();
+    if (capture.enabled && cg.displacement && s.insertion.enabled()) {
+      // The displacement is measured from each grain's position at the reference time: a grain
+      // poured after it has none (docs/insertion.md).
+      const double last = dem::last_batch_time(s, dem::plan_pour(s));
+      if (cg.reference_time <= last) {
+        std::ostringstream m;
+        m << where << "CoarseGraining/reference time = " << cg.reference_time
+          << " s is not after the pour's last batch (t = " << last
+          << " s, Insertion; later if the inlet holds batches back): the grains poured later have no "
+             "reference "
+             "position for the displacement; set a later reference time, or leave displacement out of "
+             "CoarseGraining/fields";
+        throw Error(m.str());
+      }
+    }
     capture.displacement = cg.displacement;
     capture.reference_time = cg.reference_time;
     capture.later_steps =

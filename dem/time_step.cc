@@ -11,7 +11,12 @@ namespace upgrain::dem {
 
 double expected_impact_speed(const SceneConfig& s, double fill_top) {
   const double g = s.effects.gravity ? s.gravity : 0.0;
-  const double v0 = s.fill.velocity.norm() + std::sqrt(3.0) * s.fill.velocity_jitter;
+  double v0 = s.fill.velocity.norm() + std::sqrt(3.0) * s.fill.velocity_jitter;
+  // A pour's grains fall from the top of its inlet with their own velocity (docs/insertion.md).
+  if (s.insertion.enabled()) {
+    fill_top = std::max(fill_top, s.insertion.inlet_hi.z());
+    v0 = std::max(v0, s.insertion.velocity.norm());
+  }
   return v0 + std::sqrt(2.0 * g * std::max(fill_top, 0.0));
 }
 

@@ -23,7 +23,7 @@ struct TimeStepEstimate {
 TimeStepEstimate estimate_time_step(const SceneConfig& scene);
 
 // The largest impact speed a scene produces by itself: the initial speed plus free fall
-// from the top of the fill to the floor.
+// from the top of the fill (or of a pour's inlet, with its velocity) to the floor.
 double expected_impact_speed(const SceneConfig& scene, double fill_top);
 
 }  // namespace upgrain::dem

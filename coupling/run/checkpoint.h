@@ -13,6 +13,7 @@
 #include "coupling/run/grid_evaluation.h"
 #include "coupling/run/run_schedule.h"
 #include "dem/engine/engine_state.h"
+#include "dem/engine/pour.h"
 #include "dem/io/run_recorder.h"
 #include "upscale/cg/grain_state.h"
 
@@ -24,6 +25,7 @@ inline constexpr int kCheckpointVersion = 2;
 // Where a run stands besides the engine.
 struct RunState {
   ScheduleState schedule;
+  dem::PourState pour;  // grains inserted and batches done (docs/insertion.md)
   dem::io::RunRecorder::State files;
   bool grids = false;  // the run evaluates grids
   GridEvaluationState grid_state;

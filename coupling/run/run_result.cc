@@ -43,7 +43,7 @@ void measure_final_state(dem::Simulation& sim, double wall_seconds, long steps_t
 std::map<std::string, std::string> summary_entries(const dem::Simulation& sim, const RunResult& r,
                                                    const std::vector<dem::EffectChoice>& effects) {
   const auto n = static_cast<double>(sim.particle_count());
-  return {
+  std::map<std::string, std::string> entries = {
       {"particles", num(n)},
       {"mpi_ranks", num(sim.ranks())},
       {"summation", quoted(dem::to_string(sim.summation()))},
@@ -77,6 +77,11 @@ std::map<std::string, std::string> summary_entries(const dem::Simulation& sim, c
       {"relaxation_force_residual", num(r.relaxation ? r.relaxation->max_force_residual : 0.0)},
       {"relaxation_torque_residual", num(r.relaxation ? r.relaxation->max_torque_residual : 0.0)},
   };
+  if (const dem::InsertionSpec& in = sim.scene().insertion; in.enabled()) {
+    entries["inserted_particles"] = num(static_cast<double>(r.inserted));
+    entries["insertion_target"] = num(static_cast<double>(in.count));
+  }
+  return entries;
 }
 
 }  // namespace upgrain::coupling

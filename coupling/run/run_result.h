@@ -34,6 +34,7 @@ struct RunResult {
   std::vector<dem::Vec3> wall_forces;               // final force of the grains on each wall (N)
   std::vector<std::string> wall_names;
   double total_mass = 0.0;  // kg
+  long inserted = 0;        // grains poured in during the run (docs/insertion.md)
   // The last grid-stress evaluation, when the output asked for one (for in-memory use).
   std::optional<dem::GridStress> final_stress;
   dem::RegularGrid final_grid;

@@ -105,16 +105,18 @@ class SceneRun {
         checkpoints_(output ? output->checkpoint : no_checkpoints_, sim.time_step(), output.has_value()),
         clock_(sim.is_root() ? on_progress : ProgressReport{}, resume ? resume->schedule.step : 0),
         states_(output ? output->coarse_graining : CoarseGrainingCapture{}),
-        lid_(control.lid) {
+        lid_(control.lid),
+        pour_(sim.scene()) {
     if (resume) {
       files_.resume(sim, resume->files);
       states_.resume(sim, resume->cg_reference);
       if (schedule_.evaluation_every > 0) grids_.emplace(sim, *output, &resume->grid_state);
       // The schedule's state is rank 0's (the checkpoint is read there).
-      long where[3] = {resume->schedule.step, static_cast<long>(resume->schedule.next_release),
-                       resume->schedule.rest_check_from};
-      MPI_Bcast(where, 3, MPI_LONG, 0, sim.comm());
+      long where[5] = {resume->schedule.step, static_cast<long>(resume->schedule.next_release),
+                       resume->schedule.rest_check_from, resume->pour.inserted, resume->pour.batches};
+      MPI_Bcast(where, 5, MPI_LONG, 0, sim.comm());
       state_ = {where[0], static_cast<std::size_t>(where[1]), where[2]};
+      pour_ = dem::Pour(sim.scene(), {where[3], where[4]});
       clock_ = ProgressClock(sim.is_root() ? on_progress : ProgressReport{}, state_.step);
       keep_replay_start();
       return;
@@ -135,9 +137,10 @@ class SceneRun {
     for (long s = state_.step + 1; s <= schedule_.total; ++s) {
       state_.step = s;
       states_.at_step(sim_);
-      release_walls(sim_, schedule_, state_);
-      lid_.before_step(sim_);
-      const bool walls_pending = state_.next_release < schedule_.releases.size() || control_.lid.enabled();
+      controls_before_step(sim_, state_, lid_, pour_);
+      // Not at rest while walls are to go, a lid works or grains are still to come.
+      const bool walls_pending =
+          state_.next_release < schedule_.releases.size() || control_.lid.enabled() || !pour_.done();
       const bool evaluate = schedule_.evaluation_due(s);
       const bool record = evaluate || (files_.wants_contacts() && schedule_.snapshot_due(s));
       if (record) sim_.request_contacts();
@@ -186,6 +189,7 @@ class SceneRun {
       final_step();
     }
     measure_final_state(sim_, clock_.seconds(), sim_.step_count() - first_step_, r);
+    r.inserted = pour_.state().inserted;
     if (grids_) {
       r.final_stress = grids_->final_stress();
       r.final_grid = grids_->final_grid();
@@ -208,12 +212,21 @@ class SceneRun {
     files_.write_snapshot(sim_);
   }
 
+  // The scene's controls before a step: the walls released, the lid, the pour. The run's loop
+  // and the replay to the last good state call the same. Collective.
+  void controls_before_step(dem::Simulation& sim, ScheduleState& state, Lid& lid, dem::Pour& pour) {
+    release_walls(sim, schedule_, state);
+    lid.before_step(sim);
+    pour.before_step(sim);
+  }
+
   // The state of the last snapshot, kept (on rank 0) for a replay to the last good state when
   // a guard stops the run. Collective.
   void keep_replay_start() {
     if (!files_.enabled()) return;
     replay_start_ = sim_.capture_state();
     replay_schedule_ = state_;
+    replay_pour_ = pour_.state();
     replay_start_step_ = sim_.step_count();
   }
 
@@ -221,7 +234,7 @@ class SceneRun {
   // guards.h) in the step after the evaluation of step k = step_count(), whose state the guard
   // found wrong. The engine is then half-way into step k + 1, so its state is no longer one of
   // the run's. The last good state is step k - 1: the run is replayed to it from the state kept
-  // at the last snapshot (the same steps, wall releases and lid; with the deterministic
+  // at the last snapshot (the same steps, wall releases, lid and pour; with the deterministic
   // summation the same bits as the run had, docs/restart.md), checked against the guards, and
   // written as the last snapshot. The error then says where it is. Collective.
   [[noreturn]] void stop_with_last_good_state(const CollectiveError& e) {
@@ -234,11 +247,11 @@ class SceneRun {
       dem::Simulation replay(sim_.scene(), replay_start_, sim_.comm(), sim_.options());
       ScheduleState state = replay_schedule_;
       Lid lid(control_.lid);
+      dem::Pour pour(replay.scene(), replay_pour_);
       try {
         while (replay.step_count() < good) {
           ++state.step;
-          release_walls(replay, schedule_, state);
-          lid.before_step(replay);
+          controls_before_step(replay, state, lid, pour);
           if (replay.step_count() + 1 == good && files_.wants_contacts()) replay.request_contacts();
           replay.step();
         }
@@ -271,6 +284,7 @@ class SceneRun {
       c.time = sim_.time();
       c.scene = output_->checkpoint.scene;
       c.run.schedule = state_;
+      c.run.pour = pour_.state();
       c.run.files = files_.state();
       c.run.grids = grids_.has_value();
       if (grids_) c.run.grid_state = grids_->state();
@@ -292,10 +306,12 @@ class SceneRun {
   ProgressClock clock_;
   StateCapture states_;
   Lid lid_;
+  dem::Pour pour_;  // insertion during the run (docs/insertion.md)
   ScheduleState state_;
   // The replay's start (keep_replay_start()): the state on rank 0, the schedule and the step.
   dem::EngineState replay_start_;
   ScheduleState replay_schedule_;
+  dem::PourState replay_pour_;
   long replay_start_step_ = 0;
   long first_step_ = 0;  // the engine's step when this run began (a resumed run's checkpoint)
 };

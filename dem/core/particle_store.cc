@@ -55,6 +55,19 @@ void ParticleStore::add_sphere(GlobalId gid, double r, double density, const Vec
   }
 }
 
+void ParticleStore::ensure_shapes() {
+  if (has_shapes()) return;
+  const std::size_t n = size();
+  shape.assign(n, ShapeKind::sphere);
+  semi_axes.resize(n);
+  orientation.assign(n, Eigen::Quaterniond::Identity());
+  inertia_body.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    semi_axes[i] = Vec3::Constant(radius[i]);
+    inertia_body[i] = Vec3::Constant(1.0 / inv_inertia[i]);
+  }
+}
+
 void ParticleStore::add_ellipsoid(GlobalId gid, const EllipsoidBody& body, const GrainMotion& motion) {
   const Vec3& ax = body.semi_axes;
   const double density = body.density;
@@ -63,18 +76,8 @@ void ParticleStore::add_ellipsoid(GlobalId gid, const EllipsoidBody& body, const
     m << "particle " << gid << ": semi-axes must satisfy a >= b >= c > 0, got " << ax.transpose();
     throw Error(m.str());
   }
-  if (!has_shapes()) {
-    // The first ellipsoid: the spheres so far get their shapes too.
-    const std::size_t n = size();
-    shape.assign(n, ShapeKind::sphere);
-    semi_axes.resize(n);
-    orientation.assign(n, Eigen::Quaterniond::Identity());
-    inertia_body.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      semi_axes[i] = Vec3::Constant(radius[i]);
-      inertia_body[i] = Vec3::Constant(1.0 / inv_inertia[i]);
-    }
-  }
+  // The first ellipsoid: the spheres so far get their shapes too.
+  ensure_shapes();
   const double a = ax.x(), b = ax.y(), c = ax.z();
   const double m = density * 4.0 / 3.0 * std::numbers::pi * a * b * c;
   // Principal moments of a solid ellipsoid: J_x = m (b^2 + c^2) / 5, and cyclically.

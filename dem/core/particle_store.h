@@ -53,6 +53,9 @@ struct ParticleStore {
                   const Vec3& ang_vel);
   // A three-axis ellipsoid, semi-axes a >= b >= c (checked), uniform density.
   void add_ellipsoid(GlobalId gid, const EllipsoidBody& body, const GrainMotion& motion);
+  // Gives every grain its shape arrays (spheres as a = b = c) if the store has none yet: what the
+  // first ellipsoid does, for a store that is to receive ellipsoids (a pour, docs/insertion.md).
+  void ensure_shapes();
   // Applies new[k] = old[perm[k]] to every array.
   void permute(const std::vector<int>& perm);
 

@@ -69,11 +69,13 @@ struct SceneExtent {
 };
 
 // The container footprint, from the floor (or the lowest particle surface) to the highest
-// particle surface, with every grain as large as the largest (r_max).
+// particle surface, with every grain as large as the largest (r_max); with a pour, up to the top
+// of its inlet too, where the grains come from (docs/insertion.md).
 Box default_box(const SceneConfig& scene, const SceneExtent& e, double r_max) {
   Box b;
   b.lo = Vec3(0.0, 0.0, e.count > 0 ? std::min(0.0, e.z_min - r_max) : 0.0);
   b.hi = Vec3(scene.container.lx, scene.container.ly, e.count > 0 ? std::max(0.0, e.z_max + r_max) : 0.0);
+  if (scene.insertion.enabled()) b.hi.z() = std::max(b.hi.z(), scene.insertion.inlet_hi.z());
   return b;
 }
 
@@ -123,6 +125,13 @@ Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, std::v
   const double r_max = std::max(extent.max_radius, 1e-12);
   set_up(extent.count, extent.max_radius, shapes,
          options.box ? *options.box : default_box(scene, extent, r_max), comm, options);
+  // A pour of ellipsoids into spheres: the spheres get their shapes (a = b = c).
+  if (shapes_ && !shapes) {
+    if (size == 1)
+      p_.ensure_shapes();
+    else
+      for (const StateRecord& r : all) shapes_in.push_back(sphere_shape(r));
+  }
   const Decomposition& dec = domain_->decomposition();
   for (std::size_t k = 0; k < all.size(); ++k) {
     if (dec.owner_of(get(all[k].x)) != dec.rank()) continue;
@@ -147,6 +156,13 @@ Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, std::v
 void Simulation::set_up(long count, double max_radius, bool shapes, const Box& box, MPI_Comm comm,
                         const EngineOptions& options) {
   options_ = options;
+  // A pour brings grains as large as the scene's largest, and its shapes (docs/insertion.md):
+  // the range, the skin and the force loop are chosen for them from the start, so that a run
+  // and its restart choose the same.
+  if (scene_.insertion.enabled()) {
+    max_radius = std::max(max_radius, scene_.particles.largest_radius());
+    shapes = shapes || has_ellipsoids(scene_.particles.shapes);
+  }
   shapes_ = shapes;
   rotation_ = scene_.effects.integrates_rotation(shapes_);
   loops_ = select_force_loops(scene_.effects, shapes_, summation_, scene_.contact_law);
@@ -181,6 +197,13 @@ void Simulation::step() {
     moved = moved || !((p_.x[i] - x_built[i]).squaredNorm() <= limit2);
   }
   if (rotation_) rotation_first_half(p_, static_cast<std::size_t>(n), half, dt_);
+  // Grains inserted before this step: the same half kick and drift (their force is zero: they
+  // touch nothing), joined to the others by this step's rebuild (insert()).
+  for (std::size_t i = 0; i < arrivals_.size(); ++i) {
+    arrivals_.v[i] += half * g_;
+    arrivals_.x[i] += dt_ * arrivals_.v[i];
+  }
+  if (rotation_) rotation_first_half(arrivals_, arrivals_.size(), half, dt_);
   // Moving walls drift with the grains; a wall that has moved half a skin since the lists were
   // built rebuilds them, as a grain does (its entries reach a skin: verlet_list.h). The walls
   // are the same on every rank, so is this decision.
@@ -281,6 +304,13 @@ void Simulation::rebuild() {
   history_.collect(lists_->pairs(), lists_->walls(), p_.id, summation_ == Summation::fast, records);
   // Drop the ghosts; they are rebuilt below from the new owners.
   truncate_store(p_, static_cast<std::size_t>(n_owned_));
+  // Inserted grains join the owned ones here, before the migration (insert()).
+  for (std::size_t i = 0; i < arrivals_.size(); ++i) {
+    append_state(p_, pack_state(arrivals_, i));
+    if (shapes_) append_shape(p_, pack_shape(arrivals_, i));
+  }
+  arrivals_ = ParticleStore{};
+  arrivals_pending_ = false;
   domain_->migrate(p_, records, lists_->slots_per_owned(), step_, time());
   n_owned_ = static_cast<int>(p_.size());
   long count = n_owned_;

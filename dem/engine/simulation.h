@@ -38,6 +38,7 @@
 #include "dem/parallel/domain.h"
 #include "dem/parallel/exact_sum.h"
 #include "dem/parallel/records.h"
+#include "dem/scene/insertion.h"
 #include "dem/scene/scene_config.h"
 #include "dem/stress/grid_stress.h"
 
@@ -87,6 +88,19 @@ class Simulation {
 
   void step();
   void run(long steps);
+
+  // --- Insertion during the run (docs/insertion.md; dem/engine/pour.h decides what and when).
+  // Adds grains between two steps, from the next step on: `grains` is the same on every rank
+  // (their ids particle_count(), particle_count() + 1, ...), each rank keeps those whose centroid
+  // is in its block, and the next step integrates them with the others and rebuilds the lists,
+  // which joins them. The caller guarantees they overlap nothing (their force is zero until that
+  // evaluation). The energy balance's reference takes their kinetic and potential energy, so
+  // the balance stays closed, and the lost-particle guard their count and mass. A scene whose
+  // insertion is on already sized the interaction range and shapes for them (set_up). Collective.
+  void insert(const ParticleStore& grains);
+  // The owned grains whose bounding sphere (radius; for an ellipsoid its major semi-axis) reaches
+  // into `box`, from every rank, sorted by id: the same on every rank. Collective.
+  [[nodiscard]] std::vector<BoundingSphere> bounding_spheres_in(const Box& box) const;
 
   // --- State.
   // This rank's particles: the owned ones [0, owned()), then the ghosts. Not collective.
@@ -257,6 +271,10 @@ class Simulation {
   std::unique_ptr<Domain> domain_;
   ParticleStore p_;
   int n_owned_ = 0;
+  // Grains inserted before this step, owned here, integrated apart until this step's rebuild
+  // joins them to p_ (insert()).
+  ParticleStore arrivals_;
+  bool arrivals_pending_ = false;  // on every rank: insert() was called since the last rebuild
   long n_global_ = 0;
   double max_radius_ = 0.0;
   double skin_ = 0.0;

@@ -169,6 +169,8 @@ std::size_t index_of(const ParticleStore& sorted, GlobalId gid) {
 }  // namespace
 
 EngineState Simulation::capture_state() const {
+  // Between two steps, never between an insertion and the step that joins it (insert()).
+  if (arrivals_pending_) throw Error("capture_state: grains inserted and not yet stepped");
   EngineState s;
   // Per particle, gathered by id.
   const std::vector<Vec3>& x_built = lists_->positions_at_build();
@@ -252,9 +254,11 @@ Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_roo
   std::vector<char> bytes;
   if (rank == 0) bytes = to_bytes(state_on_root);
   broadcast_bytes(bytes, comm);
-  const EngineState s = from_bytes(bytes);
+  EngineState s = from_bytes(bytes);
   bytes = {};
-  if (s.particles.size() == 0) throw Error("restore: the state holds no particles");
+  // A pour may start from an empty container (docs/insertion.md).
+  if (s.particles.size() == 0 && !scene.insertion.enabled())
+    throw Error("restore: the state holds no particles");
   walls_ = s.walls;
   note_wall_motion();
   if (s.wall_points_at_build.size() != walls_.size())
@@ -269,6 +273,8 @@ Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_roo
   o.balance_at_start = false;
   set_up(static_cast<long>(s.particles.size()), max_radius, s.particles.has_shapes(), s.domain.box, comm, o);
   domain_->restore(s.domain);
+  // Spheres in a scene that pours ellipsoids (set_up): with their shapes, as in the run.
+  if (shapes_) s.particles.ensure_shapes();
 
   // The particles of this rank's block, placed where the lists were last built: ownership, cell
   // order, ghosts and the lists themselves then follow from the positions the interrupted run

@@ -104,6 +104,18 @@ inline void append_shape(ParticleStore& p, const ShapeRecord& r) {
   p.inertia_body.push_back(get(r.inertia_body));
 }
 
+// The shape record of a sphere (a = b = c, no turn), for a sphere joining grains with shapes.
+inline ShapeRecord sphere_shape(const StateRecord& s) {
+  ShapeRecord r{};
+  r.kind = ShapeKind::sphere;
+  for (int d = 0; d < 3; ++d) {
+    r.semi_axes[d] = s.radius;
+    r.inertia_body[d] = 1.0 / s.inv_inertia;
+  }
+  r.orientation[3] = 1.0;  // x, y, z, w: the identity
+  return r;
+}
+
 // Every array of a store (the shape arrays when present) cut to its first n particles.
 inline void truncate_store(ParticleStore& p, std::size_t n) {
   p.id.resize(n);

@@ -59,7 +59,9 @@ FillPlan plan_fill(const SceneConfig& s) {
       plan.top = std::max(plan.top, p.x[i].z() + p.reach(i, Vec3::UnitZ()));
     return plan;
   }
-  if (s.particles.count < 1) throw Error("Particles/count must be at least 1");
+  // An empty container is for a pour to fill (docs/insertion.md).
+  if (s.particles.count == 0 && s.insertion.enabled()) return plan;
+  if (s.particles.count < 1) throw Error("Particles/count must be at least 1 (or 0 with an Insertion/count)");
   if (s.particles.gradation.empty()) {
     plan.radii.assign(static_cast<std::size_t>(s.particles.count), s.particles.radius);
   } else {
@@ -82,6 +84,7 @@ double fill_top_height(const SceneConfig& s) { return plan_fill(s).top; }
 ParticleStore fill_container(const SceneConfig& s) {
   if (s.particles.packing) return *s.particles.packing;
   const FillPlan plan = plan_fill(s);
+  if (plan.radii.empty()) return {};
   const std::vector<double>& radii = plan.radii;
   const double r_max = *std::max_element(radii.begin(), radii.end());
   const double density = s.particles.material.density;

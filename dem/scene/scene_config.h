@@ -60,6 +60,22 @@ struct FillSpec {
   std::uint64_t seed = 12345;
 };
 
+// Grains poured in during the run from an inlet box at a rate (docs/insertion.md), as
+// LIGGGHTS fix insert/rate/region and LAMMPS fix pour. They take the scene's gradation and
+// shapes; count 0: no insertion.
+struct InsertionSpec {
+  long count = 0;                // grains to pour in all
+  double rate = 0.0;             // grains per second (when mass_rate is 0)
+  double mass_rate = 0.0;        // kg per second; > 0 replaces `rate`
+  double start_time = 0.0;       // s
+  double interval = 0.01;        // s between two batches
+  Vec3 inlet_lo = Vec3::Zero();  // the inlet box (m)
+  Vec3 inlet_hi = Vec3::Zero();
+  Vec3 velocity = Vec3::Zero();  // initial velocity of every grain (m/s)
+
+  [[nodiscard]] bool enabled() const { return count > 0; }
+};
+
 struct TimeStepRule {
   double rayleigh_fraction = 0.2;  // dt <= rayleigh_fraction * T_Rayleigh
   double hertz_fraction = 0.1;     // dt <= hertz_fraction * t_Hertz(v_impact)
@@ -77,6 +93,7 @@ struct SceneConfig {
   ParticleSpec particles;
   BoxContainer container;
   FillSpec fill;
+  InsertionSpec insertion;
   EffectSet effects;
   // The contact law (dem/contact/contact_laws.h) and the values of its own parameters; a
   // parameter not listed takes the law's default.

@@ -35,6 +35,8 @@ def bed_top(folder):
     for f in sorted(glob.glob(os.path.join(folder, "snapshots", "*.h5"))):
         with h5py.File(f) as h:
             z = h["particles/position"][:, 2] + h["particles/radius"][:]
+            if len(z) == 0:  # an empty container, before a pour (examples/pour)
+                continue
             out.append((h.attrs["time"], z.max(), np.sort(z)[len(z) // 10]))
     return np.array(out)
 
