@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 #include "dem/core/error.h"
 #include "dem/time_step.h"
@@ -179,9 +180,15 @@ std::vector<KnobSetting> knob_settings(const SceneInput& base, const AccuracyOpt
       skipped.push_back("solver tolerance: the scene has spheres only (no contact solver)");
     } else {
       nonempty(o.solver_tolerances, "solver tolerances");
-      for (double x : o.solver_tolerances) {
+      for (double x : o.solver_tolerances)
         if (!(x >= 16.0 && x <= 1e12))
           throw Error("Accuracy/solver tolerances: " + number(x) + " is not in [16, 1e12]");
+      // The scene's own setting is always a row, so that every plot marks it.
+      std::vector<double> values = o.solver_tolerances;
+      if (std::find(values.begin(), values.end(), solver.gradient_tolerance) == values.end())
+        values.push_back(solver.gradient_tolerance);
+      std::sort(values.begin(), values.end());
+      for (double x : values) {
         KnobSetting k =
             setting("solver tolerance", number(x) + " eps x size", x, x == solver.gradient_tolerance);
         k.apply = [x](SceneInput& in) { in.scene.contact_solver.gradient_tolerance = x; };
@@ -194,9 +201,14 @@ std::vector<KnobSetting> knob_settings(const SceneInput& base, const AccuracyOpt
       skipped.push_back("solver iterations: the scene has spheres only (no contact solver)");
     } else {
       nonempty(o.solver_iteration_caps, "solver iteration caps");
-      for (double x : o.solver_iteration_caps) {
+      for (double x : o.solver_iteration_caps)
         if (!(x >= 1.0 && x <= 1000.0 && x == std::floor(x)))
           throw Error("Accuracy/solver iteration caps: " + number(x) + " is not a whole number in 1..1000");
+      std::vector<double> values = o.solver_iteration_caps;
+      const double own = solver.max_iterations;
+      if (std::find(values.begin(), values.end(), own) == values.end()) values.push_back(own);
+      std::sort(values.begin(), values.end(), std::greater<>());
+      for (double x : values) {
         const int cap = static_cast<int>(x);
         KnobSetting k = setting("solver iterations", std::to_string(cap) + " Newton steps", x,
                                 cap == solver.max_iterations);

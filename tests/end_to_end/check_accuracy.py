@@ -7,6 +7,9 @@
   velocity Verlet (2, within 0.3) between the two smallest steps;
 - the continuum's rows: Q1's stress error halves with each refinement (order 1 in h, within
   0.2); Q2 reproduces the analytic column to 1e-10;
+- the contact solver's rows (ellipsoid scenes): one marked row per knob, the scene's own; a
+  looser gradient bound never gives a smaller depth error against the constructed contacts, the
+  loosest a larger one than the tightest, and a bound of 1e10 eps stays below 1e-6 c; a cap of 2 Newton steps gives a larger error than 30;
 - every row has a wall time, and an exact error or a change of the bed;
 - the report names, per knob, its cheapest setting within the tolerance.
 """
@@ -54,6 +57,25 @@ def main():
     for k, e in fem.items():
         if k.startswith('Q2') and not e < 1e-10:
             problems.append(f'fem: {k} error {e:.3g}, the analytic column is quadratic')
+    for knob in ('solver tolerance', 'solver iterations'):
+        own = [r for r in rows if r['knob'] == knob]
+        if own and sum(r['default'] == '1' for r in own) != 1:
+            problems.append(f'{knob}: {sum(r["default"] == "1" for r in own)} rows marked as the scene\'s own, not 1')
+    tol = sorted((num(r, 'value'), num(r, 'exact_error')) for r in rows if r['knob'] == 'solver tolerance')
+    for (t1, e1), (t2, e2) in zip(tol, tol[1:]):
+        if e2 < e1:
+            problems.append(f'solver tolerance: {t2:.3g} gives a smaller depth error ({e2:.3g}) than {t1:.3g} ({e1:.3g})')
+    if len(tol) >= 2 and not tol[-1][1] > tol[0][1]:
+        problems.append(f'solver tolerance: {tol[-1][0]:.3g} gives no larger error than {tol[0][0]:.3g}: the bound is not felt')
+    for t, e in tol:
+        print(f'solver tolerance {t:.3g}: depth error {e:.3g} c')
+        if t <= 1e10 and not e < 1e-6:
+            problems.append(f'solver tolerance {t:.3g}: depth error {e:.3g} c')
+    caps = {num(r, 'value'): num(r, 'exact_error') for r in rows if r['knob'] == 'solver iterations'}
+    if 2.0 in caps and 30.0 in caps:
+        print(f'solver iterations: depth error {caps[30.0]:.3g} c at 30, {caps[2.0]:.3g} c at 2')
+        if not caps[2.0] > caps[30.0]:
+            problems.append('solver iterations: a cap of 2 gives no larger error than 30')
     report = open(os.path.join(folder, 'accuracy.md')).read()
     knobs = {r['knob'] for r in rows if r['knob'] != 'reference'}
     if report.count('Cheapest setting within the tolerance') != len(knobs):
