@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <functional>
 
 #include "dem/core/error.h"
 #include "dem/time_step.h"
@@ -28,6 +27,14 @@ KnobSetting setting(std::string knob, std::string label, double value, bool is_d
   k.is_default = is_default;
   k.apply = [](SceneInput&) {};
   return k;
+}
+
+// The values to try with the scene's own setting among them (so that every plot marks it),
+// in ascending order.
+std::vector<double> with_scene_setting(std::vector<double> values, double own) {
+  if (std::find(values.begin(), values.end(), own) == values.end()) values.push_back(own);
+  std::sort(values.begin(), values.end());
+  return values;
 }
 
 // The time step at `fraction` of the safe step of `scene`.
@@ -74,10 +81,7 @@ std::vector<KnobSetting> knob_settings(const SceneInput& base, const AccuracyOpt
     for (double x : o.time_step_fractions)
       if (!(x > 0.0 && x <= 2.0))
         throw Error("Accuracy/time step fractions: " + number(x) + " is not in (0, 2]");
-    std::vector<double> f = o.time_step_fractions;
-    if (std::find(f.begin(), f.end(), own_fraction) == f.end()) f.push_back(own_fraction);
-    std::sort(f.begin(), f.end());
-    for (double x : f) {
+    for (double x : with_scene_setting(o.time_step_fractions, own_fraction)) {
       KnobSetting k = setting("time step", number(x) + " of the safe step", x, x == own_fraction);
       k.apply = [x](SceneInput& in) {
         in.scene.time_step = step_at(in.scene, x);
@@ -183,12 +187,7 @@ std::vector<KnobSetting> knob_settings(const SceneInput& base, const AccuracyOpt
       for (double x : o.solver_tolerances)
         if (!(x >= 16.0 && x <= 1e12))
           throw Error("Accuracy/solver tolerances: " + number(x) + " is not in [16, 1e12]");
-      // The scene's own setting is always a row, so that every plot marks it.
-      std::vector<double> values = o.solver_tolerances;
-      if (std::find(values.begin(), values.end(), solver.gradient_tolerance) == values.end())
-        values.push_back(solver.gradient_tolerance);
-      std::sort(values.begin(), values.end());
-      for (double x : values) {
+      for (double x : with_scene_setting(o.solver_tolerances, solver.gradient_tolerance)) {
         KnobSetting k =
             setting("solver tolerance", number(x) + " eps x size", x, x == solver.gradient_tolerance);
         k.apply = [x](SceneInput& in) { in.scene.contact_solver.gradient_tolerance = x; };
@@ -204,10 +203,9 @@ std::vector<KnobSetting> knob_settings(const SceneInput& base, const AccuracyOpt
       for (double x : o.solver_iteration_caps)
         if (!(x >= 1.0 && x <= 1000.0 && x == std::floor(x)))
           throw Error("Accuracy/solver iteration caps: " + number(x) + " is not a whole number in 1..1000");
-      std::vector<double> values = o.solver_iteration_caps;
-      const double own = solver.max_iterations;
-      if (std::find(values.begin(), values.end(), own) == values.end()) values.push_back(own);
-      std::sort(values.begin(), values.end(), std::greater<>());
+      // Most steps first: from the exact solve down.
+      std::vector<double> values = with_scene_setting(o.solver_iteration_caps, solver.max_iterations);
+      std::reverse(values.begin(), values.end());
       for (double x : values) {
         const int cap = static_cast<int>(x);
         KnobSetting k = setting("solver iterations", std::to_string(cap) + " Newton steps", x,

@@ -15,13 +15,23 @@
 using namespace upgrain;
 using namespace upgrain::dem;
 
-TEST(HardManyRanks, CornerPileOnMostlyEmptyBlocksIsBitwiseOneRank) {
-  if (test::world_size() < 2) GTEST_SKIP() << "runs under mpiexec (hard.many_ranks_np16)";
+namespace {
+
+// Soft grains (E = 50 MPa) with every effect on, in a 12 cm square box: the scene of both cases.
+SceneConfig soft_grains_in_wide_box() {
   SceneConfig s = test::bare_scene(2e-5);
   s.particles.material = {2650.0, 5e7, 0.25};
   s.effects = {true, true, true, true, true, true};
   s.damping_ratio = 0.3;
   s.container.lx = s.container.ly = 0.12;
+  return s;
+}
+
+}  // namespace
+
+TEST(HardManyRanks, CornerPileOnMostlyEmptyBlocksIsBitwiseOneRank) {
+  if (test::world_size() < 2) GTEST_SKIP() << "runs under mpiexec (hard.many_ranks_np16)";
+  SceneConfig s = soft_grains_in_wide_box();
   std::mt19937_64 rng(11);
   ParticleStore p;
   const double r = 2e-3;
@@ -49,11 +59,7 @@ TEST(HardManyRanks, BlockEmptiedAndRefilledDuringACollapseIsBitwiseOneRank) {
   // after it: that block empties and fills again. Every rank follows its own grain count
   // between chunks of steps.
   if (test::world_size() < 2) GTEST_SKIP() << "runs under mpiexec (hard.many_ranks_np16)";
-  SceneConfig s = test::bare_scene(2e-5);
-  s.particles.material = {2650.0, 5e7, 0.25};
-  s.effects = {true, true, true, true, true, true};
-  s.damping_ratio = 0.3;
-  s.container.lx = s.container.ly = 0.12;
+  SceneConfig s = soft_grains_in_wide_box();
   std::mt19937_64 rng(13);
   ParticleStore p;
   const double r = 2e-3;
