@@ -47,7 +47,12 @@ const std::vector<ParameterSpec>& parameter_schema() {
       {"Simulation", "end time", "0.4", K::real, 0.0, 1e6, "", "s", "Simulated time at which the run ends."},
       {"Simulation", "stop at rest ratio", "1e-6", K::real, 0.0, 1.0, "", "-",
        "End the run early once the kinetic energy is below this fraction of the potential energy "
-       "released (checked at each time-series row after the first tenth of the run). 0 disables."},
+       "released at every time-series row for the rest window (checked after the first tenth of "
+       "the run). 0 disables."},
+      {"Simulation", "stop at rest window", "2", K::real, 0.0, 1e6, "", "settling times",
+       "How long the kinetic energy must stay below the rest ratio before the run stops, in "
+       "settling times sqrt(d/g) (d the largest grain's diameter), so that a lull between bounces "
+       "does not end a deposition. 0: the first row below the ratio."},
       {"Simulation", "Rayleigh fraction", "0.2", K::real, 1e-3, 1.0, "", "-",
        "Safe time step as a fraction of the Rayleigh time of the smallest grain."},
       {"Simulation", "Hertz fraction", "0.1", K::real, 1e-3, 1.0, "", "-",
@@ -82,6 +87,11 @@ const std::vector<ParameterSpec>& parameter_schema() {
       {"Effects", "rolling resistance", "auto", K::selection, 0, 0, "auto|true|false", "-",
        "Rolling resistance at every contact: elastic-plastic spring-dashpot (Iwashita and Oda 1998; Ai et "
        "al. 2011, model C), |M_r| <= mu_r R* F_n. Not part of the paper's law: auto is off. Needs rotation."},
+      {"Effects", "twisting resistance", "auto", K::selection, 0, 0, "auto|true|false", "-",
+       "Twisting resistance at every contact: Hertz–Mindlin torsion of the contact circle (Lubkin 1951; "
+       "Johnson 1985, 7.4), stiffness 16/3 G a^3, full slip at 3 pi/16 mu a F_n, with the rolling dashpot's "
+       "damping ratio. Stops grains spinning about a contact normal (needles, discs). Not part of the "
+       "paper's law: auto is off. Needs rolling resistance."},
 
       {"Particles", "count", "2000", K::integer, 0, 1e9, "", "-",
        "Number of grains of the initial fill (0: an empty container, for a pour: Insertion/count)."},

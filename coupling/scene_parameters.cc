@@ -160,6 +160,7 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   s.time_step = prm.get_double("time step");
   s.end_time = prm.get_double("end time");
   in.control.rest_ratio = prm.get_double("stop at rest ratio");
+  in.control.rest_window = prm.get_double("stop at rest window");
   s.time_step_rule.rayleigh_fraction = prm.get_double("Rayleigh fraction");
   s.time_step_rule.hertz_fraction = prm.get_double("Hertz fraction");
   s.time_step_rule.impact_speed = prm.get_double("expected impact speed");
@@ -180,6 +181,7 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
     e.rotation = sw("rotation");
     e.energy_tracking = sw("energy tracking");
     e.rolling_resistance = sw("rolling resistance");
+    e.twisting_resistance = sw("twisting resistance");
   }
   s.gravity = prm.get_double("gravity acceleration");
   prm.leave_subsection();

@@ -170,7 +170,10 @@ std::vector<KnobSetting> knob_settings(const SceneInput& base, const AccuracyOpt
   }
   if (chosen("rolling resistance")) {
     KnobSetting off = setting("rolling resistance", "none", 0.0, !s.effects.rolling_resistance);
-    off.apply = [](SceneInput& in) { in.effect_switches.rolling_resistance = dem::EffectSwitch::off; };
+    off.apply = [](SceneInput& in) {
+      in.effect_switches.rolling_resistance = dem::EffectSwitch::off;
+      in.effect_switches.twisting_resistance = dem::EffectSwitch::off;  // a part of it
+    };
     out.push_back(std::move(off));
     KnobSetting on = setting("rolling resistance", "mu_r = " + number(s.rolling_friction), 1.0,
                              s.effects.rolling_resistance);

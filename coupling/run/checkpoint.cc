@@ -105,6 +105,7 @@ fs::path write_checkpoint(const fs::path& folder, const Checkpoint& c, int keep)
     hdf5::write_attribute(run, "step", static_cast<double>(s.step));
     hdf5::write_attribute(run, "next_release", static_cast<double>(s.next_release));
     hdf5::write_attribute(run, "rest_check_from", static_cast<double>(s.rest_check_from));
+    hdf5::write_attribute(run, "below_rest_since", static_cast<double>(s.below_rest_since));
     hdf5::write_attribute(run, "inserted", static_cast<double>(c.run.pour.inserted));
     hdf5::write_attribute(run, "insertion_batches", static_cast<double>(c.run.pour.batches));
     hdf5::write_attribute(run, "series_rows", static_cast<double>(c.run.files.series_rows));
@@ -171,6 +172,9 @@ Checkpoint read_checkpoint(const fs::path& file) {
   r.schedule.step = in.whole_attribute("step", "/run", 0);
   r.schedule.next_release = static_cast<std::size_t>(in.whole_attribute("next_release", "/run", 0));
   r.schedule.rest_check_from = in.whole_attribute("rest_check_from", "/run");
+  // Absent from the checkpoints of runs before the rest window existed: not below.
+  if (in.has_attribute("below_rest_since", "/run"))
+    r.schedule.below_rest_since = in.whole_attribute("below_rest_since", "/run", -1);
   // Absent from the checkpoints of runs before insertion existed: nothing was inserted.
   if (in.has_attribute("inserted", "/run")) {
     r.pour.inserted = in.whole_attribute("inserted", "/run", 0);

@@ -21,4 +21,19 @@ RunSchedule make_schedule(const dem::SceneConfig& scene, const std::optional<Out
   return s;
 }
 
+long rest_window_steps(const dem::SceneConfig& scene, double settling_times) {
+  if (!scene.effects.gravity || scene.gravity <= 0.0 || settling_times <= 0.0) return 0;
+  const double settling_time = std::sqrt(2.0 * scene.particles.largest_radius() / scene.gravity);
+  return static_cast<long>(std::ceil(settling_times * settling_time / scene.time_step));
+}
+
+bool rest_held(long step, bool below, long window, ScheduleState& state) {
+  if (!below) {
+    state.below_rest_since = -1;
+    return false;
+  }
+  if (state.below_rest_since < 0) state.below_rest_since = step;
+  return step - state.below_rest_since >= window;
+}
+
 }  // namespace upgrain::coupling

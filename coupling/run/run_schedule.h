@@ -30,12 +30,24 @@ struct RunSchedule {
 // interval of 0 means at each snapshot.
 RunSchedule make_schedule(const dem::SceneConfig& scene, const std::optional<OutputOptions>& output);
 
-// Where a run stands in its schedule: the steps done, the releases done, and the first step
-// after which the bed may be found at rest.
+// Where a run stands in its schedule: the steps done, the releases done, the first step
+// after which the bed may be found at rest, and the step from which its kinetic energy has
+// stayed below the rest ratio (-1: not below at the last row).
 struct ScheduleState {
   long step = 0;
   std::size_t next_release = 0;
   long rest_check_from = 0;
+  long below_rest_since = -1;
 };
+
+// The rest window in steps: `settling_times` times sqrt(d/g), d the largest grain's
+// diameter, g gravity (docs/scenes.md, "Stopping at rest"); 0 without gravity.
+long rest_window_steps(const dem::SceneConfig& scene, double settling_times);
+
+// The test for rest at a time-series row of step `step`: `below` says whether the kinetic
+// energy is below the rest ratio there. The bed is at rest once it has stayed below at every
+// row for `window` steps; a row above starts the window again. A short lull, as when a
+// deposition's grains are between bounces, does not stop the run.
+bool rest_held(long step, bool below, long window, ScheduleState& state);
 
 }  // namespace upgrain::coupling

@@ -106,17 +106,22 @@ class SceneRun {
         clock_(sim.is_root() ? on_progress : ProgressReport{}, resume ? resume->schedule.step : 0),
         states_(output ? output->coarse_graining : CoarseGrainingCapture{}),
         lid_(control.lid),
-        pour_(sim.scene()) {
+        pour_(sim.scene()),
+        rest_window_(rest_window_steps(sim.scene(), control.rest_window)) {
     if (resume) {
       files_.resume(sim, resume->files);
       states_.resume(sim, resume->cg_reference);
       if (schedule_.evaluation_every > 0) grids_.emplace(sim, *output, &resume->grid_state);
       // The schedule's state is rank 0's (the checkpoint is read there).
-      long where[5] = {resume->schedule.step, static_cast<long>(resume->schedule.next_release),
-                       resume->schedule.rest_check_from, resume->pour.inserted, resume->pour.batches};
-      MPI_Bcast(where, 5, MPI_LONG, 0, sim.comm());
-      state_ = {where[0], static_cast<std::size_t>(where[1]), where[2]};
-      pour_ = dem::Pour(sim.scene(), {where[3], where[4]});
+      long where[6] = {resume->schedule.step,
+                       static_cast<long>(resume->schedule.next_release),
+                       resume->schedule.rest_check_from,
+                       resume->schedule.below_rest_since,
+                       resume->pour.inserted,
+                       resume->pour.batches};
+      MPI_Bcast(where, 6, MPI_LONG, 0, sim.comm());
+      state_ = {where[0], static_cast<std::size_t>(where[1]), where[2], where[3]};
+      pour_ = dem::Pour(sim.scene(), {where[4], where[5]});
       clock_ = ProgressClock(sim.is_root() ? on_progress : ProgressReport{}, state_.step);
       keep_replay_start();
       return;
@@ -154,9 +159,11 @@ class SceneRun {
       if (series_now) {
         files_.record_series(sim_);
         // Every rank takes the same decision: the energies are the same bits everywhere.
-        if (control_.rest_ratio > 0.0 && s > state_.rest_check_from && !walls_pending &&
-            sim_.kinetic_to_released() < control_.rest_ratio)
-          r.stopped_at_rest = true;
+        if (control_.rest_ratio > 0.0)
+          r.stopped_at_rest = rest_held(s,
+                                        s > state_.rest_check_from && !walls_pending &&
+                                            sim_.kinetic_to_released() < control_.rest_ratio,
+                                        rest_window_, state_);
       }
       if (files_.enabled() && (schedule_.snapshot_due(s) || r.stopped_at_rest)) {
         if (!series_now) files_.record_series(sim_);
@@ -306,7 +313,8 @@ class SceneRun {
   ProgressClock clock_;
   StateCapture states_;
   Lid lid_;
-  dem::Pour pour_;  // insertion during the run (docs/insertion.md)
+  dem::Pour pour_;    // insertion during the run (docs/insertion.md)
+  long rest_window_;  // steps the bed stays below the rest ratio before the run stops
   ScheduleState state_;
   // The replay's start (keep_replay_start()): the state on rank 0, the schedule and the step.
   dem::EngineState replay_start_;

@@ -21,9 +21,11 @@
 namespace upgrain::coupling {
 
 struct RunControl {
-  // Stop early once kinetic energy < rest_ratio * (potential energy released), checked at
-  // each time-series row after the first tenth of the run; 0 disables.
+  // Stop early once kinetic energy < rest_ratio * (potential energy released) at every
+  // time-series row for rest_window settling times sqrt(d/g) (run_schedule.h, rest_held),
+  // after the first tenth of the run; a rest ratio of 0 disables.
   double rest_ratio = 0.0;
+  double rest_window = 2.0;
   // After the run, relax the bed to static equilibrium by FIRE (dem/engine/relaxation.h) and
   // write the final snapshot and grid stress of the relaxed state.
   bool relax_at_end = false;

@@ -5,7 +5,9 @@
 // the dashpot of Ai et al. Incremental, like the Mindlin spring of contact_response.h: the
 // spring torque is carried per contact and turned with the contact plane. Equations and
 // choices (rolling radius of ellipsoids, inertia of the dashpot): docs/contact-law.md.
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "dem/contact/contact_parameters.h"
 #include "dem/core/contact_history.h"
@@ -15,8 +17,19 @@ namespace upgrain::dem {
 
 struct RollingParameters {
   double friction = 0.0;       // mu_r: plastic limit |M_r| <= mu_r R* F_n
-  double damping_ratio = 0.0;  // eta_r: dashpot C_r = eta_r 2 sqrt(I_r k_r)
+  double damping_ratio = 0.0;  // eta_r: dashpot C_r = eta_r 2 sqrt(I_r k_r), rolling and twisting
+  // Twisting resistance: G_tw of the no-slip torsion stiffness 16/3 G_tw a^3, with
+  // 1/G_tw = 1/G_1 + 1/G_2 (Johnson 1985, 7.4); 0: no twisting resistance.
+  double twisting_modulus = 0.0;
 };
+
+// The parameters of a scene of one material (E, nu) for grains and walls; `twisting`: with
+// twisting resistance.
+inline RollingParameters rolling_parameters(double mu_r, double eta_r, bool twisting, double youngs_modulus,
+                                            double poisson_ratio) {
+  const double shear_modulus = youngs_modulus / (2.0 * (1.0 + poisson_ratio));
+  return {mu_r, eta_r, twisting ? 0.5 * shear_modulus : 0.0};
+}
 
 // Rolling stiffness k_r = 2.25 k_n mu_r^2 R*^2 (Iwashita and Oda 1998; Ai et al. 2011),
 // with k_n the tangent Hertz stiffness 2 E* sqrt(R* delta).
@@ -26,14 +39,57 @@ inline double rolling_stiffness(double k_n, double mu_r, double r_star) {
 
 // One contact as the rolling resistance sees it.
 struct RollingContact {
-  Vec3 normal;     // unit contact normal
-  Vec3 omega_rel;  // omega_i - omega_j
-  double r_star;   // rolling radius
-  double k_n;      // the law's tangent normal stiffness
-  double f_n;      // normal force after the dashpot and the clamp: the plastic limit's scale
-  double inertia;  // the pair's rolling inertia I_r (for the dashpot)
-  double dt;       // time step
+  Vec3 normal;      // unit contact normal
+  Vec3 omega_rel;   // omega_i - omega_j
+  double r_star;    // rolling radius
+  double k_n;       // the law's tangent normal stiffness
+  double f_n;       // normal force after the dashpot and the clamp: the plastic limit's scale
+  double inertia;   // the pair's rolling inertia I_r (for the dashpot)
+  double dt;        // time step
+  double overlap;   // delta, for the contact radius a = sqrt(R* delta) of the twisting spring
+  double friction;  // the contact's Coulomb coefficient: the twisting spring's slip limit
 };
+
+// Twisting resistance of one contact: the torsion of a Hertz contact circle of radius
+// a = sqrt(R* delta) (Lubkin 1951; Deresiewicz 1954; Johnson 1985, 7.4). Without slip the
+// torque is M = 16/3 G_tw a^3 theta; with full slip over the circle under Hertz's pressure it
+// is 3 pi/16 mu a F_n. Regularised, as the Mindlin spring, by an incremental spring of the
+// no-slip stiffness capped at the full-slip torque, with the rolling dashpot's damping ratio.
+// Returns the spring's torque about n on body i; `viscous` receives the dashpot's.
+template <bool Energy>
+[[gnu::always_inline]] inline double twisting_resistance(const RollingParameters& p, const RollingContact& c,
+                                                         RollingSpring& s, ContactEnergy& energy,
+                                                         double& viscous) {
+  const double a = std::sqrt(c.r_star * std::max(c.overlap, 0.0));
+  const double k = (16.0 / 3.0) * p.twisting_modulus * a * a * a;
+  double& m = s.twist;
+  viscous = 0.0;
+  if (!(k > 0.0)) {
+    m = 0.0;
+    return 0.0;
+  }
+  if constexpr (Energy) {
+    if (s.twist_stiffness > 0.0)
+      energy.rolling_stiffness_change += 0.5 * m * m * (1.0 / k - 1.0 / s.twist_stiffness);
+  }
+  const double before = m;
+  const double w_t = c.omega_rel.dot(c.normal);  // relative spin about the normal
+  m -= k * c.dt * w_t;
+  s.twist_stiffness = k;
+  const double limit = (3.0 * std::numbers::pi / 16.0) * c.friction * a * c.f_n;
+  if (std::abs(m) > limit) {
+    const double trial = m;
+    m = std::copysign(limit, trial);
+    if constexpr (Energy) energy.dissipated_rolling += (before + m) * (trial - m) / (2.0 * k);
+  } else if (p.damping_ratio > 0.0) {
+    viscous = -(2.0 * p.damping_ratio * std::sqrt(c.inertia * k)) * w_t;
+    // Spring and dashpot together within the slip limit, as for rolling.
+    if (std::abs(m + viscous) > limit) viscous = std::copysign(limit, m + viscous) - m;
+    if constexpr (Energy) energy.dissipated_rolling -= 0.5 * viscous * w_t * c.dt;
+  }
+  if constexpr (Energy) energy.elastic_rolling += 0.5 * m * m / k;
+  return m;
+}
 
 // Torque of the rolling resistance on body i (j receives its opposite). `viscous` receives
 // the dashpot part of the torque (zero while the spring is at its limit), for the second half
@@ -72,6 +128,12 @@ template <bool Energy>
     if constexpr (Energy) energy.dissipated_rolling -= 0.5 * viscous.dot(w_r) * c.dt;
   }
   if constexpr (Energy) energy.elastic_rolling += 0.5 * m.squaredNorm() / k_r;
+  if (p.twisting_modulus > 0.0) {
+    double twist_viscous = 0.0;
+    const double twist = twisting_resistance<Energy>(p, c, s, energy, twist_viscous);
+    viscous += twist_viscous * n;
+    return m + viscous + twist * n;
+  }
   return m + viscous;
 }
 

@@ -19,10 +19,16 @@ ContactHistoryRecord make_record(GlobalId id_i, GlobalId id_j, const TangentialS
   c.tangential_stiffness = s.stiffness;
   put3(c.rolling_torque, r.torque);
   c.rolling_stiffness = r.stiffness;
+  c.twisting_torque = r.twist;
+  c.twisting_stiffness = r.twist_stiffness;
   put3(c.normal, m.normal);
   c.r_star = m.r_star;
   c.gap_budget = keep_gap_budget ? m.gap_budget : 0.0;
   return c;
+}
+
+RollingSpring rolling_spring(const ContactHistoryRecord& c) {
+  return {get3(c.rolling_torque), c.rolling_stiffness, c.twisting_torque, c.twisting_stiffness};
 }
 
 const ContactHistoryRecord* find(const std::vector<ContactHistoryRecord>& records, GlobalId a, GlobalId b) {
@@ -80,7 +86,7 @@ void ContactHistory::restore(const PairList& pairs, const WallList& walls, const
       const ContactHistoryRecord* c = a < b ? find(records, a, b) : find(records, b, a);
       if (c == nullptr) continue;
       const TangentialSpring s{get3(c->tangential_force), c->tangential_stiffness};
-      const RollingSpring ro{get3(c->rolling_torque), c->rolling_stiffness};
+      const RollingSpring ro = rolling_spring(*c);
       const ShapedContactMemory mem{get3(c->normal), c->r_star, c->gap_budget};
       if (kinds_.tangential) pair_spring[k] = a < b ? s : s.reversed();
       if (kinds_.rolling) pair_rolling[k] = a < b ? ro : ro.reversed();
@@ -91,7 +97,7 @@ void ContactHistory::restore(const PairList& pairs, const WallList& walls, const
     const ContactHistoryRecord* c = find(records, id[walls.particle[e]], wall_key(walls.wall[e]));
     if (c == nullptr) continue;
     if (kinds_.wall_tangential) wall_spring[e] = {get3(c->tangential_force), c->tangential_stiffness};
-    if (kinds_.rolling) wall_rolling[e] = {get3(c->rolling_torque), c->rolling_stiffness};
+    if (kinds_.rolling) wall_rolling[e] = rolling_spring(*c);
     if (kinds_.shapes) wall_r_star[e] = c->r_star;
   }
 }

@@ -29,12 +29,17 @@ struct TangentialSpring {
   [[nodiscard]] TangentialSpring reversed() const { return {-force, stiffness}; }
 };
 
-// History of one contact's rolling spring.
+// History of one contact's rolling spring, and of its twisting spring when the scene has
+// twisting resistance.
 struct RollingSpring {
-  Vec3 torque = Vec3::Zero();  // spring torque on body i (body j receives -torque)
-  double stiffness = 0.0;      // k_r when the torque was last updated (0: new contact)
+  Vec3 torque = Vec3::Zero();    // spring torque on body i (body j receives -torque)
+  double stiffness = 0.0;        // k_r when the torque was last updated (0: new contact)
+  double twist = 0.0;            // twisting torque on body i about the normal from i to j
+  double twist_stiffness = 0.0;  // k_tw when it was last updated
 
-  [[nodiscard]] RollingSpring reversed() const { return {-torque, stiffness}; }
+  // Seen from j, both the normal and the torque change sign: the twist about the normal is the
+  // same number.
+  [[nodiscard]] RollingSpring reversed() const { return {-torque, stiffness, twist, twist_stiffness}; }
 };
 
 // What an ellipsoid contact keeps between steps besides its springs: the last normal (the
@@ -58,13 +63,15 @@ struct ShapedContactMemory {
 // spring force and torque on a, the normal from a to b); or a wall contact of particle a with
 // wall w, stored as b = -1 - w. Trivially copyable: it travels as bytes.
 struct ContactHistoryRecord {
-  static constexpr int kVersion = 1;  // of this layout, for files that store records
+  static constexpr int kVersion = 2;  // of this layout, for files that store records (2: twisting)
 
   GlobalId a = 0, b = 0;
   double tangential_force[3] = {0, 0, 0};
   double tangential_stiffness = 0.0;
   double rolling_torque[3] = {0, 0, 0};
   double rolling_stiffness = 0.0;
+  double twisting_torque = 0.0;
+  double twisting_stiffness = 0.0;
   double normal[3] = {0, 0, 0};
   double r_star = 0.0;
   double gap_budget = 0.0;

@@ -15,6 +15,9 @@ struct EffectSet {
   // Rolling resistance (elastic-plastic spring-dashpot, contact/rolling_resistance.h) at
   // every contact. Off by default: not part of the paper's law. Needs rotation.
   bool rolling_resistance = false;
+  // Twisting resistance (Hertz–Mindlin torsion, contact/rolling_resistance.h): a part of the
+  // rolling resistance's springs, so only with it. Off by default.
+  bool twisting_resistance = false;
 
   // Tangential history is only carried when some tangential force exists.
   [[nodiscard]] bool needs_history() const { return friction || wall_friction; }

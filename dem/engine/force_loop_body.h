@@ -177,7 +177,7 @@ void compute(const ForceInput& in) {
         // The wall does not turn (it may translate): omega_j = 0, and the grain's own inertia.
         const RollingContact rc{kin.normal,   kin.omega_i, wp.r_star,
                                 cf.stiffness, cf.normal,   rolling_inertia(p, i, kin.lever_i),
-                                wp.dt};
+                                wp.dt,        kin.overlap, wp.friction};
         const Vec3 m_r =
             Law::Rolling::template torque<kEnergy>(rp, rc, h.wall_rolling[e], sink, rolling_viscous);
         p.torque[i] += m_r;
@@ -357,7 +357,8 @@ void compute(const ForceInput& in) {
             const RollingContact rc{kin.normal, kin.omega_i - kin.omega_j,
                                     cp.r_star,  cf.stiffness,
                                     cf.normal,  inertia_i * inertia_j / (inertia_i + inertia_j),
-                                    cp.dt};
+                                    cp.dt,      kin.overlap,
+                                    cp.friction};
             const Vec3 m_r =
                 Law::Rolling::template torque<kEnergy>(rp, rc, h.pair_rolling[k], sink, rolling_viscous);
             ti += m_r;

@@ -93,11 +93,18 @@ Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, std::v
       g_(scene.effects.gravity ? Vec3(0, 0, -scene.gravity) : Vec3::Zero()),
       dt_(scene.time_step),
       material_(ContactMaterial::from(scene.particles.material, scene.friction, scene.damping_ratio)),
-      rolling_{scene.rolling_friction, scene.rolling_damping_ratio} {
+      rolling_(rolling_parameters(scene.rolling_friction, scene.rolling_damping_ratio,
+                                  scene.effects.twisting_resistance, scene.particles.material.youngs_modulus,
+                                  scene.particles.material.poisson_ratio)) {
   if (scene.effects.rolling_resistance && !scene.effects.rotation)
     throw Error(
         "rolling resistance needs rotation: set Effects/rotation = true or Effects/rolling resistance = "
         "false");
+  if (scene.effects.twisting_resistance && !scene.effects.rolling_resistance)
+    throw Error(
+        "twisting resistance needs rolling resistance: set Effects/rolling resistance = true or "
+        "Effects/twisting "
+        "resistance = false");
   find_contact_law(scene.contact_law).constants(scene, material_);
   if (!scene.effects.wall_friction) {
     for (auto& w : walls_) w.friction = 0.0;

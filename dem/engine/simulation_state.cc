@@ -245,7 +245,9 @@ Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_roo
       summation_(options.summation),
       dt_(scene.time_step),
       material_(ContactMaterial::from(scene.particles.material, scene.friction, scene.damping_ratio)),
-      rolling_{scene.rolling_friction, scene.rolling_damping_ratio} {
+      rolling_(rolling_parameters(scene.rolling_friction, scene.rolling_damping_ratio,
+                                  scene.effects.twisting_resistance, scene.particles.material.youngs_modulus,
+                                  scene.particles.material.poisson_ratio)) {
   find_contact_law(scene.contact_law).constants(scene, material_);
   // Rank 0's state on every rank for a moment, as the scene's particles in the first
   // constructor; each rank then keeps its block's part.

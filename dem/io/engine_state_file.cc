@@ -12,7 +12,10 @@ using hdf5::write_attribute;
 using hdf5::write_dataset;
 using hdf5::write_vectors;
 
-constexpr int kHistoryValues = 13;
+// Values per contact-history record: 13 in version 1, and the twisting spring's two after them
+// in version 2 (a version-1 file reads with no twist).
+constexpr int kHistoryValues = 15;
+int history_values(int version) { return version == 1 ? 13 : kHistoryValues; }
 
 // The initial energy's terms, by name (EnergyBalance, dem/engine/energy.h).
 struct EnergyTerm {
@@ -101,6 +104,8 @@ void write_history(hid_t parent, const std::vector<ContactHistoryRecord>& record
     std::copy(r.normal, r.normal + 3, x + 8);
     x[11] = r.r_star;
     x[12] = r.gap_budget;
+    x[13] = r.twisting_torque;
+    x[14] = r.twisting_stiffness;
   }
   write_dataset(g, "a", a.data(), n);
   write_dataset(g, "b", b.data(), n);
@@ -177,7 +182,8 @@ EngineState read_engine_state(const hdf5::Reader& in, const std::string& group) 
   if (version != EngineState::kVersion)
     throw Error(in.where() + "engine state version " + std::to_string(version) + ", this build reads " +
                 std::to_string(EngineState::kVersion));
-  if (in.attribute("history_version", group) != ContactHistoryRecord::kVersion)
+  const double history_version = in.attribute("history_version", group);
+  if (history_version != 1 && history_version != ContactHistoryRecord::kVersion)
     throw Error(in.where() + "contact-history records of another version");
   auto whole = [&](const char* name) { return in.whole_attribute(name, group); };
   s.step = whole("step");
@@ -255,13 +261,14 @@ EngineState read_engine_state(const hdf5::Reader& in, const std::string& group) 
   const std::string hg = group + "/history/";
   const std::vector<std::int64_t> a = in.read_all<std::int64_t>(hg + "a");
   const std::vector<std::int64_t> b = in.read<std::int64_t>(hg + "b", H5T_NATIVE_INT64, a.size());
-  const std::vector<double> v = in.read<double>(hg + "values", H5T_NATIVE_DOUBLE, a.size(), kHistoryValues);
+  const int values = history_values(static_cast<int>(history_version));
+  const std::vector<double> v = in.read<double>(hg + "values", H5T_NATIVE_DOUBLE, a.size(), values);
   s.history.resize(a.size());
   for (std::size_t k = 0; k < a.size(); ++k) {
     ContactHistoryRecord& r = s.history[k];
     r.a = a[k];
     r.b = b[k];
-    const double* x = v.data() + kHistoryValues * k;
+    const double* x = v.data() + values * k;
     std::copy(x, x + 3, r.tangential_force);
     r.tangential_stiffness = x[3];
     std::copy(x + 4, x + 7, r.rolling_torque);
@@ -269,6 +276,10 @@ EngineState read_engine_state(const hdf5::Reader& in, const std::string& group) 
     std::copy(x + 8, x + 11, r.normal);
     r.r_star = x[11];
     r.gap_budget = x[12];
+    if (values > 13) {
+      r.twisting_torque = x[13];
+      r.twisting_stiffness = x[14];
+    }
   }
   if (!std::is_sorted(s.history.begin(), s.history.end()))
     throw Error(in.where() + "contact histories are not sorted by key");

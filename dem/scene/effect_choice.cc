@@ -112,6 +112,13 @@ ChosenEffects choose_effects(const SceneConfig& s, const EffectSwitches& sw, con
   set.rolling_resistance =
       add({"rolling resistance", sw.rolling_resistance, false,
            "not part of the paper's law: on only when set (Effects/rolling resistance = true)", false});
+  if (sw.twisting_resistance == EffectSwitch::on && !set.rolling_resistance)
+    throw Error(
+        "Effects/twisting resistance needs Effects/rolling resistance = true (the twisting spring is a part "
+        "of the rolling resistance's springs)");
+  set.twisting_resistance =
+      add({"twisting resistance", sw.twisting_resistance, false,
+           "not part of the paper's law: on only when set (Effects/twisting resistance = true)", false});
   return out;
 }
 
@@ -123,7 +130,8 @@ std::vector<EffectChoice> describe_effects(const EffectSet& e) {
           {"wall friction", e.wall_friction, given},
           {"rotation", e.rotation, given},
           {"energy tracking", e.energy_tracking, given},
-          {"rolling resistance", e.rolling_resistance, given}};
+          {"rolling resistance", e.rolling_resistance, given},
+          {"twisting resistance", e.twisting_resistance, given}};
 }
 
 std::string effects_json(const std::vector<EffectChoice>& choices) {

@@ -27,6 +27,7 @@ struct EffectSwitches {
   EffectSwitch rotation = EffectSwitch::automatic;
   EffectSwitch energy_tracking = EffectSwitch::automatic;
   EffectSwitch rolling_resistance = EffectSwitch::automatic;
+  EffectSwitch twisting_resistance = EffectSwitch::automatic;
 };
 
 // What the run's output asks of the engine.

@@ -132,7 +132,8 @@ TEST(Restart, RollingResistanceContinuesBitwise) {
   s.effects.rolling_resistance = true;
   s.rolling_friction = 0.1;
   s.rolling_damping_ratio = 0.3;
-  expect_restart_is_bitwise(s, 2000, 1000, "200 spheres, rolling resistance");
+  s.effects.twisting_resistance = true;  // its spring travels in the same history record
+  expect_restart_is_bitwise(s, 2000, 1000, "200 spheres, rolling and twisting resistance");
 }
 
 TEST(Restart, EllipsoidsAndAMixContinueBitwise) {

@@ -1,6 +1,6 @@
 // The two summations of the engine (docs/architecture.md, "Two summations"):
-//  - rolling resistance, like every effect, is bitwise rank-independent with deterministic
-//    summation;
+//  - rolling and twisting resistance, like every effect, are bitwise rank-independent with
+//    deterministic summation;
 //  - the fast summation (ghost forces returned to their owners) gives on K ranks the states of
 //    one rank to round-off, energies and wall forces included;
 //  - fast and deterministic simulate the same physics: the bed a deposition leaves has the
@@ -29,6 +29,7 @@ namespace {
 SceneConfig rolling_scene(long count) {
   SceneConfig s = test::deposition_scene(count);
   s.effects.rolling_resistance = true;
+  s.effects.twisting_resistance = true;
   s.rolling_friction = 0.1;
   s.rolling_damping_ratio = 0.3;
   return s;

@@ -29,7 +29,7 @@ TEST(ContactHistory, RecordsAreKeyedAndOrientedFromTheLowerId) {
   ASSERT_EQ(h.pair_spring.size(), 2u);
   // Slot 0: body i has id 20, body j id 10 (the lower): the record is turned.
   h.pair_spring[0] = {Vec3(1, 2, 3), 4.0};
-  h.pair_rolling[0] = {Vec3(5, 6, 7), 8.0};
+  h.pair_rolling[0] = {Vec3(5, 6, 7), 8.0, 0.25, 11.0};  // the twist: a torque about the normal
   h.pair_memory[0] = {Vec3(0, 0, 1), 2e-3, 1e-6};
   // Slot 1: nothing to carry.
   h.wall_spring[0] = {Vec3(9, 9, 9), 1.5};
@@ -44,6 +44,9 @@ TEST(ContactHistory, RecordsAreKeyedAndOrientedFromTheLowerId) {
   EXPECT_EQ(Vec3(r.tangential_force[0], r.tangential_force[1], r.tangential_force[2]), Vec3(-1, -2, -3));
   EXPECT_EQ(r.tangential_stiffness, 4.0);
   EXPECT_EQ(Vec3(r.rolling_torque[0], r.rolling_torque[1], r.rolling_torque[2]), Vec3(-5, -6, -7));
+  // Torque and normal both turn: the twist about the normal is the same number seen from j.
+  EXPECT_EQ(r.twisting_torque, 0.25);
+  EXPECT_EQ(r.twisting_stiffness, 11.0);
   EXPECT_EQ(Vec3(r.normal[0], r.normal[1], r.normal[2]), Vec3(0, 0, -1));
   EXPECT_EQ(r.r_star, 2e-3);
   EXPECT_EQ(r.gap_budget, 1e-6);
@@ -68,6 +71,8 @@ TEST(ContactHistory, RecordsAreKeyedAndOrientedFromTheLowerId) {
   back.restore(turned, near, ids, kept);
   EXPECT_EQ(back.pair_spring[0].force, Vec3(-1, -2, -3));
   EXPECT_EQ(back.pair_rolling[0].torque, Vec3(-5, -6, -7));
+  EXPECT_EQ(back.pair_rolling[0].twist, 0.25);
+  EXPECT_EQ(back.pair_rolling[0].twist_stiffness, 11.0);
   EXPECT_EQ(back.pair_memory[0].normal, Vec3(0, 0, -1));
   EXPECT_EQ(back.wall_spring[0].force, Vec3(9, 9, 9));
   EXPECT_EQ(back.wall_r_star[0], 3e-3);

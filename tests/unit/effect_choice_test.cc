@@ -33,7 +33,7 @@ std::string refusal(const SceneConfig& s, const EffectSwitches& sw, const Effect
 
 }  // namespace
 
-TEST(EffectChoice, TheDefaultSceneCallsForEveryEffectButRollingResistance) {
+TEST(EffectChoice, TheDefaultSceneCallsForEveryEffectButRollingAndTwistingResistance) {
   const ChosenEffects c = choose_effects(SceneConfig{}, {}, {});
   EXPECT_TRUE(c.set.gravity);
   EXPECT_TRUE(c.set.friction);
@@ -42,8 +42,10 @@ TEST(EffectChoice, TheDefaultSceneCallsForEveryEffectButRollingResistance) {
   EXPECT_TRUE(c.set.rotation);
   EXPECT_TRUE(c.set.energy_tracking);
   EXPECT_FALSE(c.set.rolling_resistance);
-  ASSERT_EQ(c.choices.size(), 7U);
-  EXPECT_NE(entry(c, "tangential friction").reason.find("Contact/friction coefficient = 0.5"), std::string::npos);
+  EXPECT_FALSE(c.set.twisting_resistance);
+  ASSERT_EQ(c.choices.size(), 8U);
+  EXPECT_NE(entry(c, "tangential friction").reason.find("Contact/friction coefficient = 0.5"),
+            std::string::npos);
 }
 
 TEST(EffectChoice, EachZeroParameterSwitchesItsEffectOff) {
@@ -85,7 +87,7 @@ TEST(EffectChoice, AnExplicitSettingWins) {
   SceneConfig s;
   s.friction = 0.0;
   EffectSwitches sw;
-  sw.friction = EffectSwitch::on;  // the friction code with mu = 0, if asked for
+  sw.friction = EffectSwitch::on;   // the friction code with mu = 0, if asked for
   sw.rotation = EffectSwitch::off;  // grains held from turning: a modelling choice
   sw.rolling_resistance = EffectSwitch::off;
   const ChosenEffects c = choose_effects(s, sw, {});
@@ -101,12 +103,14 @@ TEST(EffectChoice, SwitchingOffWhatAParameterNeedsIsRefused) {
     sw.*member = EffectSwitch::off;
     return sw;
   };
-  EXPECT_NE(refusal(s, off(&EffectSwitches::friction)).find("Effects/tangential friction = false contradicts"),
-            std::string::npos);
+  EXPECT_NE(
+      refusal(s, off(&EffectSwitches::friction)).find("Effects/tangential friction = false contradicts"),
+      std::string::npos);
   EXPECT_NE(refusal(s, off(&EffectSwitches::damping)).find("Contact/damping ratio = 0.5"), std::string::npos);
   EXPECT_NE(refusal(s, off(&EffectSwitches::wall_friction)).find("Effects/wall friction"), std::string::npos);
   EXPECT_NE(refusal(s, off(&EffectSwitches::gravity)).find("gravity acceleration"), std::string::npos);
-  EXPECT_NE(refusal(s, off(&EffectSwitches::energy_tracking)).find("Output/energy balance"), std::string::npos);
+  EXPECT_NE(refusal(s, off(&EffectSwitches::energy_tracking)).find("Output/energy balance"),
+            std::string::npos);
   // Nothing needs them: no refusal.
   EXPECT_EQ(refusal(s, off(&EffectSwitches::rotation)), "");
   EXPECT_EQ(refusal(s, off(&EffectSwitches::rolling_resistance)), "");
@@ -121,6 +125,18 @@ TEST(EffectChoice, RollingResistanceNeedsRotation) {
             std::string::npos);
 }
 
+TEST(EffectChoice, TwistingResistanceNeedsRollingResistance) {
+  EffectSwitches sw;
+  sw.twisting_resistance = EffectSwitch::on;
+  EXPECT_NE(
+      refusal(SceneConfig{}, sw).find("Effects/twisting resistance needs Effects/rolling resistance = true"),
+      std::string::npos);
+  sw.rolling_resistance = EffectSwitch::on;
+  const ChosenEffects c = choose_effects(SceneConfig{}, sw, {});
+  EXPECT_TRUE(c.set.rolling_resistance);
+  EXPECT_TRUE(c.set.twisting_resistance);
+}
+
 TEST(EffectChoice, SwitchesReadAsWritten) {
   EXPECT_EQ(parse_effect_switch("auto", "Effects/damping"), EffectSwitch::automatic);
   EXPECT_EQ(parse_effect_switch("true", "Effects/damping"), EffectSwitch::on);
@@ -132,8 +148,9 @@ TEST(EffectChoice, TheChoicesAreRecordedAsJson) {
   const ChosenEffects c = choose_effects(SceneConfig{}, {}, {});
   const std::string j = effects_json(c.choices);
   EXPECT_EQ(j.front(), '{');
-  EXPECT_NE(j.find("\"tangential friction\": {\"on\": true, \"reason\": \"Contact/friction coefficient = 0.5\"}"),
-            std::string::npos);
+  EXPECT_NE(
+      j.find("\"tangential friction\": {\"on\": true, \"reason\": \"Contact/friction coefficient = 0.5\"}"),
+      std::string::npos);
   EXPECT_NE(j.find("\"rolling resistance\": {\"on\": false"), std::string::npos);
 }
 
