@@ -126,7 +126,7 @@ void write_run_report(const std::filesystem::path& folder, const SceneInput& in,
     << "Scene: `" << in.source
     << "`. Written by `upgrain` (no continuum study: 'Study/compare with continuum' "
     << "is false).\n\n## Parameters\n\n| quantity | value |\n|---|---|\n"
-    << "| grains | " << s.particles.count << " spheres, radius "
+    << "| grains | " << s.particles.count << grain_kind(s.particles.shapes)
     << (s.particles.gradation.empty() ? fmt(s.particles.radius) + " m" : std::string("by gradation curve"))
     << ", density " << s.particles.material.density << " kg/m^3, E " << s.particles.material.youngs_modulus
     << " Pa |\n"

@@ -50,7 +50,7 @@ void parameters_section(std::ostringstream& m, const StudyRecord& s) {
   const DemOutcome& d = s.dem;
   const fem::ColumnProblem& p = s.rollers_problem;
   m << "## Parameters\n\n| quantity | value |\n|---|---|\n"
-    << "| grains | " << sc.particles.count << " spheres, radius "
+    << "| grains | " << sc.particles.count << grain_kind(sc.particles.shapes)
     << (sc.particles.gradation.empty() ? fmt(sc.particles.radius) + " m" : std::string("by gradation curve"))
     << ", density " << sc.particles.material.density << " kg/m^3, E " << sc.particles.material.youngs_modulus
     << " Pa, nu " << sc.particles.material.poisson_ratio << " |\n"
