@@ -64,12 +64,22 @@ FrictionStrength friction_strength(const std::vector<TriaxialState>& path, doubl
                   " to " + std::to_string(k));
   FrictionStrength f;
   std::vector<double> angle(path.size());
-  std::size_t peak = 0;
-  for (std::size_t k = 0; k < path.size(); ++k) {
+  for (std::size_t k = 0; k < path.size(); ++k)
     angle[k] = mobilised_friction_angle(path[k].axial_stress, path[k].lateral_stress);
-    if (angle[k] > angle[peak]) peak = k;
+  // The peak of the running mean over the window: the largest single state of a noisy path
+  // would overstate it.
+  std::size_t peak = 0;
+  for (std::size_t k = 0, a = 0, b = 0; k < path.size(); ++k) {
+    while (path[k].axial_strain - path[a].axial_strain > peak_window) ++a;
+    while (b < path.size() && path[b].axial_strain - path[k].axial_strain <= peak_window) ++b;
+    double mean = 0.0;
+    for (std::size_t j = a; j < b; ++j) mean += angle[j];
+    mean /= static_cast<double>(b - a);
+    if (k == 0 || mean > f.peak_angle) {
+      f.peak_angle = mean;
+      peak = k;
+    }
   }
-  f.peak_angle = angle[peak];
   f.peak_strain = path[peak].axial_strain;
   // The states within the window around the peak, widened to three.
   std::size_t first = peak, last = peak + 1;

@@ -36,7 +36,7 @@ double jaky_k0(double friction_angle_deg);
 double inertial_number(double strain_rate, double diameter, double density, double pressure);
 
 struct FrictionStrength {
-  double peak_angle = 0.0;            // the largest mobilised angle (degrees)
+  double peak_angle = 0.0;            // the largest running mean of the mobilised angle (degrees)
   double peak_strain = 0.0;           // eps_1 there
   double peak_rate_ratio = 0.0;       // d eps_v / d eps_1 around the peak
   double peak_dilatancy_angle = 0.0;  // psi from it (degrees)
@@ -48,10 +48,12 @@ struct FrictionStrength {
 };
 
 // The strength of a path (states in the order of growing axial strain, at least 3):
-// the peak state, the rate ratio at the peak from the least-squares line of eps_v against eps_1
-// over the states with |eps_1 - eps_peak| <= peak_window (at least three: the nearest ones
-// otherwise), and the critical part, the states with eps_1 >= (1 - critical_share) eps_max
-// (0 < critical_share <= 1). Throws upgrain::Error for a path too short, or a strain that does not grow.
+// the peak state, where the running mean of the mobilised angle over the states with
+// |eps_1 - eps_k| <= peak_window is largest (that mean is the peak angle); the rate ratio there from the
+// least-squares line of eps_v against eps_1 over the states with |eps_1 - eps_peak| <= peak_window (at least
+// three: the nearest ones otherwise), and the critical part, the states with eps_1 >= (1 - critical_share)
+// eps_max (0 < critical_share <= 1). Throws upgrain::Error for a path too short, or a strain that does not
+// grow.
 FrictionStrength friction_strength(const std::vector<TriaxialState>& path, double peak_window,
                                    double critical_share);
 

@@ -37,18 +37,19 @@ TEST(Triaxial, DilatancyAngleOfKnownRateRatios) {
   EXPECT_NEAR(inertial_number(0.2, 3e-3, 2500.0, 1000.0), 0.2 * 3e-3 * std::sqrt(2.5), 1e-16);
 }
 
-// A path whose mobilised angle rises linearly to 40 degrees at eps_1 = 0.05, falls to 30 at 0.1
-// and then alternates 30 +- 0.5; eps_v contracts at slope 1/2 to 0.03, dilates at slope -1/2
-// to 0.08 (through the peak) and then stays constant.
+// A path whose mobilised angle rises linearly to 40 degrees at eps_1 = 0.04, stays there to
+// 0.06, falls to 30 at 0.1 and then alternates 30 +- 0.5; eps_v contracts at slope 1/2 to 0.03,
+// dilates at slope -1/2 to 0.08 (through the peak) and then stays constant. Pieces by state
+// index k (eps_1 = 0.002 k), so that no boundary depends on rounding.
 std::vector<TriaxialState> synthetic_path() {
   std::vector<TriaxialState> path;
   const double s3 = 1000.0;
   for (int k = 0; k < 100; ++k) {
     const double e1 = 0.002 * k;
-    double phi = e1 <= 0.05 ? 40.0 * e1 / 0.05 : e1 < 0.1 - 1e-12 ? 40.0 - 10.0 * (e1 - 0.05) / 0.05 : 30.0;
+    double phi = k <= 20 ? 2.0 * k : k <= 30 ? 40.0 : k <= 50 ? 40.0 - 0.5 * (k - 30) : 30.0;
     if (k >= 50) phi += k % 2 == 0 ? 0.5 : -0.5;
     const double s = std::sin(phi * kDegree);
-    const double ev = e1 <= 0.03 ? 0.5 * e1 : e1 <= 0.08 ? 0.015 - 0.5 * (e1 - 0.03) : -0.01;
+    const double ev = k <= 15 ? 0.001 * k : k <= 40 ? 0.015 - 0.001 * (k - 15) : -0.01;
     path.push_back({e1, ev, s3 * (1 + s) / (1 - s), s3});
   }
   return path;
@@ -56,7 +57,8 @@ std::vector<TriaxialState> synthetic_path() {
 
 TEST(Triaxial, SyntheticPathGivesItsPeakDilatancyAndCriticalState) {
   const std::vector<TriaxialState> path = synthetic_path();
-  const FrictionStrength f = friction_strength(path, 0.01, 0.5);
+  // The window +-0.011 holds 11 states: only around eps_1 = 0.05 do they all lie on the plateau.
+  const FrictionStrength f = friction_strength(path, 0.011, 0.5);
   EXPECT_NEAR(f.peak_angle, 40.0, 1e-10);
   EXPECT_NEAR(f.peak_strain, 0.05, 1e-14);
   EXPECT_NEAR(f.peak_rate_ratio, -0.5, 1e-10);
@@ -66,8 +68,12 @@ TEST(Triaxial, SyntheticPathGivesItsPeakDilatancyAndCriticalState) {
   EXPECT_NEAR(f.critical_angle, 30.0, 1e-10);
   EXPECT_NEAR(f.critical_spread, 0.5, 1e-10);
   EXPECT_NEAR(f.critical_rate_ratio, 0.0, 1e-12);
-  // A zero window still fits a line through three states (the peak and its neighbours).
-  EXPECT_NEAR(friction_strength(path, 0.0, 0.5).peak_rate_ratio, -0.5, 1e-10);
+  // A zero window takes the single largest state (the first of the plateau) and still fits a
+  // line through three states (it and its neighbours).
+  const FrictionStrength g = friction_strength(path, 0.0, 0.5);
+  EXPECT_NEAR(g.peak_angle, 40.0, 1e-10);
+  EXPECT_NEAR(g.peak_strain, 0.04, 1e-14);
+  EXPECT_NEAR(g.peak_rate_ratio, -0.5, 1e-10);
 }
 
 TEST(Triaxial, BadPathsAreRefused) {
