@@ -41,7 +41,9 @@ void ServoWalls::update(dem::Simulation& sim, const std::vector<ServoWall>& wall
     const dem::ServoSettings servo{walls[w].target_stress, walls[w].area, gain_factor_, max_speed_};
     const double k =
         dem::hertz_wall_stiffness_bound(std::max(stress, 0.0) * walls[w].area, global[w], e_star, r_max_);
-    const double speed = dem::servo_speed(servo, stress, k, dt);
+    if (integral_.size() < sim.walls().size()) integral_.resize(sim.walls().size(), 0.0);
+    const double speed =
+        dem::servo_speed_with_integral(servo, stress, k, dt, beta_, integral_[walls[w].wall]);
     // + 0: no -0 components in walls.csv
     sim.set_wall_velocity(walls[w].wall, speed * wall.normal + dem::Vec3::Zero());
   }

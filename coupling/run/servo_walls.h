@@ -26,8 +26,12 @@ double wall_normal_stress(const dem::PlaneWall& wall, const dem::Vec3& force, do
 // The servo of a set of walls. Keeps the largest Hertz radius a wall can see, taken once.
 class ServoWalls {
  public:
-  ServoWalls(double gain_factor, double max_speed, long update_every)
-      : gain_factor_(gain_factor), max_speed_(max_speed), update_every_(update_every) {}
+  // integral_factor: beta of dem::servo_speed_with_integral (0: the proportional servo).
+  ServoWalls(double gain_factor, double max_speed, long update_every, double integral_factor = 0.0)
+      : gain_factor_(gain_factor),
+        max_speed_(max_speed),
+        update_every_(update_every),
+        beta_(integral_factor) {}
   // Sets each wall's velocity (speed times its inward normal) when the step count is a multiple
   // of update_every, from the forces of the last evaluation. Collective.
   void update(dem::Simulation& sim, const std::vector<ServoWall>& walls);
@@ -35,7 +39,9 @@ class ServoWalls {
  private:
   double gain_factor_, max_speed_;
   long update_every_;
+  double beta_;
   double r_max_ = 0.0;
+  std::vector<double> integral_;  // per wall index: the integral term's speed (m/s)
 };
 
 }  // namespace upgrain::coupling
