@@ -134,6 +134,10 @@ int run_calibration_study(const SceneInput& in, MPI_Comm comm,
   if (in.scene.contact_law != "hertz-mindlin")
     throw Error(in.source + ": the calibration's servo lid needs Contact/law = hertz-mindlin, not " +
                 in.scene.contact_law + " (docs/calibration.md)");
+  if (in.scene.container.has_gate() || in.scene.container.opens_side_walls())
+    throw Error(
+        "the calibration's tests load the bed in its closed box; a scene with a gate or with side walls "
+        "that open (Container) is not one (docs/calibration.md)");
   // The oedometer's ring: the side walls get the calibration's friction (a lubricated ring by
   // default), the floor keeps the scene's.
   dem::SceneConfig scene = in.scene;

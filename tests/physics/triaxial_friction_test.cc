@@ -26,12 +26,12 @@ struct Outcome {
 };
 
 // 8 x 8 x 8 spheres of radii uniform in [0.8, 1.2] mm on a jittered lattice of 2.6 mm,
-// consolidated to 5 kPa in 0.1 s and sheared at 1/s to 25 % axial strain; the critical state is its second
+// consolidated to 5 kPa in 0.08 s and sheared at 1/s to 25 % axial strain; the critical state is its second
 // half.
 Outcome shear(double mu) {
   constexpr double spacing = 2.6e-3, rho = 2650.0;
   constexpr int n = 8;
-  SceneConfig s = test::bare_scene(4e-6);
+  SceneConfig s = test::bare_scene(5e-6);
   s.effects.damping = true;
   s.effects.friction = mu > 0.0;
   s.effects.rotation = true;
@@ -55,7 +55,7 @@ Outcome shear(double mu) {
   o.confining_stress = 5e3;
   o.strain_rate = 1.0;
   o.final_strain = 0.25;
-  o.consolidation_time = 0.1;
+  o.consolidation_time = 0.08;
   o.max_speed = 0.1;
   o.records = 50;
   const std::vector<coupling::TriaxialRecord> rec = coupling::run_triaxial(sim, o);
