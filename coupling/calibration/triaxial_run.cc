@@ -5,6 +5,7 @@
 
 #include "coupling/run/lid.h"
 #include "coupling/run/servo_walls.h"
+#include "coupling/run/stop_request.h"
 #include "dem/boundary/container.h"
 #include "dem/core/error.h"
 
@@ -71,6 +72,9 @@ TriaxialRecord measure(const dem::Simulation& sim, const SampleWalls& w, const B
 // at the default alpha = 0.5: no ringing on a linear spring.
 constexpr double kIntegralFactor = 0.1;
 
+// Steps between checks for a stop request (SIGINT, SIGTERM, SIGHUP; one collective each).
+constexpr long kStopCheckEvery = 1000;
+
 }  // namespace
 
 std::vector<TriaxialRecord> run_triaxial(dem::Simulation& sim, const TriaxialOptions& o) {
@@ -97,6 +101,7 @@ std::vector<TriaxialRecord> run_triaxial(dem::Simulation& sim, const TriaxialOpt
   for (long s = 0; s < consolidation; ++s) {
     servo.update(sim, servo_walls(sim, w, o.confining_stress, true));
     if (s + 1 == consolidation) sim.request_contacts();
+    if (sim.step_count() % kStopCheckEvery == 0) stop_if_requested(sim.comm(), sim.step_count());
     sim.step();
   }
   const Box first = box_of(sim, w);
@@ -111,6 +116,7 @@ std::vector<TriaxialRecord> run_triaxial(dem::Simulation& sim, const TriaxialOpt
     for (; done < until; ++done) {
       servo.update(sim, servo_walls(sim, w, o.confining_stress, false));
       if (done + 1 == until) sim.request_contacts();
+      if (sim.step_count() % kStopCheckEvery == 0) stop_if_requested(sim.comm(), sim.step_count());
       sim.step();
     }
     records.push_back(measure(sim, w, first));
