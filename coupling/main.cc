@@ -288,10 +288,13 @@ int run(int argc, char** argv) {
       std::printf(
           "  study: DEM deposition -> grid stress -> continuum column (Q%u) -> comparison and report\n",
           in.study.continuum.degree);
-    if (!in.study.continuum.material_file.empty())
-      std::printf("  continuum material: E %.9g Pa, nu %.9g (Continuum/material file %s)\n",
-                  in.study.continuum.youngs_modulus, in.study.continuum.poisson_ratio,
-                  in.study.continuum.material_file.c_str());
+    if (const coupling::ContinuumOptions& c = in.study.continuum; !c.material_file.empty())
+      std::printf(
+          "  continuum material: E %.9g Pa (%s), nu %.9g (%s), friction angle %.9g deg (%s), dilatancy angle "
+          "%.9g deg (%s)\n",
+          c.youngs_modulus, c.source_of("youngs modulus").c_str(), c.poisson_ratio,
+          c.source_of("poisson ratio").c_str(), c.friction_angle_deg, c.source_of("friction angle").c_str(),
+          c.dilatancy_angle_deg, c.source_of("dilatancy angle").c_str());
     std::printf("  effects (Effects section; auto = derived from the scene):\n");
     for (const dem::EffectChoice& c : in.output.effect_choices)
       std::printf("    %-20s %-3s  %s\n", c.entry.c_str(), c.on ? "on" : "off", c.reason.c_str());

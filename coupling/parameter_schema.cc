@@ -374,6 +374,23 @@ const std::vector<ParameterSpec>& parameter_schema() {
       {"Calibration", "side wall friction", "0", K::real, 0.0, 10.0, "", "-",
        "Coulomb coefficient of the side walls in the calibration's bed (0: a lubricated oedometer ring, so "
        "that the test measures the grains, not the walls); the floor keeps Container/floor friction."},
+      {"Calibration", "confining stress", "2", K::real, 1e-3, 1e6, "", "bed weight / footprint",
+       "sigma_3 of the friction-angle test (docs/calibration.md), held by the four servo side walls, as a "
+       "multiple of the bed's weight over the box's footprint; the bed is first consolidated to it "
+       "isotropically (without gravity)."},
+      {"Calibration", "axial strain rate", "0.15", K::real, 1e-6, 1e3, "", "1/s",
+       "Axial strain rate of the friction-angle test: the lid comes down at this rate times the consolidated "
+       "height. The driver prints the inertial number I = rate d sqrt(rho / sigma_3) (quasi-static below "
+       "about 1e-3)."},
+      {"Calibration", "final axial strain", "0.15", K::real, 0.01, 0.5, "", "-",
+       "Axial strain at which the friction-angle test ends; its last 30 % is the critical state."},
+      {"Calibration", "consolidation time", "0.05", K::real, 1e-9, 1e6, "", "s",
+       "Simulated time in which the lid and the side walls consolidate the bed to the confining stress "
+       "before the shearing."},
+      {"Calibration", "continuum strength", "peak", K::selection, 0, 0, "peak|critical state", "-",
+       "The strength the calibrated material file gives the Drucker–Prager continuum: the peak friction "
+       "angle with the dilatancy angle at the peak, or the critical-state friction angle with no "
+       "dilatancy."},
       {"CoarseGraining", "fields",
        "density, velocity, stress, wall force density, displacement, momentum balance", K::multiple_selection,
        0, 0, "density|velocity|stress|wall force density|displacement|momentum balance", "-",

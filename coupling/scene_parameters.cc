@@ -288,6 +288,11 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
     c.max_speed = prm.get_double("max speed");
     c.update_every = prm.get_integer("update interval");
     c.side_wall_friction = prm.get_double("side wall friction");
+    c.confining_stress_factor = prm.get_double("confining stress");
+    c.axial_strain_rate = prm.get_double("axial strain rate");
+    c.final_axial_strain = prm.get_double("final axial strain");
+    c.consolidation_time = prm.get_double("consolidation time");
+    c.critical_state_strength = prm.get("continuum strength") == "critical state";
   }
   prm.leave_subsection();
 
@@ -535,13 +540,30 @@ void apply_material_file(SceneInput& in, const std::string& scene_file) {
   if (file.is_relative() && !scene_file.empty())
     file = std::filesystem::path(scene_file).parent_path() / file;
   SceneInput material;
+  std::map<std::string, std::string> set;
   try {
-    material = parse_scene_text(read_scene_bytes(file.string()), file.string());
+    const std::string text = read_scene_bytes(file.string());
+    material = parse_scene_text(text, file.string());
+    set = set_lines_of(decode_scene_text(text, file.string()));
   } catch (const Error& e) {
     throw Error(in.source + ": Continuum/material file: " + e.what());
   }
-  c.youngs_modulus = material.study.continuum.youngs_modulus;
-  c.poisson_ratio = material.study.continuum.poisson_ratio;
+  // The file wins for the entries it sets, and only for those (an older file has no strength).
+  const ContinuumOptions& m = material.study.continuum;
+  const std::pair<const char*, std::pair<double*, double>> entries[] = {
+      {"youngs modulus", {&c.youngs_modulus, m.youngs_modulus}},
+      {"poisson ratio", {&c.poisson_ratio, m.poisson_ratio}},
+      {"friction angle", {&c.friction_angle_deg, m.friction_angle_deg}},
+      {"dilatancy angle", {&c.dilatancy_angle_deg, m.dilatancy_angle_deg}}};
+  c.material_file_entries.clear();
+  for (const auto& [entry, value] : entries)
+    if (set.count(std::string("Continuum/") + entry)) {
+      *value.first = value.second;
+      c.material_file_entries.emplace_back(entry);
+    }
+  if (c.material_file_entries.empty())
+    throw Error(in.source + ": Continuum/material file: " + file.string() +
+                " sets none of Continuum/youngs modulus, poisson ratio, friction angle, dilatancy angle");
   c.material_file = file.string();
 }
 

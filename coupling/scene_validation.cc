@@ -290,6 +290,25 @@ void validate_scene(SceneInput& in) {
       if (!(f[k] > 0.0) || (k > 0 && !(f[k] > f[k - 1])))
         throw Error(where + "Calibration/lid stresses: the targets must be > 0 and ascending");
   }
+  {
+    // The friction-angle test's shearing records 100 states: it needs at least one step each.
+    const CalibrationOptions& c = in.calibration;
+    const double shearing = c.final_axial_strain / c.axial_strain_rate;
+    if (shearing < 100.0 * s.time_step) {
+      std::ostringstream m;
+      m << where << "Calibration/final axial strain / axial strain rate = " << shearing
+        << " s of shearing is shorter than 100 time steps (" << 100.0 * s.time_step
+        << " s): the friction-angle test records 100 states; lower Calibration/axial strain rate";
+      throw Error(m.str());
+    }
+    if (c.consolidation_time < 10.0 * static_cast<double>(c.update_every) * s.time_step) {
+      std::ostringstream m;
+      m << where << "Calibration/consolidation time = " << c.consolidation_time
+        << " s gives the servo walls fewer than 10 updates (Calibration/update interval = " << c.update_every
+        << " steps of " << s.time_step << " s)";
+      throw Error(m.str());
+    }
+  }
   if (const upscale::GridStrainOutputOptions& st = in.output.grid_strain; st.enabled) {
     if (!in.output.grid_stress.enabled())
       throw Error(where +

@@ -24,6 +24,16 @@ struct ContinuumOptions {
   // Where E and nu came from: empty for the Continuum entries, else the calibrated material
   // file (Continuum/material file, docs/calibration.md) they were read from.
   std::string material_file;
+  // The entries the material file set (of youngs modulus, poisson ratio, friction angle,
+  // dilatancy angle): those take the file's values, the others keep the Continuum entries.
+  std::vector<std::string> material_file_entries;
+  // Where an entry's value came from, for printouts and reports: "material file <file>" or
+  // "Continuum entry".
+  [[nodiscard]] std::string source_of(const std::string& entry) const {
+    for (const std::string& e : material_file_entries)
+      if (e == entry) return "material file " + material_file;
+    return "Continuum entry";
+  }
   unsigned refinements = 1;  // global refinements of the mesh that matches the stress grid
   unsigned degree = 2;       // Q2 reproduces the analytic column exactly
   std::vector<ContinuumVariant> variants = {ContinuumVariant::elastic_friction,

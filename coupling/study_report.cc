@@ -69,7 +69,8 @@ void parameters_section(std::ostringstream& m, const StudyRecord& s) {
     << "| continua | E " << p.youngs_modulus << " Pa, nu " << p.poisson_ratio
     << (s.in.study.continuum.material_file.empty()
             ? std::string(" (Continuum entries)")
-            : " (calibrated: " + s.in.study.continuum.material_file + ")")
+            : " (E: " + s.in.study.continuum.source_of("youngs modulus") +
+                  "; nu: " + s.in.study.continuum.source_of("poisson ratio") + ")")
     << " (K0 = " << fmt(s.comparison.k0) << "), Q" << p.degree << ", " << p.refinements << " refinement(s), "
     << s.rollers.n_dofs << " dofs |\n"
     << "| elastic on rollers | " << s.rollers.cg_iterations << " CG iterations |\n";
@@ -82,9 +83,11 @@ void parameters_section(std::ostringstream& m, const StudyRecord& s) {
                                         : std::to_string(q.loading.load_steps) + " load step(s)");
     if (q.material == fem::ColumnMaterial::drucker_prager) {
       const fem::DruckerPrager cone = fem::drucker_prager_cone(q.strength);
-      m << "; phi " << q.strength.friction_angle_deg << " deg, psi " << q.strength.dilatancy_angle_deg
-        << " deg, c " << q.strength.cohesion << " Pa, " << matching_name(q.strength.matching) << " (eta "
-        << fmt(cone.eta) << ", eta_bar " << fmt(cone.eta_bar) << ", xi " << fmt(cone.xi) << ")";
+      m << "; phi " << q.strength.friction_angle_deg << " deg ("
+        << s.in.study.continuum.source_of("friction angle") << "), psi " << q.strength.dilatancy_angle_deg
+        << " deg (" << s.in.study.continuum.source_of("dilatancy angle") << "), c " << q.strength.cohesion
+        << " Pa, " << matching_name(q.strength.matching) << " (eta " << fmt(cone.eta) << ", eta_bar "
+        << fmt(cone.eta_bar) << ", xi " << fmt(cone.xi) << ")";
     }
     m << " |\n";
   }

@@ -1,6 +1,7 @@
 #pragma once
 // The Calibration section of a scene file (docs/calibration.md): how the calibration study
-// (`upgrain --study calibration`) loads the bed.
+// (`upgrain --study calibration`) loads the bed: the oedometric test and the friction-angle test,
+// both from the deposited bed.
 #include <vector>
 
 namespace upgrain::coupling {
@@ -14,6 +15,14 @@ struct CalibrationOptions {
   double max_speed = 0.05;          // m/s
   long update_every = 10;           // steps between servo updates
   double side_wall_friction = 0.0;  // the oedometer ring's (the floor keeps the scene's)
+  // The friction-angle test (triaxial_run.h); the servo settings above apply to its walls too.
+  double confining_stress_factor = 2.0;  // sigma_3 in units of the bed's weight over the footprint
+  double axial_strain_rate = 0.15;       // 1/s
+  double final_axial_strain = 0.15;
+  double consolidation_time = 0.05;  // s
+  // Which strength the calibrated material takes: the peak angle with the dilatancy angle at
+  // the peak, or the critical-state angle with no dilatancy.
+  bool critical_state_strength = false;
 };
 
 }  // namespace upgrain::coupling

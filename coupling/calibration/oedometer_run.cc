@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "coupling/run/lid.h"
+#include "coupling/run/stop_request.h"
 #include "dem/core/error.h"
 
 namespace upgrain::coupling {
@@ -28,6 +29,9 @@ OedometerRecord measure(const dem::Simulation& sim, double target, double first_
   r.state.vertical_strain = (first_height - r.height) / first_height;
   return r;
 }
+
+// Steps between checks for a stop request (SIGINT, SIGTERM, SIGHUP; one collective each).
+constexpr long kStopCheckEvery = 1000;
 
 }  // namespace
 
@@ -63,12 +67,14 @@ std::vector<OedometerRecord> run_oedometer(dem::Simulation& sim, const Oedometer
   control.place_time = sim.time() + static_cast<double>(seating) * sim.time_step();
   for (long s = 0; s < seating; ++s) {
     lid.before_step(sim);
+    if (sim.step_count() % kStopCheckEvery == 0) stop_if_requested(sim.comm(), sim.step_count());
     sim.step();
   }
   for (double target : o.lid_stresses) {
     for (long s = 0; s < hold; ++s) {
       lid.before_step(sim);
       if (s + 1 == hold) sim.request_contacts();
+      if (sim.step_count() % kStopCheckEvery == 0) stop_if_requested(sim.comm(), sim.step_count());
       sim.step();
     }
     records.push_back(measure(sim, target, first_height));

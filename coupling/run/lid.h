@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "coupling/run/lid_control.h"
+#include "coupling/run/servo_walls.h"
 #include "dem/boundary/servo_wall.h"
 #include "dem/engine/simulation.h"
 
@@ -20,7 +21,8 @@ namespace upgrain::coupling {
 // The lid during a run; every rank holds one alike.
 class Lid {
  public:
-  explicit Lid(const LidControl& control) : control_(control) {}
+  explicit Lid(const LidControl& control)
+      : control_(control), servo_(control.gain_factor, control.max_speed, control.update_every) {}
   // Before each step (collective): places the lid when its time has come and sets its velocity
   // (the servo's every update_every steps, from the lid's normal force of the last evaluation).
   void before_step(dem::Simulation& sim);
@@ -31,10 +33,13 @@ class Lid {
   [[nodiscard]] static double stress(const dem::Simulation& sim);
 
  private:
-  void place(dem::Simulation& sim);
   const LidControl& control_;
-  // The Hertz stiffness bound's largest radius (servo_wall.h), taken when first needed.
-  double r_max_ = 0.0;
+  ServoWalls servo_;
 };
+
+// Adds a horizontal wall named `lid` (normal -z) `gap` above the highest grain top (a bounding
+// sphere's for ellipsoids) over every rank, with that Coulomb coefficient; returns its index.
+// Collective; throws upgrain::Error without grains.
+std::size_t place_lid(dem::Simulation& sim, double gap, double friction);
 
 }  // namespace upgrain::coupling

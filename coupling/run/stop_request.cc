@@ -25,6 +25,12 @@ int stop_signal() { return g_signal; }
 
 void request_stop(int signal) { g_signal = signal; }
 
+void stop_if_requested(MPI_Comm comm, long step) {
+  int signal = stop_signal();
+  MPI_Allreduce(MPI_IN_PLACE, &signal, 1, MPI_INT, MPI_MAX, comm);
+  if (signal != 0) throw RunStopped(signal, step, {});
+}
+
 RunStopped::RunStopped(int signal, long step, std::filesystem::path checkpoint)
     : Error("stopped by signal " + std::to_string(signal) + " (" + strsignal(signal) + ") after step " +
             std::to_string(step) +

@@ -3,6 +3,8 @@
 // a flag that the run reads at its next time-series row, on every rank at once; it then writes
 // a checkpoint (when it writes output), ends its files and stops with RunStopped. A second
 // signal of the same kind ends the process at once, as without the handlers.
+#include <mpi.h>
+
 #include <filesystem>
 #include <string>
 
@@ -16,6 +18,10 @@ void install_stop_handlers();
 int stop_signal();
 // For tests: as if `signal` had arrived.
 void request_stop(int signal);
+
+// Collective: throws RunStopped (no checkpoint) on every rank when any rank received a signal.
+// For loops outside a scene's run (the calibration's tests), which write no checkpoint.
+void stop_if_requested(MPI_Comm comm, long step);
 
 // What a stopped run throws once its checkpoint is written. The driver's exit code for it is
 // 128 + the signal (130 for SIGINT, 143 for SIGTERM, 129 for SIGHUP), as a shell reports a

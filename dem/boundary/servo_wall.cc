@@ -35,6 +35,16 @@ double servo_speed(const ServoSettings& s, double measured_stress, double stiffn
   return std::clamp(speed, -s.max_speed, s.max_speed);
 }
 
+double servo_speed_with_integral(const ServoSettings& s, double measured_stress, double stiffness_sum,
+                                 double dt, double beta, double& integral_speed) {
+  const double error = s.target_stress - measured_stress;
+  const double gain = servo_gain(s, stiffness_sum, dt);
+  if (std::isinf(gain)) return error == 0.0 ? 0.0 : std::copysign(s.max_speed, error);
+  const double speed = std::clamp(gain * error + integral_speed, -s.max_speed, s.max_speed);
+  integral_speed = std::clamp(integral_speed + beta * gain * error, -s.max_speed, s.max_speed);
+  return speed;
+}
+
 double hertz_wall_stiffness_bound(double normal_force, double contacts, double e_star, double r_max) {
   if (!(normal_force > 0.0) || !(contacts > 0.0)) return 0.0;
   const double c = 4.0 / 3.0 * e_star * std::sqrt(r_max);

@@ -32,6 +32,19 @@ double servo_gain(const ServoSettings& s, double stiffness_sum, double dt);
 // [-max_speed, max_speed]. Positive when the measured stress is below the target.
 double servo_speed(const ServoSettings& s, double measured_stress, double stiffness_sum, double dt);
 
+// A proportional-integral servo for a wall that must keep moving to hold its target (a side
+// wall of a sample that dilates or contracts as it is sheared): the proportional servo alone
+// holds such a wall only with the lag e = u / G, u the speed it must keep. The integral term
+// I learns u: v = G e + I, then I += beta G e (both clamped to the maximum speed), so that at a
+// steady speed e -> 0 (docs/calibration.md, "Servo wall"). On a linear spring the error and
+// the scaled integral w = K dt I / A follow e' = (1 - alpha) e - w, w' = w + alpha beta e, whose
+// eigenvalues solve z^2 - (2 - alpha) z + 1 - alpha + alpha beta = 0: inside the unit circle for
+// 0 <= beta < 1 (Jury's criterion), real (no ringing) for beta <= alpha / 4; beta = 0 is the
+// proportional servo. Before any contact (K = 0) the wall approaches at the maximum speed and
+// I is left as it is.
+double servo_speed_with_integral(const ServoSettings& s, double measured_stress, double stiffness_sum,
+                                 double dt, double beta, double& integral_speed);
+
 // An upper bound of K for a wall pressed by `contacts` Hertz contacts with total normal force
 // F (N), for the gain: a contact's stiffness is k = dF/d(delta) = 3/2 c^(2/3) F_i^(1/3) with
 // c = 4/3 E* sqrt(R) (Johnson 1985, eq. 4.23), and at a total F the sum of F_i^(1/3) over N

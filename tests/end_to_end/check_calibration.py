@@ -1,18 +1,25 @@
 #!/usr/bin/python3
 """Runs the calibration study (docs/calibration.md) of a scene on 1 and 2 ranks and checks:
-- oedometer.csv and material.prm are the same bytes on both rank counts;
+- oedometer.csv, triaxial.csv and material.prm are the same bytes on both rank counts;
 - the path: state 0 unloaded, then one state per target; the lid's stress grows from state to
   state and ends within 50 % of the last target (the servo converges over the compliance of
   this loose tiny bed, not within one hold: measured 575 Pa for 735 Pa), and the strain grows; K0 and nu = K0 / (1 + K0) in the columns agree; the M, nu and E columns satisfy
   E = M (1 + nu)(1 - 2 nu) / (1 - nu);
 - material.prm holds a Continuum section whose E and nu are those of summary.json, and which the
   driver reads as a scene file (upgrain --check); a scene naming it as Continuum/material file
-  takes its E (the driver says so), and one naming a missing file is refused.
+  takes its E (the driver says so), and one naming a missing file is refused;
+- the friction-angle test's path (triaxial.csv): 101 records, the axial strain growing from 0
+  to the final strain, the columns consistent (sigma_1, sigma_3 and phi from the Bagi stress,
+  eps_v from the box), the servo side walls holding sigma_3 on average to 10 %; the peak or
+  critical-state phi and psi in material.prm and summary.json agree, psi in [0, phi], Jaky's K0
+  is 1 - sin phi_cs; a scene naming the material file takes its phi (the driver names the
+  file), and a material file without phi leaves the scene's own (named as a Continuum entry).
 
 Usage: check_calibration.py UPGRAIN SCENE WORK [MPIEXEC]
 """
 import csv
 import json
+import math
 import os
 import shutil
 import subprocess
@@ -32,7 +39,7 @@ for ranks in (1, 2):
     if r.returncode != 0:
         sys.exit(f'{ranks} rank(s): exit {r.returncode}\n{r.stdout}\n{r.stderr}')
     folders[ranks] = os.path.join(out, 'calibration')
-for name in ('oedometer.csv', 'material.prm'):
+for name in ('oedometer.csv', 'triaxial.csv', 'material.prm'):
     a = open(os.path.join(folders[1], name), 'rb').read()
     b = open(os.path.join(folders[2], name), 'rb').read()
     assert a == b, f'{name} differs between 1 and 2 ranks'
@@ -85,5 +92,56 @@ with open(scene_with_material, 'w') as f:
     f.write('subsection Continuum\n  set material file = no_such_material.prm\nend\n')
 r = subprocess.run([upgrain, '--check', scene_with_material], capture_output=True, text=True, cwd=work)
 assert r.returncode != 0 and 'Continuum/material file' in r.stderr and 'no_such_material.prm' in r.stderr, r.stderr
+# The friction-angle test.
+tri = list(csv.DictReader(l for l in open(os.path.join(folders[1], 'triaxial.csv')) if not l.startswith('#')))
+assert len(tri) == 101, len(tri)
+eps1 = [float(r['axial_strain']) for r in tri]
+assert eps1[0] == 0 and float(tri[0]['volumetric_strain']) == 0
+assert all(b > a for a, b in zip(eps1, eps1[1:])), eps1
+assert abs(eps1[-1] - 0.1) < 1e-6, eps1[-1]  # Calibration/final axial strain of the scene
+h0, x0, y0 = (float(tri[0][k]) for k in ('height', 'width_x', 'width_y'))
+for r in tri:
+    s1, s3 = float(r['sigma_1']), float(r['sigma_3'])
+    assert abs(s1 - float(r['sigma_zz'])) <= 1e-8 * abs(s1), r
+    assert abs(s3 - 0.5 * (float(r['sigma_xx']) + float(r['sigma_yy']))) <= 1e-8 * abs(s3), r
+    assert abs(float(r['phi']) - math.degrees(math.asin((s1 - s3) / (s1 + s3)))) < 1e-6, r
+    v = float(r['height']) * float(r['width_x']) * float(r['width_y'])
+    assert abs(float(r['volumetric_strain']) - (1 - v / (h0 * x0 * y0))) < 1e-8, r
+    assert abs(float(r['axial_strain']) - (h0 - float(r['height'])) / h0) < 1e-8, r
+sigma3 = summary['confining_stress_Pa']
+mean_s3 = sum(float(r['sigma_3']) for r in tri[1:]) / (len(tri) - 1)
+assert abs(mean_s3 / sigma3 - 1) < 0.1, (mean_s3, sigma3)
+phi, psi = values['friction angle'], values['dilatancy angle']
+# material.prm has 9 significant digits, summary.json all 17.
+assert abs(phi - summary['friction_angle_deg']) < 1e-8 * phi, (values, summary)
+assert abs(psi - summary['dilatancy_angle_deg']) < 1e-8 * phi, (values, summary)
+assert summary['continuum_strength'] == 'peak' and summary['friction_angle_deg'] == summary['peak_friction_angle_deg']
+assert 0 <= psi <= phi, (phi, psi)
+assert summary['dilatancy_angle_deg'] == min(max(summary['peak_dilatancy_angle_deg'], 0), summary['friction_angle_deg'])
+phi_cs = summary['critical_friction_angle_deg']
+assert 3 < phi_cs < 40, phi_cs  # a sanity range for this tiny, fast test (docs/calibration.md)
+assert abs(summary['jaky_k0'] - (1 - math.sin(math.radians(phi_cs)))) < 1e-12
+# A scene naming the material file takes its phi (and names the file); a material file without
+# phi (an older one: E and nu only) leaves the scene's own phi, named as a Continuum entry.
+with open(scene_with_material, 'w') as f:
+    f.write('subsection Continuum\n  set material file = ranks_1/calibration/material.prm\n'
+            '  set friction angle = 44\nend\n')
+r = subprocess.run([upgrain, '--check', scene_with_material], capture_output=True, text=True, cwd=work)
+assert r.returncode == 0, r.stderr
+line = [l for l in r.stdout.splitlines() if 'continuum material:' in l][0]
+phi_read = float(line.split('friction angle ')[1].split(' deg')[0])
+assert phi_read == phi and 'deg (material file' in line.split('friction angle ')[1], line
+with open(os.path.join(work, 'old_material.prm'), 'w') as f:
+    f.write('subsection Continuum\n  set youngs modulus = 2e6\n  set poisson ratio = 0.3\nend\n')
+with open(scene_with_material, 'w') as f:
+    f.write('subsection Continuum\n  set material file = old_material.prm\n  set friction angle = 33\nend\n')
+r = subprocess.run([upgrain, '--check', scene_with_material], capture_output=True, text=True, cwd=work)
+assert r.returncode == 0, r.stderr
+line = [l for l in r.stdout.splitlines() if 'continuum material:' in l][0]
+assert 'friction angle 33 deg (Continuum entry)' in line and 'E 2000000 Pa (material file' in line, line
+print(f"calibration: phi peak {summary['peak_friction_angle_deg']:.2f} deg, critical {phi_cs:.2f} +- "
+      f"{summary['critical_friction_angle_spread_deg']:.2f} deg, psi {psi:.2f} deg, I {summary['inertial_number']:.2e}, "
+      f"Jaky K0 {summary['jaky_k0']:.3f} (measured {summary['k0_deposited']:.3f})")
 print(f"calibration: E {summary['youngs_modulus_Pa']:.4g} Pa, nu {summary['poisson_ratio']:.3f}, "
-      f"wall time {summary['deposition_wall_time_s']:.1f} + {summary['oedometer_wall_time_s']:.1f} s")
+      f"wall time {summary['deposition_wall_time_s']:.1f} + {summary['oedometer_wall_time_s']:.1f} + "
+      f"{summary['triaxial_wall_time_s']:.1f} s")

@@ -54,6 +54,33 @@ TEST(ServoWall, ClampedApproachThenConvergence) {
   EXPECT_NEAR(k * u / s.area, s.target_stress, 1e-6 * s.target_stress);
 }
 
+// A spring whose far end recedes at the speed u: the wall must keep moving at u. The
+// proportional servo then lags by exactly e = u / G = u k dt / (alpha A); with the integral term
+// the error goes to 0 and the integral to u.
+TEST(ServoWall, IntegralTermRemovesTheLagOfAMovingSpring) {
+  const double k = 1.0e6, u = 2e-3;
+  const ServoSettings s = settings(0.5);
+  for (const double beta : {0.0, 0.1, 0.5}) {
+    double x = 0.5 * s.target_stress * s.area / k, base = 0.0, integral = 0.0;
+    for (int step = 0; step < 2000; ++step) {
+      x += servo_speed_with_integral(s, k * (x - base) / s.area, k, kDt, beta, integral) * kDt;
+      base += u * kDt;
+    }
+    const double error = s.target_stress - k * (x - base) / s.area;
+    if (beta == 0.0) {
+      EXPECT_NEAR(error, u / servo_gain(s, k, kDt), 1e-9 * s.target_stress);
+      EXPECT_EQ(integral, 0.0);
+    } else {
+      EXPECT_NEAR(error, 0.0, 1e-9 * s.target_stress) << beta;
+      EXPECT_NEAR(integral, u, 1e-9 * u) << beta;
+    }
+  }
+  // Before contact the wall approaches at the maximum speed and the integral is kept.
+  double integral = 1e-3;
+  EXPECT_EQ(servo_speed_with_integral(s, 0.0, 0.0, kDt, 0.1, integral), s.max_speed);
+  EXPECT_EQ(integral, 1e-3);
+}
+
 TEST(ServoWall, HertzSpringWithTheBoundIsStableAndConverges) {
   // N equal Hertz contacts of radius r under the wall (the bound's own case), and N contacts
   // of which a few carry most of the force (the bound above the true stiffness).
