@@ -138,17 +138,7 @@ TEST(TwistingResistance, EnergyBalanceStaysClosed) {
     s.rolling_friction = 0.1;
     s.container.lx = s.container.ly = 0.04;
     s.container.height = 0.2;
-    ParticleStore p;
-    GlobalId id = 0;
-    for (int ix = 0; ix < 3; ++ix)
-      for (int iy = 0; iy < 3; ++iy)
-        for (int iz = 0; iz < 3; ++iz) {
-          const Vec3 x(0.008 + 0.012 * ix + 0.001 * iz, 0.008 + 0.012 * iy + 0.0007 * ix, 0.008 + 0.012 * iz);
-          p.add_sphere(id, kR, 2650, x, Vec3(0.1 * (iy - 1), 0.05 * (iz - 1), -0.2),
-                       Vec3(0, 0, 30.0 * (ix - 1)));
-          ++id;
-        }
-    Simulation sim(s, p);
+    Simulation sim(s, test::box_of_27_spheres(kR, 30.0));
     sim.run(static_cast<long>(0.6 / s.time_step));
     const EnergyBalance e0 = sim.initial_energy(), e = sim.energy();
     const double released = e0.potential - e.potential + e0.kinetic();
