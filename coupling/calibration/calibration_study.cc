@@ -132,8 +132,8 @@ int run_calibration_study(const SceneInput& in, MPI_Comm comm,
                           const std::function<void(const Progress&)>& on_progress) {
   const CalibrationOptions& c = in.calibration;
   if (in.scene.contact_law != "hertz-mindlin")
-    throw Error(in.source + ": the calibration's servo lid needs Contact/law = hertz-mindlin, not " +
-                in.scene.contact_law + " (docs/calibration.md)");
+    throw Error("the calibration's servo lid needs Contact/law = hertz-mindlin, not " + in.scene.contact_law +
+                " (docs/calibration.md)");
   if (in.scene.container.has_gate() || in.scene.container.opens_side_walls())
     throw Error(
         "the calibration's tests load the bed in its closed box; a scene with a gate or with side walls "
