@@ -82,6 +82,9 @@ template <bool Energy>
     m = std::copysign(limit, trial);
     if constexpr (Energy) energy.dissipated_rolling += (before + m) * (trial - m) / (2.0 * k);
   } else if (p.damping_ratio > 0.0) {
+    // With the rolling dashpot's inertia I_r (the grains' moments about the contact point):
+    // for a sphere that is sqrt(3.5) times the critical damping of a twist about its centre
+    // (docs/contact-law.md).
     viscous = -(2.0 * p.damping_ratio * std::sqrt(c.inertia * k)) * w_t;
     // Spring and dashpot together within the slip limit, as for rolling.
     if (std::abs(m + viscous) > limit) viscous = std::copysign(limit, m + viscous) - m;
@@ -101,7 +104,7 @@ template <bool Energy>
   const Vec3& n = c.normal;
   const double k_r = rolling_stiffness(c.k_n, p.friction, c.r_star);
   Vec3& m = s.torque;
-  carry_into_plane<Energy>(m, n, s.stiffness, k_r, energy.rolling_stiffness_change);
+  if (k_r > 0.0) carry_into_plane<Energy>(m, n, s.stiffness, k_r, energy.rolling_stiffness_change);
   const Vec3 before = m;  // the previous spring torque, in the present plane
   // Relative rolling: the part of omega_i - omega_j perpendicular to the normal (the normal
   // part is twisting, not resisted here).
@@ -127,7 +130,10 @@ template <bool Energy>
     // The v(k-1/2) half of its work, as the normal damping (contact_response.h).
     if constexpr (Energy) energy.dissipated_rolling -= 0.5 * viscous.dot(w_r) * c.dt;
   }
-  if constexpr (Energy) energy.elastic_rolling += 0.5 * m.squaredNorm() / k_r;
+  // k_r = 0 (a rolling friction of 0, kept for twisting alone): no rolling spring, no energy.
+  if constexpr (Energy) {
+    if (k_r > 0.0) energy.elastic_rolling += 0.5 * m.squaredNorm() / k_r;
+  }
   if (p.twisting_modulus > 0.0) {
     double twist_viscous = 0.0;
     const double twist = twisting_resistance<Energy>(p, c, s, energy, twist_viscous);

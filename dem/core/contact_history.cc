@@ -52,7 +52,8 @@ void ContactHistory::collect(const PairList& pairs, const WallList& walls, const
       const TangentialSpring& s = kinds_.tangential ? pair_spring[k] : no_spring;
       const RollingSpring& ro = kinds_.rolling ? pair_rolling[k] : no_rolling;
       const ShapedContactMemory& m = kinds_.shapes ? pair_memory[k] : no_memory;
-      if (s.stiffness == 0.0 && ro.stiffness == 0.0 && m.empty()) continue;  // nothing to carry
+      if (s.stiffness == 0.0 && ro.stiffness == 0.0 && ro.twist_stiffness == 0.0 && m.empty())
+        continue;  // nothing to carry
       const GlobalId a = id[i];
       const GlobalId b = id[pairs.partner[k]];
       out.push_back(a < b ? make_record(a, b, s, ro, m, keep_gap_budget)
@@ -64,7 +65,7 @@ void ContactHistory::collect(const PairList& pairs, const WallList& walls, const
     const RollingSpring& ro = kinds_.rolling ? wall_rolling[e] : no_rolling;
     ShapedContactMemory m;
     if (kinds_.shapes) m.r_star = wall_r_star[e];
-    if (s.stiffness == 0.0 && ro.stiffness == 0.0 && m.r_star == 0.0) continue;
+    if (s.stiffness == 0.0 && ro.stiffness == 0.0 && ro.twist_stiffness == 0.0 && m.r_star == 0.0) continue;
     out.push_back(make_record(id[walls.particle[e]], wall_key(walls.wall[e]), s, ro, m, false));
   }
 }

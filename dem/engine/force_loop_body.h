@@ -30,7 +30,7 @@ inline __attribute__((always_inline)) void forget_history(TangentialSpring* spri
     if (springs[k].stiffness != 0.0) springs[k] = TangentialSpring{};
   }
   if constexpr (Rolling) {
-    if (rolling[k].stiffness != 0.0) rolling[k] = RollingSpring{};
+    if (rolling[k].stiffness != 0.0 || rolling[k].twist_stiffness != 0.0) rolling[k] = RollingSpring{};
   }
 }
 
@@ -354,11 +354,15 @@ void compute(const ForceInput& in) {
           if constexpr (kRolling) {
             const double inertia_i = rolling_inertia(p, i, kin.lever_i);
             const double inertia_j = rolling_inertia(p, j, kin.lever_j);
-            const RollingContact rc{kin.normal, kin.omega_i - kin.omega_j,
-                                    cp.r_star,  cf.stiffness,
-                                    cf.normal,  inertia_i * inertia_j / (inertia_i + inertia_j),
-                                    cp.dt,      kin.overlap,
-                                    cp.friction};
+            const RollingContact rc{kin.normal,
+                                    kin.omega_i - kin.omega_j,
+                                    cp.r_star,
+                                    cf.stiffness,
+                                    cf.normal,
+                                    inertia_i * inertia_j / (inertia_i + inertia_j),
+                                    cp.dt,
+                                    kin.overlap,
+                                    E::friction ? cp.friction : 0.0};
             const Vec3 m_r =
                 Law::Rolling::template torque<kEnergy>(rp, rc, h.pair_rolling[k], sink, rolling_viscous);
             ti += m_r;

@@ -69,9 +69,9 @@ BedRun deposit(SceneConfig s, double end_time = 2.0) {
 }
 
 // At rest: the translational kinetic energy below 1e-6 of the potential energy released.
-// Rotation is left out: a grain spinning about its contact normal meets no resistance (the law
-// has no twisting torque, docs/contact-law.md), and the 1:10 bed keeps such spinners (all of
-// its remaining kinetic energy is rotational) while its grains stay in place.
+// Rotation is left out: without twisting resistance a grain spinning about its contact normal
+// meets no torque (docs/contact-law.md), and a bed kept such spinners while its grains stayed in
+// place; the beds here switch it on, but the invariant stays the one that holds without it.
 void expect_sound_bed(const BedRun& b, double overlap_limit) {
   EXPECT_LT(b.r.energy.kinetic_translational / b.r.potential_released, 1e-6);
   EXPECT_EQ(b.r.bed.particles_outside, 0);
