@@ -425,6 +425,18 @@ void Simulation::add_wall(const PlaneWall& wall) {
     if (w.name == wall.name) throw Error("a wall named '" + wall.name + "' is already in the scene");
   walls_.push_back(wall);
   if (!scene_.effects.wall_friction) walls_.back().friction = 0.0;
+  // Until the next evaluation the new wall carries no load. The loads kept per wall (a
+  // restored state's, and the fast summation's per-wall sums) get its zero entry, so that
+  // wall_loads() has one entry per wall on every rank (a servo reads it before the first step).
+  if (restored_wall_loads_) {
+    restored_wall_loads_->force.push_back(Vec3::Zero());
+    restored_wall_loads_->damping.push_back(Vec3::Zero());
+  }
+  if (summation_ == Summation::fast) {
+    if (out_.wall_force.size() + 1 == walls_.size()) out_.wall_force.push_back(Vec3::Zero());
+    if (!out_.wall_damping.empty() && out_.wall_damping.size() + 1 == walls_.size())
+      out_.wall_damping.push_back(Vec3::Zero());
+  }
   // Its point at build: far enough that the next step rebuilds (the entries come with it).
   wall_points_at_build_.push_back(wall.point);
   note_wall_motion();

@@ -6,7 +6,9 @@
 //  - a lid pressed onto a sphere on the floor at a steady speed and then stopped: the work the
 //    lid did equals the elastic energy stored plus the damping dissipated, and at rest the two
 //    contacts carry the Hertz force of the same overlap;
-//  - a lid starting many skins away reaches the sphere: the lists follow a moving wall.
+//  - a lid starting many skins away reaches the sphere: the lists follow a moving wall;
+//  - a wall added between two steps (to a running or a restored engine, either summation)
+//    carries no load until the next step, and the others keep theirs.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -136,4 +138,37 @@ TEST(MovingWall, ListsFollowTheWall) {
   EXPECT_GE(sim.diagnostics().neighbor_builds - builds, 15) << "a rebuild every half skin of travel";
   EXPECT_THROW(sim.set_wall_velocity(sim.wall_index("lid"), Vec3(NAN, 0, 0)), Error);
   EXPECT_THROW((void)sim.wall_index("piston"), Error);
+}
+
+TEST(MovingWall, AnAddedWallCarriesNoLoadUntilTheNextStep) {
+  for (const Summation summation : {Summation::deterministic, Summation::fast}) {
+    SCOPED_TRACE(to_string(summation));
+    SceneConfig s = test::bare_scene(1e-6);
+    s.effects.gravity = true;
+    s.effects.energy_tracking = true;
+    s.container.lx = s.container.ly = 1.0;
+    ParticleStore p;
+    p.add_sphere(0, kR, kRho, Vec3(0.5, 0.5, kR), Vec3::Zero(), Vec3::Zero());
+    const PlaneWall floor{"floor", Vec3::Zero(), Vec3(0, 0, 1), 0.0};
+    EngineOptions o;
+    o.summation = summation;
+    Simulation running(s, p, {floor}, MPI_COMM_SELF, o);
+    running.run(2000);
+    const Vec3 on_floor = running.wall_forces()[0];
+    ASSERT_LT(on_floor.z(), 0.0) << "the sphere presses on the floor (the force on the wall)";
+    // The same engine continued from its state: its loads are the state's until it steps.
+    Simulation restored(s, running.capture_state(), MPI_COMM_SELF, o);
+    for (Simulation* sim : {&running, &restored}) {
+      sim->add_wall({"lid", Vec3(0, 0, 4 * kR), Vec3(0, 0, -1), 0.0});
+      const std::vector<Vec3> f = sim->wall_forces();
+      ASSERT_EQ(f.size(), sim->walls().size());
+      EXPECT_EQ(f[0], on_floor);
+      EXPECT_EQ(f[1], Vec3::Zero());
+      // Moving it books the work of its (zero) load: nothing read beyond the loads.
+      sim->set_wall_velocity(1, Vec3(0, 0, -0.01));
+      sim->run(10);
+      EXPECT_EQ(sim->wall_forces().size(), sim->walls().size());
+      EXPECT_EQ(sim->wall_forces()[1], Vec3::Zero()) << "not there yet";
+    }
+  }
 }
