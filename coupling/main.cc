@@ -288,6 +288,19 @@ int run(int argc, char** argv) {
       std::printf(
           "  study: DEM deposition -> grid stress -> continuum column (Q%u) -> comparison and report\n",
           in.study.continuum.degree);
+    if (const coupling::ContinuumOptions& c = in.study.continuum;
+        in.study.compare_with_continuum && study.empty()) {
+      if (c.calibrate_in_study)
+        std::printf(
+            "  continuum material: measured on this bed after the DEM run (Continuum/material from = %s): "
+            "the "
+            "oedometric and friction-angle tests of docs/calibration.md, written to calibration/\n",
+            c.material_from == coupling::ContinuumOptions::MaterialSource::calibration ? "calibration"
+                                                                                       : "auto");
+      else if (!c.calibration_skipped.empty())
+        std::printf("  continuum material: the Continuum entries (Continuum/material from = auto): %s\n",
+                    c.calibration_skipped.c_str());
+    }
     if (const coupling::ContinuumOptions& c = in.study.continuum; !c.material_file.empty())
       std::printf(
           "  continuum material: E %.9g Pa (%s), nu %.9g (%s), friction angle %.9g deg (%s), dilatancy angle "

@@ -429,10 +429,20 @@ const std::vector<ParameterSpec>& parameter_schema() {
       {"Continuum", "poisson ratio", "0.3", K::real, 0.0, 0.499, "", "-",
        "Poisson's ratio of every continuum; it sets K0 = nu / (1 - nu), and the lateral ratio of the Janssen "
        "line."},
+      {"Continuum", "material from", "auto", K::selection, 0, 0, "auto|calibration|entries", "-",
+       "Where the continua's youngs modulus, poisson ratio, friction angle and dilatancy angle come from. "
+       "calibration: measured on the study's own bed after the DEM run, by the oedometric and friction-angle "
+       "tests of docs/calibration.md (Calibration section; written to calibration/ in the output folder, "
+       "their "
+       "time in the report); entries: the Continuum entries as set; auto: calibration where those tests can "
+       "load the bed (Hertz–Mindlin, a closed box, no Lid section), the entries otherwise. With a material "
+       "file, leave it at auto: the file supplies the values it sets."},
       {"Continuum", "material file", "", K::text, 0, 0, "", "-",
-       "A calibrated material file (calibration/material.prm of `upgrain --study calibration`, "
-       "docs/calibration.md) whose Continuum/youngs modulus and poisson ratio replace the two entries above; "
-       "a relative path is taken from the scene file's folder. Empty: the entries above."},
+       "A calibrated material file (calibration/material.prm of `upgrain --study calibration` or of an "
+       "earlier study, docs/calibration.md) whose youngs modulus, poisson ratio, friction angle and "
+       "dilatancy "
+       "angle replace the entries of this section it sets; a relative path is taken from the scene file's "
+       "folder. Empty: no file."},
       {"Continuum", "refinements", "1", K::integer, 0, 6, "", "-",
        "Global refinements of the mesh whose coarse cells are the stress grid's cells."},
       {"Continuum", "degree", "2", K::integer, 1, 4, "", "-",

@@ -78,6 +78,11 @@ std::vector<std::string> differing_parameters(const std::string& run, const std:
 // is empty). Throws upgrain::Error naming the file. read_scene_file applies it.
 void apply_material_file(SceneInput& in, const std::string& scene_file);
 
+// Why the calibration's tests (docs/calibration.md) cannot load this scene's bed: a contact law
+// without the servo's stiffness bound, a box with a gate or opening walls, a lid of the scene's
+// own. Empty when they can.
+std::string calibration_refusal(const SceneInput& in);
+
 // Checks that involve several parameters or the file system: gradation curve, the fill
 // fits the container, the time step is safe, the stress grid's box, the output folder
 // holds no earlier results. Fills in what depends on several entries. Nothing is written.

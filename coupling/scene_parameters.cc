@@ -420,6 +420,10 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
     c.youngs_modulus = prm.get_double("youngs modulus");
     c.poisson_ratio = prm.get_double("poisson ratio");
     c.material_file = prm.get("material file");
+    const std::string from = prm.get("material from");
+    c.material_from = from == "calibration" ? ContinuumOptions::MaterialSource::calibration
+                      : from == "entries"   ? ContinuumOptions::MaterialSource::entries
+                                            : ContinuumOptions::MaterialSource::automatic;
     c.refinements = static_cast<unsigned>(prm.get_integer("refinements"));
     c.degree = static_cast<unsigned>(prm.get_integer("degree"));
     c.variants.clear();

@@ -174,7 +174,47 @@ void load_initial_packing(SceneInput& in, const std::string& where) {
   s.particles.packing = std::make_shared<const dem::ParticleStore>(std::move(p.grains));
 }
 
+// Continuum/material from (docs/study.md): whether the study calibrates its continua on its
+// own bed. A material file, when set, supplies the values instead; `calibration` beside a file,
+// `entries` beside a file, and `calibration` on a bed the tests cannot load are refused; `auto`
+// falls back to the entries and keeps the reason for the printout and the report.
+void resolve_material_source(SceneInput& in, const std::string& where) {
+  ContinuumOptions& c = in.study.continuum;
+  c.calibrate_in_study = false;
+  c.calibration_skipped.clear();
+  if (!c.material_file.empty()) {
+    if (c.material_from != ContinuumOptions::MaterialSource::automatic)
+      throw Error(
+          where + "Continuum/material from = " +
+          (c.material_from == ContinuumOptions::MaterialSource::calibration ? "calibration" : "entries") +
+          " contradicts Continuum/material file = " + c.material_file +
+          ", which supplies the values itself; set one of the two");
+    return;
+  }
+  if (c.material_from == ContinuumOptions::MaterialSource::entries) return;
+  const std::string why = calibration_refusal(in);
+  if (why.empty()) {
+    c.calibrate_in_study = true;
+    return;
+  }
+  if (c.material_from == ContinuumOptions::MaterialSource::calibration)
+    throw Error(where + "Continuum/material from = calibration: " + why +
+                "; set it to entries, or to auto (docs/calibration.md)");
+  c.calibration_skipped = why;
+}
+
 }  // namespace
+
+std::string calibration_refusal(const SceneInput& in) {
+  if (in.scene.contact_law != "hertz-mindlin")
+    return "the calibration's servo walls need Contact/law = hertz-mindlin, not " + in.scene.contact_law;
+  if (in.scene.container.has_gate() || in.scene.container.opens_side_walls())
+    return "the calibration's tests load the bed in its closed box; a scene with a gate or with side walls "
+           "that "
+           "open (Container) is not one";
+  if (in.control.lid.enabled()) return "the calibration places its own lid; the scene has one (Lid section)";
+  return "";
+}
 
 void validate_scene(SceneInput& in) {
   const dem::SceneConfig& s = in.scene;
@@ -331,6 +371,7 @@ void validate_scene(SceneInput& in) {
   }
   if (in.study.compare_with_continuum) {
     validate_continuum(in.study.continuum, where);
+    resolve_material_source(in, where);
     if (in.study.formulas.empty())
       throw Error(where +
                   "Study/comparison formulas is empty; name at least one formula, or set "

@@ -5,12 +5,14 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <tuple>
 #include <utility>
 #include <vector>
 
+#include "coupling/calibration/bed_calibration.h"
 #include "coupling/coarse_graining_study.h"
 #include "coupling/dem_fem_comparison.h"
 #include "coupling/dem_run.h"
@@ -154,13 +156,69 @@ std::vector<std::array<double, 9>> janssen_cells(const fem::JanssenColumn& j, co
   return cells;
 }
 
+// The study's own calibration (docs/calibration.md) on the bed of its DEM run, with the scene's
+// Calibration section; its values become the Continuum entries of `in`, named as the
+// calibration's (ContinuumOptions::source_of). A calibration whose fits give no material the
+// continua take is refused with Continuum/material from = calibration, and leaves the entries in
+// place, with a warning and the reason in the report, with auto.
+BedCalibration calibrate_continuum(SceneInput& in, RunResult& r, MPI_Comm comm,
+                                   const std::function<void(const Progress&)>& on_progress) {
+  on_rank0(comm, [&] {
+    std::printf(
+        "  calibration of the continua on this bed (Continuum/material from): oedometric and friction-angle "
+        "tests (docs/calibration.md)\n");
+    std::fflush(stdout);
+  });
+  const dem::EngineState none;
+  BedCalibration b = calibrate_bed(in.scene, r.final_state ? *r.final_state : none, in.calibration, comm,
+                                   engine_options(in), on_progress);
+  r.final_state.reset();
+  const std::filesystem::path cal = std::filesystem::path(in.output.folder) / "calibration";
+  on_rank0(comm, [&] {
+    write_bed_calibration(cal, in.source, b);
+    std::printf("\n  ");
+    print_bed_calibration(b);
+  });
+  // The figures are the same bits on every rank: so is this decision.
+  ContinuumOptions& c = in.study.continuum;
+  if (const std::string why = b.material_error(cal); !why.empty()) {
+    if (c.material_from == ContinuumOptions::MaterialSource::calibration)
+      throw Error("Continuum/material from = calibration: the calibration of the bed failed: " + why);
+    c.calibrate_in_study = false;
+    c.calibration_skipped = "the calibration of the bed failed (" + why + ")";
+    on_rank0(comm, [&] {
+      std::printf("  warning: %s; the continua take the Continuum entries\n", c.calibration_skipped.c_str());
+    });
+    return b;
+  }
+  c.youngs_modulus = b.elastic.youngs;
+  c.poisson_ratio = b.elastic.poisson;
+  c.friction_angle_deg = b.friction_angle;
+  c.dilatancy_angle_deg = b.dilatancy_angle;
+  c.material_file = (cal / "material.prm").string();
+  c.material_file_entries = {"youngs modulus", "poisson ratio", "friction angle", "dilatancy angle"};
+  c.calibrated = true;
+  on_rank0(comm, [&] {
+    std::printf(
+        "  continuum material from this bed: E %.9g Pa, nu %.9g, friction angle %.9g deg, dilatancy angle "
+        "%.9g deg (%s; reuse it with Continuum/material file)\n",
+        c.youngs_modulus, c.poisson_ratio, c.friction_angle_deg, c.dilatancy_angle_deg,
+        c.material_file.c_str());
+  });
+  return b;
+}
+
 }  // namespace
 
-int run_study(const SceneInput& in, MPI_Comm comm, const std::function<void(const Progress&)>& on_progress,
+int run_study(const SceneInput& scene_input, MPI_Comm comm,
+              const std::function<void(const Progress&)>& on_progress,
               const std::function<void(const RunResult&)>& on_dem_done) {
   int rank = 0, ranks = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &ranks);
+  // The study's input; its Continuum entries take the calibration's values below.
+  SceneInput in = scene_input;
+  in.control.keep_final_state = in.study.continuum.calibrate_in_study;
   const std::filesystem::path folder = in.output.folder;
   std::vector<std::pair<std::string, double>> timings;
   const auto t_all = Clock::now();
@@ -187,6 +245,16 @@ int run_study(const SceneInput& in, MPI_Comm comm, const std::function<void(cons
                            (ranks > 1 ? "s, " : ", ") + dem::to_string(in.parallel.summation) + " summation)",
                        since(t0));
   broadcast(d, comm);
+
+  // 1b. The continua's material measured on this bed (Continuum/material from; docs/study.md).
+  std::optional<BedCalibration> calibration;
+  if (in.study.continuum.calibrate_in_study) {
+    calibration = calibrate_continuum(in, r, comm, on_progress);
+    timings.emplace_back("calibration of the continua on the bed: oedometric test",
+                         calibration->oedometer_seconds);
+    timings.emplace_back("calibration of the continua on the bed: friction-angle test",
+                         calibration->triaxial_seconds);
+  }
 
   // 2. The continua of the same container, filled to the grid's top: the elastic column on
   // rollers, each frictional variant, and Janssen's line.
@@ -271,8 +339,8 @@ int run_study(const SceneInput& in, MPI_Comm comm, const std::function<void(cons
     }
     timings.emplace_back("tables and plots", since(t0));
     timings.emplace_back("whole study", since(t_all));
-    const StudyRecord record{in,      r, d,       problem, sol,          frictional, failed,
-                             janssen, c, timings, plots,   strain_plots, ranks,      cg};
+    const StudyRecord record{in, r,       d,     problem,      sol,   frictional, failed,     janssen,
+                             c,  timings, plots, strain_plots, ranks, cg,         calibration};
     write_report(folder, record);
     write_study_json(folder, record);
     std::printf("  study: %d x %d x %d grid, continua Q%u with %llu dofs: elastic on rollers %.2f s",

@@ -21,17 +21,27 @@ enum class ContinuumVariant {
 struct ContinuumOptions {
   double youngs_modulus = 1e8;  // Pa; the stresses of the confined column do not depend on it
   double poisson_ratio = 0.3;   // K0 = nu / (1 - nu)
+  // Continuum/material from: measured on the study's bed (calibration), the entries as set, or
+  // the first where the calibration's tests can load the bed (automatic).
+  enum class MaterialSource { automatic, calibration, entries };
+  MaterialSource material_from = MaterialSource::automatic;
+  // Resolved by validate_scene: the study calibrates its continua on its bed; or, automatic
+  // without it, why not.
+  bool calibrate_in_study = false;
+  std::string calibration_skipped;
   // Where E and nu came from: empty for the Continuum entries, else the calibrated material
-  // file (Continuum/material file, docs/calibration.md) they were read from.
+  // file (Continuum/material file, docs/calibration.md) they were read from, or the one the
+  // study's own calibration wrote (`calibrated`).
   std::string material_file;
+  bool calibrated = false;
   // The entries the material file set (of youngs modulus, poisson ratio, friction angle,
   // dilatancy angle): those take the file's values, the others keep the Continuum entries.
   std::vector<std::string> material_file_entries;
-  // Where an entry's value came from, for printouts and reports: "material file <file>" or
-  // "Continuum entry".
+  // Where an entry's value came from, for printouts and reports: "calibration of this bed
+  // (<file>)", "material file <file>" or "Continuum entry".
   [[nodiscard]] std::string source_of(const std::string& entry) const {
     for (const std::string& e : material_file_entries)
-      if (e == entry) return "material file " + material_file;
+      if (e == entry) return (calibrated ? "calibration of this bed, " : "material file ") + material_file;
     return "Continuum entry";
   }
   unsigned refinements = 1;  // global refinements of the mesh that matches the stress grid

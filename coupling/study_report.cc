@@ -97,6 +97,51 @@ void parameters_section(std::ostringstream& m, const StudyRecord& s) {
     << " kg / (footprint x " << fmt(p.height) << " m) |\n\n";
 }
 
+// Where the continua's material came from, value by value; with the study's own calibration,
+// what it measured (docs/calibration.md).
+void material_section(std::ostringstream& m, const StudyRecord& s) {
+  const ContinuumOptions& c = s.in.study.continuum;
+  m << "## The continua's material\n\n";
+  if (c.calibrated)
+    m << "Measured on this bed after the DEM run (`Continuum/material from`), by the oedometric and "
+         "friction-angle tests of docs/calibration.md; the paths and the material "
+         "file are "
+         "in `calibration/`. Another study of the same scene can reuse the file (`Continuum/material file`) "
+         "instead of measuring again.\n\n";
+  else if (!c.calibration_skipped.empty())
+    m << "The Continuum entries: the study did not measure the material on its bed, because "
+      << c.calibration_skipped << ".\n\n";
+  m << "| quantity | value | from |\n|---|---|---|\n"
+    << "| Young's modulus E | " << fmt(c.youngs_modulus) << " Pa | " << c.source_of("youngs modulus")
+    << " |\n"
+    << "| Poisson's ratio nu | " << fmt(c.poisson_ratio)
+    << " (K0 = nu/(1-nu) = " << fmt(c.poisson_ratio / (1.0 - c.poisson_ratio)) << ") | "
+    << c.source_of("poisson ratio") << " |\n"
+    << "| friction angle phi | " << fmt(c.friction_angle_deg) << " deg | " << c.source_of("friction angle")
+    << " |\n"
+    << "| dilatancy angle psi | " << fmt(c.dilatancy_angle_deg) << " deg | " << c.source_of("dilatancy angle")
+    << " |\n\n";
+  if (!s.calibration) return;
+  const BedCalibration& b = *s.calibration;
+  const dem::ElasticEquivalent& eq = b.elastic;
+  const dem::FrictionStrength& st = b.strength;
+  m << "| calibration | result |\n|---|---|\n"
+    << "| oedometric test | " << b.oedometer.lid_stresses.size() << " lid targets from "
+    << fmt(b.oedometer.lid_stresses.front()) << " Pa (the bed's weight over the footprint is "
+    << fmt(b.weight_stress) << " Pa), " << b.held << " held; at the bed's mean vertical stress "
+    << fmt(b.sigma_mean) << " Pa: M = " << fmt(eq.modulus) << " Pa (taken at " << fmt(eq.modulus_stress)
+    << " Pa), K0 = " << fmt(eq.k0) << " (the bed before loading: " << fmt(b.k0_deposited) << "); "
+    << fmt(b.oedometer_seconds, 3) << " s |\n"
+    << "| friction-angle test | sigma_3 = " << fmt(b.triaxial.confining_stress) << " Pa, axial strain rate "
+    << fmt(b.triaxial.strain_rate) << "/s (inertial number " << fmt(b.inertial_number, 2) << "): peak phi "
+    << fmt(st.peak_angle) << " deg at axial strain " << fmt(st.peak_strain) << " with psi "
+    << fmt(st.peak_dilatancy_angle) << " deg; critical state " << fmt(st.critical_angle) << " +- "
+    << fmt(st.critical_spread) << " deg; the continua take the "
+    << (b.critical_state_strength ? "critical state's" : "peak's") << "; " << fmt(b.triaxial_seconds, 3)
+    << " s |\n"
+    << "| Jaky's K0 = 1 - sin phi_cs | " << fmt(b.jaky_k0) << " (oedometric K0 " << fmt(eq.k0) << ") |\n\n";
+}
+
 void headline_section(std::ostringstream& m, const StudyRecord& s) {
   const dem::SceneConfig& sc = s.in.scene;
   const RunResult& r = s.run;
@@ -255,6 +300,7 @@ void write_report(const std::filesystem::path& folder, const StudyRecord& s) {
     << "Scene: `" << s.in.source << "`. Written by `upgrain` on " << s.ranks << " MPI rank(s). "
     << "How to read it: docs/study.md.\n\n";
   parameters_section(m, s);
+  material_section(m, s);
   headline_section(m, s);
   comparison_section(m, s);
   coarse_graining_section(m, s);
@@ -300,8 +346,27 @@ void write_study_json(const std::filesystem::path& folder, const StudyRecord& s)
     << ",\n  \"fem_relative_l2_error_stress\": " << n(s.rollers.l2_error_stress / exact.stress_l2_norm(area))
     << ",\n  \"fem_relative_l2_error_displacement\": "
     << n(s.rollers.l2_error_displacement / exact.displacement_l2_norm(area))
-    << ",\n  \"fem_mean_lateral_ratio\": " << n(c.continua.front().mean_lateral_ratio)
-    << ",\n  \"continua\": {";
+    << ",\n  \"fem_mean_lateral_ratio\": " << n(c.continua.front().mean_lateral_ratio);
+  const ContinuumOptions& mat = s.in.study.continuum;
+  j << ",\n  \"continuum_material\": {\"youngs_modulus_Pa\": " << n(mat.youngs_modulus)
+    << ", \"poisson_ratio\": " << n(mat.poisson_ratio)
+    << ", \"friction_angle_deg\": " << n(mat.friction_angle_deg)
+    << ", \"dilatancy_angle_deg\": " << n(mat.dilatancy_angle_deg) << ", \"source\": \""
+    << (mat.calibrated              ? "calibration"
+        : mat.material_file.empty() ? "entries"
+                                    : "material file")
+    << "\"";
+  if (!mat.material_file.empty()) j << ", \"file\": " << dem::io::json_string(mat.material_file);
+  if (!mat.calibration_skipped.empty())
+    j << ", \"calibration_skipped\": " << dem::io::json_string(mat.calibration_skipped);
+  if (s.calibration) {
+    std::string cal = bed_calibration_json(*s.calibration);
+    for (std::size_t p = cal.find('\n'); p != std::string::npos; p = cal.find('\n', p + 1))
+      cal.insert(p + 1, "  ");
+    j << ",\n    \"calibration\": {\n  " << cal << "\n    }";
+  }
+  j << "}";
+  j << ",\n  \"continua\": {";
   for (std::size_t k = 0; k < c.continua.size(); ++k) {
     const ContinuumResult& cr = c.continua[k];
     j << (k ? "," : "") << "\n    \"" << cr.key << "\": {\"label\": \"" << cr.label

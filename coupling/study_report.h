@@ -2,10 +2,12 @@
 // What a DEM-vs-continuum study writes for people and for scripts (docs/study.md):
 // report.md and study.json, from everything the study computed (coupling/study.cc).
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "coupling/calibration/bed_calibration.h"
 #include "coupling/coarse_graining_study.h"
 #include "coupling/dem_fem_comparison.h"
 #include "coupling/scene_input.h"
@@ -46,6 +48,7 @@ struct StudyRecord {
   std::vector<std::string> plots, strain_plots;
   int ranks = 1;
   CoarseGrainingOutcome cg;  // the coarse-grained fields on the mesh, when the scene asks for them
+  std::optional<BedCalibration> calibration;  // the study's own (Continuum/material from)
 };
 
 void write_report(const std::filesystem::path& folder, const StudyRecord& s);

@@ -1,5 +1,6 @@
 #include "coupling/calibration/oedometer_run.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "coupling/run/lid.h"
@@ -33,6 +34,14 @@ OedometerRecord measure(const dem::Simulation& sim, double target, double first_
 // Steps between checks for a stop request (SIGINT, SIGTERM, SIGHUP; one collective each).
 constexpr long kStopCheckEvery = 1000;
 
+long hold_steps(const OedometerOptions& o, double dt) { return std::max(1L, std::lround(o.hold_time / dt)); }
+long seating_steps(const OedometerOptions& o, double dt) { return std::lround(o.seating_time / dt); }
+
+void step(dem::Simulation& sim, const OedometerOptions& o) {
+  sim.step();
+  if (o.after_step) o.after_step();
+}
+
 }  // namespace
 
 std::vector<OedometerRecord> run_oedometer(dem::Simulation& sim, const OedometerOptions& o) {
@@ -51,7 +60,7 @@ std::vector<OedometerRecord> run_oedometer(dem::Simulation& sim, const Oedometer
     return s;
   }());
   Lid lid(control);
-  const long hold = std::max(1L, std::lround(o.hold_time / sim.time_step()));
+  const long hold = hold_steps(o, sim.time_step());
   std::vector<OedometerRecord> records;
   // The unloaded bed: the lid placed (on its highest grain, touching nothing), one recorded step.
   lid.before_step(sim);
@@ -60,26 +69,30 @@ std::vector<OedometerRecord> run_oedometer(dem::Simulation& sim, const Oedometer
   const double first_height = sim.walls()[lid_index].point.z();
   if (!(first_height > 0.0)) throw Error("oedometric test: the bed's top is not above the floor at z = 0");
   sim.request_contacts();
-  sim.step();
+  step(sim, o);
   records.push_back(measure(sim, 0.0, first_height));
   // The seating at the first target, then the holds: target k from k hold times after it.
-  const long seating = std::lround(o.seating_time / sim.time_step());
+  const long seating = seating_steps(o, sim.time_step());
   control.place_time = sim.time() + static_cast<double>(seating) * sim.time_step();
   for (long s = 0; s < seating; ++s) {
     lid.before_step(sim);
     if (sim.step_count() % kStopCheckEvery == 0) stop_if_requested(sim.comm(), sim.step_count());
-    sim.step();
+    step(sim, o);
   }
   for (double target : o.lid_stresses) {
     for (long s = 0; s < hold; ++s) {
       lid.before_step(sim);
       if (s + 1 == hold) sim.request_contacts();
       if (sim.step_count() % kStopCheckEvery == 0) stop_if_requested(sim.comm(), sim.step_count());
-      sim.step();
+      step(sim, o);
     }
     records.push_back(measure(sim, target, first_height));
   }
   return records;
+}
+
+long oedometer_steps(const OedometerOptions& o, double dt) {
+  return 1 + seating_steps(o, dt) + hold_steps(o, dt) * static_cast<long>(o.lid_stresses.size());
 }
 
 }  // namespace upgrain::coupling

@@ -5,6 +5,7 @@
 // the box from the floor to the lid (one cell), and its vertical strain from the lid's travel.
 // Collective over the engine's ranks; the records are the same bits on every rank and rank count
 // with the deterministic summation.
+#include <functional>
 #include <vector>
 
 #include "dem/analysis/oedometer.h"
@@ -20,8 +21,9 @@ struct OedometerOptions {
   // target: the bed's top is uneven, and the lid's first contacts are impacts (not recorded).
   double seating_time = 0.1;
   double gain_factor = 0.5;
-  double max_speed = 0.05;  // m/s
-  long update_every = 10;   // steps
+  double max_speed = 0.05;           // m/s
+  long update_every = 10;            // steps
+  std::function<void()> after_step;  // called after every step (a progress report)
 };
 
 struct OedometerRecord {
@@ -37,5 +39,8 @@ struct OedometerRecord {
 // the end of its hold (the first after the seating).
 // Throws upgrain::Error when the scene has no floor at z = 0 or the run fails.
 std::vector<OedometerRecord> run_oedometer(dem::Simulation& sim, const OedometerOptions& o);
+
+// The steps the test takes at time step `dt`: the unloaded state's, the seating's, the holds'.
+long oedometer_steps(const OedometerOptions& o, double dt);
 
 }  // namespace upgrain::coupling

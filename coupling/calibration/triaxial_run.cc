@@ -75,6 +75,18 @@ constexpr double kIntegralFactor = 0.1;
 // Steps between checks for a stop request (SIGINT, SIGTERM, SIGHUP; one collective each).
 constexpr long kStopCheckEvery = 1000;
 
+long consolidation_steps(const TriaxialOptions& o, double dt) {
+  return std::max(1L, std::lround(o.consolidation_time / dt));
+}
+long shearing_steps(const TriaxialOptions& o, double dt) {
+  return std::max(static_cast<long>(o.records), std::lround(o.final_strain / o.strain_rate / dt));
+}
+
+void step(dem::Simulation& sim, const TriaxialOptions& o) {
+  sim.step();
+  if (o.after_step) o.after_step();
+}
+
 }  // namespace
 
 std::vector<TriaxialRecord> run_triaxial(dem::Simulation& sim, const TriaxialOptions& o) {
@@ -97,19 +109,18 @@ std::vector<TriaxialRecord> run_triaxial(dem::Simulation& sim, const TriaxialOpt
   w.lid = place_lid(sim, 0.0, 0.0);
   ServoWalls servo(o.gain_factor, o.max_speed, o.update_every, kIntegralFactor);
   // Isotropic consolidation: the five walls hold sigma_3.
-  const long consolidation = std::max(1L, std::lround(o.consolidation_time / sim.time_step()));
+  const long consolidation = consolidation_steps(o, sim.time_step());
   for (long s = 0; s < consolidation; ++s) {
     servo.update(sim, servo_walls(sim, w, o.confining_stress, true));
     if (s + 1 == consolidation) sim.request_contacts();
     if (sim.step_count() % kStopCheckEvery == 0) stop_if_requested(sim.comm(), sim.step_count());
-    sim.step();
+    step(sim, o);
   }
   const Box first = box_of(sim, w);
   std::vector<TriaxialRecord> records = {measure(sim, w, first)};
   // The shearing: the lid at the constant speed of the strain rate, the sides at sigma_3.
   sim.set_wall_velocity(w.lid, dem::Vec3(0.0, 0.0, -o.strain_rate * first.h));
-  const long total =
-      std::max(static_cast<long>(o.records), std::lround(o.final_strain / o.strain_rate / sim.time_step()));
+  const long total = shearing_steps(o, sim.time_step());
   long done = 0;
   for (int r = 1; r <= o.records; ++r) {
     const long until = total * r / o.records;
@@ -117,11 +128,15 @@ std::vector<TriaxialRecord> run_triaxial(dem::Simulation& sim, const TriaxialOpt
       servo.update(sim, servo_walls(sim, w, o.confining_stress, false));
       if (done + 1 == until) sim.request_contacts();
       if (sim.step_count() % kStopCheckEvery == 0) stop_if_requested(sim.comm(), sim.step_count());
-      sim.step();
+      step(sim, o);
     }
     records.push_back(measure(sim, w, first));
   }
   return records;
+}
+
+long triaxial_steps(const TriaxialOptions& o, double dt) {
+  return consolidation_steps(o, dt) + shearing_steps(o, dt);
 }
 
 }  // namespace upgrain::coupling

@@ -10,6 +10,7 @@
 // travel and its volumetric strain from the box's volume. Collective over the engine's ranks;
 // the records are the same bits on every rank count with the deterministic summation.
 #include <array>
+#include <functional>
 #include <vector>
 
 #include "dem/analysis/triaxial.h"
@@ -24,9 +25,10 @@ struct TriaxialOptions {
   double final_strain = 0.1;         // axial strain at which the test ends
   double consolidation_time = 0.05;  // s of isotropic consolidation before the shearing
   double gain_factor = 0.5;
-  double max_speed = 0.05;  // m/s, of every servo wall
-  long update_every = 10;   // steps between servo updates
-  int records = 100;        // records of the shearing (besides the consolidated state)
+  double max_speed = 0.05;           // m/s, of every servo wall
+  long update_every = 10;            // steps between servo updates
+  int records = 100;                 // records of the shearing (besides the consolidated state)
+  std::function<void()> after_step;  // called after every step (a progress report)
 };
 
 struct TriaxialRecord {
@@ -44,5 +46,8 @@ struct TriaxialRecord {
 // (dem/boundary/container.h) with its floor at z = 0 and no lid; its walls' friction is theirs
 // (the calibration makes them frictionless). Throws upgrain::Error when the box is not there.
 std::vector<TriaxialRecord> run_triaxial(dem::Simulation& sim, const TriaxialOptions& o);
+
+// The steps the test takes at time step `dt`: the consolidation's and the shearing's.
+long triaxial_steps(const TriaxialOptions& o, double dt);
 
 }  // namespace upgrain::coupling

@@ -11,6 +11,7 @@
 #include "dem/analysis/bed_state.h"
 #include "dem/engine/diagnostics.h"
 #include "dem/engine/energy.h"
+#include "dem/engine/engine_state.h"
 #include "dem/engine/relaxation.h"
 #include "dem/engine/simulation.h"
 #include "dem/stress/grid_stress.h"
@@ -43,6 +44,8 @@ struct RunResult {
   dem::EngineLoad load;  // how the ranks shared the work (one rank: the defaults)
   // The states for the coarse-grained fields, when the output asked for them (rank 0).
   CapturedStates coarse_graining;
+  // The engine's state at the end (RunControl::keep_final_state; rank 0's, empty elsewhere).
+  std::optional<dem::EngineState> final_state;
 };
 
 // The figures of the engine's final state into `r` (collective; the bed and the mass on rank

@@ -33,6 +33,9 @@ struct RunControl {
   // A lid placed on the bed and driven or servo-controlled (lid.h). A run with a lid does not
   // stop at rest, and a relaxation at the end holds the lid still.
   LidControl lid;
+  // Keep the engine's final state in RunResult::final_state (rank 0's): a study's calibration
+  // loads the bed it compares (docs/study.md).
+  bool keep_final_state = false;
 };
 
 // The scene's fill, made on rank 0 (empty on the others); collective: a fill that fails fails

@@ -1,4 +1,5 @@
 #include "dem/scene/effect_choice.h"
+#include "dem/io/json_number.h"
 
 #include <algorithm>
 #include <sstream>
@@ -135,14 +136,7 @@ std::vector<EffectChoice> describe_effects(const EffectSet& e) {
 }
 
 std::string effects_json(const std::vector<EffectChoice>& choices) {
-  auto quoted = [](const std::string& t) {
-    std::string q = "\"";
-    for (char c : t) {
-      if (c == '"' || c == '\\') q += '\\';
-      q += c;
-    }
-    return q + "\"";
-  };
+  const auto quoted = [](const std::string& t) { return io::json_string(t); };
   std::string j = "{";
   for (std::size_t k = 0; k < choices.size(); ++k) {
     const EffectChoice& c = choices[k];

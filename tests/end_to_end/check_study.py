@@ -12,6 +12,10 @@
   variants, Janssen) is the hydrostatic column, and none carries weight on its walls;
 - the coarse-grained fields on the mesh satisfy the momentum balance to round-off, the bed's
   d(rho v)/dt is that of a bed at rest, and their stress is compared with the continuum's;
+- the continua's material is where study.json says it came from: with the study's own
+  calibration (Continuum/material from, tiny_study.prm), the values of calibration/material.prm,
+  its paths beside it, K0 = nu / (1 - nu) of that nu, and the report's material section naming
+  them; with the Continuum entries (tiny_study_lucy.prm), the entries' values;
 - report, plots, tables and meshes are there, and no temporary file is left."""
 import csv
 import glob
@@ -87,6 +91,32 @@ for name in ("report.md", "comparison_cells.csv", "relative_l2.csv", "stress_sum
              "fem_elastic_friction/column.pvtu", "fem_drucker_prager/column.pvtu", "mesh/cg_fields.pvtu"):
     assert os.path.exists(name), name
 report = open("report.md").read()
+material = s["continuum_material"]
+assert "## The continua's material" in report
+nu = material["poisson_ratio"]
+assert abs(s["k0"] - nu / (1 - nu)) < 1e-12, (s["k0"], nu)
+expected_source = sys.argv[2] if len(sys.argv) > 2 else "calibration"
+assert material["source"] == expected_source, (material["source"], expected_source)
+if material["source"] == "calibration":
+    for name in ("calibration/oedometer.csv", "calibration/triaxial.csv", "calibration/material.prm"):
+        assert os.path.exists(name), name
+    assert os.path.samefile(material["file"], "calibration/material.prm"), material["file"]
+    written = {}
+    for line in open("calibration/material.prm"):
+        if line.strip().startswith("set "):
+            key, value = line.strip()[4:].split("=")
+            written[key.strip()] = float(value)
+    for key, entry in (("youngs_modulus_Pa", "youngs modulus"), ("poisson_ratio", "poisson ratio"),
+                       ("friction_angle_deg", "friction angle"), ("dilatancy_angle_deg", "dilatancy angle")):
+        assert abs(material[key] - written[entry]) <= 1e-8 * abs(written[entry]), (key, material[key], written)
+        assert abs(material[key] - material["calibration"][key]) <= 1e-12 * abs(material[key]), key
+    assert 0 <= material["dilatancy_angle_deg"] <= material["friction_angle_deg"], material
+    assert report.count("calibration of this bed") >= 4, "the report names the calibration as each value's source"
+    print(f"continuum material from the bed's calibration: E {material['youngs_modulus_Pa']:.4g} Pa, nu {nu:.3f}, "
+          f"phi {material['friction_angle_deg']:.2f} deg, psi {material['dilatancy_angle_deg']:.2f} deg")
+else:
+    assert not os.path.exists("calibration"), "a study with the Continuum entries measures nothing"
+    assert report.count("Continuum entry") >= 4, "the report names the entries as each value's source"
 for needle in ("Headline figures", "Timings", "profiles_szz.png", "bagi", "Closest to the DEM", "Janssen",
                "Coarse-grained fields on the mesh", f"coarse-grained field ({cg['kernel']}"):
     assert needle in report, needle
