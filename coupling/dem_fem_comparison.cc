@@ -6,6 +6,7 @@
 
 #include "dem/io/atomic_file.h"
 #include "dem/io/grid_stress_output.h"
+#include "dem/io/json_number.h"
 
 namespace upgrain::coupling {
 
@@ -219,6 +220,28 @@ void write_comparison_tables(const std::filesystem::path& folder, const DemFemCo
     for (const ContinuumResult& r : c.continua)
       row(r.key, "continuum", r.label, r.wall_share, r.mean_lateral_ratio, r.level_spread);
     dem::io::write_text_atomically(folder / "stress_summary.csv", t.str());
+  }
+  {
+    std::ostringstream t;
+    t.precision(17);
+    t << "# per level of the grid: the side walls' mean upward shear on the fill (Pa; the upward force of "
+         "the "
+         "four side walls within the level over the perimeter times the level's height; positive where the "
+         "walls carry weight). dem: from the side-wall contacts of the final state, binned by their points' "
+         "height (empty when they were not recorded)\nlevel,z_lo,z_hi,dem";
+    for (const ContinuumResult& r : c.continua) t << "," << r.key;
+    t << "\n";
+    const double dz = (g.hi.z() - g.lo.z()) / g.n[2];
+    for (int k = 0; k < g.n[2]; ++k) {
+      const auto at = [k](const std::vector<double>& v) {
+        return static_cast<std::size_t>(k) < v.size() ? dem::io::json_number(v[static_cast<std::size_t>(k)])
+                                                      : std::string();
+      };
+      t << k << "," << g.lo.z() + k * dz << "," << g.lo.z() + (k + 1) * dz << "," << at(c.dem_wall_shear);
+      for (const ContinuumResult& r : c.continua) t << "," << at(r.wall_shear);
+      t << "\n";
+    }
+    dem::io::write_text_atomically(folder / "wall_shear.csv", t.str());
   }
 }
 

@@ -26,6 +26,8 @@ struct ContinuumResult {
   double wall_share = 0.0;     // share of the bed's weight the side walls carry
   double mean_lateral_ratio = 0.0;   // mean over cells with grains of (s_xx + s_yy) / (2 s_zz)
   std::vector<double> level_spread;  // per level: (max - min) / |mean| of s_zz over the level
+  // Per level: the side walls' mean upward shear on the fill (Pa, wall_shear_profile.h).
+  std::vector<double> wall_shear;
 };
 
 // ||sigma_dem,ij - sigma_c,ij|| over the cells with grains divided by ||sigma_zz|| of the
@@ -50,6 +52,9 @@ struct DemFemComparison {
   std::vector<double> analytic_szz;       // per cell: -rho g (H - z_centre), the hydrostatic column
   double k0 = 0.0;
   double dem_wall_share = 0.0;
+  // Per level: the DEM's side walls' mean upward shear on the grains, from the wall contacts of
+  // the final state (Pa; empty when they were not recorded).
+  std::vector<double> dem_wall_shear;
   std::vector<FormulaComparison> formulas;
   int centre_i = 0, centre_j = 0, edge_i = 0, edge_j = 0;
 };
@@ -62,7 +67,8 @@ DemFemComparison compare_dem_fem(const dem::RegularGrid& grid, const dem::GridSt
 // comparison_cells.csv (one row per cell and formula: DEM, the rollers column and their
 // difference, the other continua), profiles.csv (centre and edge columns against height),
 // relative_l2.csv (per formula and continuum), stress_summary.csv (per formula and
-// continuum: wall share, mean lateral ratio, level spread). Written atomically.
+// continuum: wall share, mean lateral ratio, level spread), wall_shear.csv (per level: the
+// DEM's and each continuum's side-wall shear). Written atomically.
 void write_comparison_tables(const std::filesystem::path& folder, const DemFemComparison& c,
                              const dem::GridStress& dem);
 

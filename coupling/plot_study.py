@@ -8,6 +8,8 @@ profiles_szz.png   sigma_zz against height, centre and edge columns: each DEM fo
                    the hydrostatic column;
 lateral_ratio.png  (s_xx + s_yy) / (2 s_zz) against height, DEM and continua, beside K0;
 wall_share.png     share of the weight the side walls carry, DEM and continua;
+wall_shear.png     the side walls' mean upward shear against height, DEM (from its wall
+                   contacts) and continua (wall_shear.csv);
 level_spread.png   spread of sigma_zz across each level, DEM formulas and continua.
 
 The DEM formulas and continua, with their labels, come from stress_summary.csv."""
@@ -87,6 +89,24 @@ def main():
     ax.grid(True, axis="y", alpha=0.3)
     fig.tight_layout()
     fig.savefig(os.path.join(folder, "wall_share.png"), dpi=120)
+
+    shear_path = os.path.join(folder, "wall_shear.csv")
+    if os.path.exists(shear_path):
+        shear = table(shear_path)
+        z = [0.5 * (float(r["z_lo"]) + float(r["z_hi"])) for r in shear]
+        fig, ax = plt.subplots(figsize=(5, 5))
+        if all(r["dem"] for r in shear):
+            ax.plot([float(r["dem"]) for r in shear], z, "ko-", lw=2, label="DEM (wall contacts)")
+        continua = [(r["source"], r["label"]) for r in summary if r["kind"] == "continuum"]
+        for k, (key, label) in enumerate(continua):
+            if key in shear[0] and all(r[key] for r in shear):
+                ax.plot([float(r[key]) for r in shear], z, CONTINUUM_STYLES[k % len(CONTINUUM_STYLES)], label=label)
+        ax.set_xlabel("side walls' upward shear on the fill (Pa)")
+        ax.set_ylabel("z (m)")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=7)
+        fig.tight_layout()
+        fig.savefig(os.path.join(folder, "wall_shear.png"), dpi=120)
 
     fig, ax = plt.subplots(figsize=(6, 4.5))
     for r in summary:

@@ -18,6 +18,7 @@
 #include "coupling/dem_run.h"
 #include "coupling/strain_report.h"
 #include "coupling/study_report.h"
+#include "coupling/wall_shear_profile.h"
 #include "dem/core/error.h"
 #include "dem/io/atomic_file.h"
 #include "dem/io/grid_stress_output.h"
@@ -60,7 +61,15 @@ void broadcast(DemOutcome& d, MPI_Comm comm) {
   MPI_Bcast(&d.total_mass, 1, MPI_DOUBLE, 0, comm);
   MPI_Bcast(d.floor_force.data(), 3, MPI_DOUBLE, 0, comm);
   MPI_Bcast(&d.side_wall_vertical, 1, MPI_DOUBLE, 0, comm);
+  int levels = static_cast<int>(d.wall_shear.size());
+  MPI_Bcast(&levels, 1, MPI_INT, 0, comm);
+  d.wall_shear.resize(static_cast<std::size_t>(levels));
+  MPI_Bcast(d.wall_shear.data(), levels, MPI_DOUBLE, 0, comm);
 }
+
+// The grid's levels (wall_shear_profile.h), and the box's perimeter 2 (Lx + Ly).
+Levels grid_levels(const dem::RegularGrid& g) { return {g.lo.z(), (g.hi.z() - g.lo.z()) / g.n[2], g.n[2]}; }
+double box_perimeter(const dem::SceneConfig& s) { return 2.0 * (s.container.lx + s.container.ly); }
 
 // The one-mesh output: the DEM's formulas, each continuum's stress (the column on rollers
 // with the DEM's difference from it) and the hydrostatic sigma_zz.
@@ -94,6 +103,7 @@ ContinuumResult continuum_result(std::string key, std::string label,
           {cell_average_stress.begin(), cell_average_stress.end()},
           wall_share,
           0.0,
+          {},
           {}};
 }
 
@@ -219,6 +229,7 @@ int run_study(const SceneInput& scene_input, MPI_Comm comm,
   // The study's input; its Continuum entries take the calibration's values below.
   SceneInput in = scene_input;
   in.control.keep_final_state = in.study.continuum.calibrate_in_study;
+  in.control.keep_wall_contacts = true;
   const std::filesystem::path folder = in.output.folder;
   std::vector<std::pair<std::string, double>> timings;
   const auto t_all = Clock::now();
@@ -240,6 +251,8 @@ int run_study(const SceneInput& scene_input, MPI_Comm comm,
       else
         d.side_wall_vertical += r.wall_forces[w].z();
     }
+    if (r.side_wall_contacts)
+      d.wall_shear = dem_wall_shear(*r.side_wall_contacts, grid_levels(d.grid), box_perimeter(in.scene));
   });
   timings.emplace_back("DEM deposition, relaxation and grid stress (" + std::to_string(ranks) + " rank" +
                            (ranks > 1 ? "s, " : ", ") + dem::to_string(in.parallel.summation) + " summation)",
@@ -295,18 +308,24 @@ int run_study(const SceneInput& scene_input, MPI_Comm comm,
     timings.emplace_back("continuum: " + run.label + " (FEM, output included)", since(t0));
     continua.push_back(continuum_result(run.key, run.label, run.solution.cell_average_stress,
                                         run.solution.side_wall_vertical_force / run.solution.weight));
+    continua.back().wall_shear = wall_shear_of_forces(run.solution.side_wall_vertical_force_by_level,
+                                                      grid_levels(d.grid), box_perimeter(in.scene));
     frictional.push_back(std::move(run));
   }
   const fem::JanssenColumn janssen = janssen_line(problem, wall_friction(in).side);
+  continua.front().wall_shear.assign(static_cast<std::size_t>(d.grid.n[2]), 0.0);  // rollers: none
   continua.push_back(
       continuum_result("janssen", "Janssen", janssen_cells(janssen, d.grid), janssen.wall_share()));
+  // Janssen's column starts at z = 0, as the continua's.
+  continua.back().wall_shear =
+      janssen_wall_shear(janssen, {0.0, problem.height / d.grid.n[2], d.grid.n[2]}, box_perimeter(in.scene));
 
   // 3. Comparison and the one-mesh output.
   t0 = Clock::now();
   const double weight = d.total_mass * in.scene.gravity;
-  const DemFemComparison c =
-      compare_dem_fem(d.grid, d.stress, std::move(continua), fem::analytic_solution(problem),
-                      -d.side_wall_vertical / weight + 0.0, in.study.formulas);
+  DemFemComparison c = compare_dem_fem(d.grid, d.stress, std::move(continua), fem::analytic_solution(problem),
+                                       -d.side_wall_vertical / weight + 0.0, in.study.formulas);
+  c.dem_wall_shear = d.wall_shear;
   upscale::UpscaleOptions uo;
   uo.refinements = 0;
   (void)upscale::upscale_to_mesh(comparison_fields(d, c, in.study.formulas), comm, folder / "mesh", "dem_fem",
@@ -329,7 +348,8 @@ int run_study(const SceneInput& scene_input, MPI_Comm comm,
       const std::string cmd = "/usr/bin/python3 '" + script + "' '" + folder.string() + "' > '" +
                               (folder / "plots.log").string() + "' 2>&1";
       if (std::system(cmd.c_str()) == 0)
-        for (const char* p : {"profiles_szz.png", "lateral_ratio.png", "wall_share.png", "level_spread.png"})
+        for (const char* p : {"profiles_szz.png", "lateral_ratio.png", "wall_share.png", "wall_shear.png",
+                              "level_spread.png"})
           if (std::filesystem::exists(folder / p)) plots.emplace_back(p);
     }
     std::vector<std::string> strain_plots;

@@ -292,6 +292,36 @@ void profile_table(std::ostringstream& m, const StudyRecord& s, const std::strin
   m << "\n";
 }
 
+// The side walls' shear against height (wall_shear_profile.h): the DEM's from its wall
+// contacts, each continuum's, and what they sum to.
+void wall_shear_section(std::ostringstream& m, const StudyRecord& s) {
+  const DemFemComparison& c = s.comparison;
+  const dem::RegularGrid& g = c.grid;
+  m << "## Wall shear stress (Pa) against height\n\n"
+       "The side walls' mean upward shear on the fill over each level of the grid: their upward force within "
+       "the level over the perimeter times the level's height (positive: the walls carry weight). The DEM's "
+       "is "
+       "from its side-wall contacts at the final state, binned by their points' height"
+    << (c.dem_wall_shear.empty() ? " (not recorded: the final step did not record its contacts)" : "")
+    << ". The last row is the share of the weight the walls carry.\n\n| z (m) | DEM";
+  for (const ContinuumResult& cr : c.continua) m << " | " << cr.label;
+  m << " |\n|---|---";
+  for (std::size_t k = 0; k < c.continua.size(); ++k) m << "|---";
+  m << "|\n";
+  const double dz = (g.hi.z() - g.lo.z()) / g.n[2];
+  const auto at = [](const std::vector<double>& v, int k) {
+    return static_cast<std::size_t>(k) < v.size() ? fmt(v[static_cast<std::size_t>(k)], 4) : std::string("-");
+  };
+  for (int k = g.n[2] - 1; k >= 0; --k) {
+    m << "| " << fmt(g.lo.z() + (k + 0.5) * dz) << " | " << at(c.dem_wall_shear, k);
+    for (const ContinuumResult& cr : c.continua) m << " | " << at(cr.wall_shear, k);
+    m << " |\n";
+  }
+  m << "| share of the weight | " << percent(c.dem_wall_share);
+  for (const ContinuumResult& cr : c.continua) m << " | " << percent(cr.wall_share);
+  m << " |\n\n";
+}
+
 }  // namespace
 
 void write_report(const std::filesystem::path& folder, const StudyRecord& s) {
@@ -307,12 +337,14 @@ void write_report(const std::filesystem::path& folder, const StudyRecord& s) {
   profile_table(m, s, "σ_zz (Pa) against height", true, [](const Tensor9& t) { return t[8]; });
   profile_table(m, s, "Lateral ratio (σ_xx+σ_yy)/(2σ_zz) against height", false,
                 [](const Tensor9& t) { return t[8] != 0.0 ? 0.5 * (t[0] + t[4]) / t[8] : 0.0; });
+  wall_shear_section(m, s);
   m << "## Plots\n\n";
   if (s.plots.empty())
     m << "No plots: /usr/bin/python3 with matplotlib was not available (the CSV tables hold the same "
          "data).\n";
   for (const std::string& p : s.plots) m << "![" << p << "](" << p << ")\n\n";
-  m << "\n## Files\n\n- `comparison_cells.csv`, `profiles.csv`, `relative_l2.csv`, `stress_summary.csv`: the "
+  m << "\n## Files\n\n- `comparison_cells.csv`, `profiles.csv`, `relative_l2.csv`, `stress_summary.csv`, "
+       "`wall_shear.csv`: the "
        "tables above, in full.\n"
     << "- `mesh/dem_fem.pvtu`: DEM (per formula), the continua and the DEM's difference from the column on "
        "rollers as cell data on one mesh, with Q1 projections (ParaView).\n"
@@ -365,6 +397,16 @@ void write_study_json(const std::filesystem::path& folder, const StudyRecord& s)
       cal.insert(p + 1, "  ");
     j << ",\n    \"calibration\": {\n  " << cal << "\n    }";
   }
+  j << "}";
+  const auto array = [&](const std::vector<double>& v) {
+    std::string a = "[";
+    for (std::size_t k = 0; k < v.size(); ++k) a += (k ? ", " : "") + n(v[k]);
+    return a + "]";
+  };
+  j << ",\n  \"wall_shear_level_height_m\": " << n((d.grid.hi.z() - d.grid.lo.z()) / d.grid.n[2])
+    << ",\n  \"box_perimeter_m\": " << n(2.0 * (s.in.scene.container.lx + s.in.scene.container.ly));
+  j << ",\n  \"wall_shear_Pa\": {\"dem\": " << array(c.dem_wall_shear);
+  for (const ContinuumResult& cr : c.continua) j << ", \"" << cr.key << "\": " << array(cr.wall_shear);
   j << "}";
   j << ",\n  \"continua\": {";
   for (std::size_t k = 0; k < c.continua.size(); ++k) {

@@ -24,6 +24,9 @@ struct DemOutcome {
   double total_mass = 0.0;
   dem::Vec3 floor_force = dem::Vec3::Zero();
   double side_wall_vertical = 0.0;  // sum of the grains' vertical force on the side walls (N, < 0 = carried)
+  // Per grid level: the side walls' mean upward shear on the grains (Pa, wall_shear_profile.h);
+  // empty when the final step did not record its contacts.
+  std::vector<double> wall_shear;
 };
 
 // One frictional continuum of the study and how it was solved.

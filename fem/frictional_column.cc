@@ -35,6 +35,7 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -552,9 +553,12 @@ void FrictionalColumn::place_layer(const unsigned int layer) {
 // wall area and the plastic volume, all from the committed state.
 void FrictionalColumn::postprocess() {
   FEValues<dim> fe_values(fe_, quadrature_, update_JxW_values);
-  FEFaceValues<dim> fe_face_values(fe_, face_quadrature_, update_JxW_values);
+  FEFaceValues<dim> fe_face_values(fe_, face_quadrature_, update_JxW_values | update_quadrature_points);
   const unsigned int n_q = quadrature_.size();
   column_mesh::CoarseStressIntegrals coarse_integrals(problem_.column);
+  const unsigned int levels = problem_.column.cells[2];
+  const double level_height = problem_.column.height / levels;
+  std::vector<double> by_level(levels, 0.0);
   for (auto& v : cell_stress_) v.reinit(triangulation_.n_active_cells());
   cell_plastic_share_.reinit(triangulation_.n_active_cells());
   // wall force, floor force, slipping area, frictional loaded area, plastic volume, volume
@@ -591,6 +595,9 @@ void FrictionalColumn::postprocess() {
           continue;
         }
         sums[0] += wall_point->traction[2] * JxW;
+        const double z = fe_face_values.quadrature_point(q)[2];
+        const auto level = static_cast<unsigned int>(std::clamp(z / level_height, 0.0, levels - 1.0));
+        by_level[level] += wall_point->traction[2] * JxW;
         if (problem_.walls.side[wall] > 0.0 && wall_point->pressure > 0.0) {
           sums[3] += JxW;
           if (wall_point->slipping) sums[2] += JxW;
@@ -605,6 +612,8 @@ void FrictionalColumn::postprocess() {
   result_.floor_vertical_force = global[1];
   result_.slipping_wall_share = global[3] > 0.0 ? global[2] / global[3] : 0.0;
   result_.plastic_volume_share = global[4] / global[5];
+  result_.side_wall_vertical_force_by_level.resize(levels);
+  Utilities::MPI::sum(by_level, comm_, result_.side_wall_vertical_force_by_level);
   const ColumnProblem& c = problem_.column;
   result_.weight = c.density * c.gravity * c.length_x * c.length_y * c.height;
   result_.cell_average_stress = coarse_integrals.averages(comm_);

@@ -84,6 +84,9 @@ struct FrictionalColumnSolution {
   std::vector<std::array<double, 9>> cell_average_stress;
   double weight = 0.0;                    // rho g Lx Ly H (N)
   double side_wall_vertical_force = 0.0;  // upward force of the side walls on the fill (N)
+  // The same per level of the coarse mesh (problem.column.cells[2] levels of equal height,
+  // from the floor up): the wall shear against height (N per level; they sum to the total).
+  std::vector<double> side_wall_vertical_force_by_level;
   // Upward force of the floor, -int sigma_zz dA at the floor (N). With the side walls' it
   // balances the weight up to the discretisation error.
   double floor_vertical_force = 0.0;

@@ -40,6 +40,21 @@ void measure_final_state(dem::Simulation& sim, double wall_seconds, long steps_t
   });
 }
 
+std::vector<SideWallContact> side_wall_contacts(const dem::Simulation& sim) {
+  const std::vector<dem::ContactRecord> all = sim.gather_contacts_by_id();
+  std::vector<SideWallContact> out;
+  for (const dem::ContactRecord& c : all) {
+    if (c.b >= 0) continue;
+    const auto wall = static_cast<int>(-1 - c.b);
+    const std::string& name = sim.walls()[static_cast<std::size_t>(wall)].name;
+    if (std::find(std::begin(dem::kSideWallNames), std::end(dem::kSideWallNames), name) ==
+        std::end(dem::kSideWallNames))
+      continue;
+    out.push_back({wall, c.point[2], dem::get(c.force)});
+  }
+  return out;
+}
+
 std::map<std::string, std::string> summary_entries(const dem::Simulation& sim, const RunResult& r,
                                                    const std::vector<dem::EffectChoice>& effects) {
   const auto n = static_cast<double>(sim.particle_count());

@@ -19,6 +19,14 @@
 
 namespace upgrain::coupling {
 
+// A grain's contact with a side wall (dem::kSideWallNames) at the end of a run: the wall's
+// index, the contact point's height and the wall's force on the grain (N).
+struct SideWallContact {
+  int wall = 0;
+  double z = 0.0;
+  dem::Vec3 force_on_grain = dem::Vec3::Zero();
+};
+
 struct RunResult {
   long steps = 0;
   double simulated_time = 0.0;
@@ -46,12 +54,19 @@ struct RunResult {
   CapturedStates coarse_graining;
   // The engine's state at the end (RunControl::keep_final_state; rank 0's, empty elsewhere).
   std::optional<dem::EngineState> final_state;
+  // The side-wall contacts of the last step (RunControl::keep_wall_contacts; rank 0's; none when
+  // that step did not record its contacts).
+  std::optional<std::vector<SideWallContact>> side_wall_contacts;
 };
 
 // The figures of the engine's final state into `r` (collective; the bed and the mass on rank
 // 0): steps, time, energies, diagnostics, load, wall forces, bed. `wall_seconds` is the time the
 // run took for its `steps_taken` steps (a resumed run's, since its checkpoint).
 void measure_final_state(dem::Simulation& sim, double wall_seconds, long steps_taken, RunResult& r);
+
+// The side-wall contacts of the engine's last step, which must have recorded its contacts
+// (collective; rank 0's, sorted by grain id; empty elsewhere).
+std::vector<SideWallContact> side_wall_contacts(const dem::Simulation& sim);
 
 // summary.json's entries: the run's figures, the ranks and summation, and the effect set with
 // the reason for each entry. JSON has no NaN: a figure not computed (the energy channels

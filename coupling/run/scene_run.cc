@@ -202,6 +202,8 @@ class SceneRun {
       r.final_grid = grids_->final_grid();
       r.final_strain = grids_->final_strain();
     }
+    if (control_.keep_wall_contacts && sim_.contacts_recorded())
+      r.side_wall_contacts = side_wall_contacts(sim_);
     if (control_.keep_final_state) r.final_state = sim_.capture_state();
     // After the figures of the final state: a later state for differences moves the engine on.
     r.coarse_graining = states_.at_end(sim_);

@@ -36,6 +36,9 @@ struct RunControl {
   // Keep the engine's final state in RunResult::final_state (rank 0's): a study's calibration
   // loads the bed it compares (docs/study.md).
   bool keep_final_state = false;
+  // Keep the side-wall contacts of the last recorded step in RunResult::side_wall_contacts
+  // (rank 0's): the study's wall shear against height.
+  bool keep_wall_contacts = false;
 };
 
 // The scene's fill, made on rank 0 (empty on the others); collective: a fill that fails fails

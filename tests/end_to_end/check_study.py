@@ -16,6 +16,9 @@
   calibration (Continuum/material from, tiny_study.prm), the values of calibration/material.prm,
   its paths beside it, K0 = nu / (1 - nu) of that nu, and the report's material section naming
   them; with the Continuum entries (tiny_study_lucy.prm), the entries' values;
+- the side walls' shear against height (wall_shear.csv, study.json): a value per level for the DEM
+  and every continuum, whose levels sum to what the walls carry (the DEM's from its wall
+  contacts against its wall forces, each continuum's against its wall share);
 - report, plots, tables and meshes are there, and no temporary file is left."""
 import csv
 import glob
@@ -86,11 +89,20 @@ if cg["momentum_residual_by_differences"] is not None:
     # A bed at rest: the balance by differences over a few steps is as small as the bed's own
     # d(rho v)/dt (tiny_study_lucy.prm: Lucy's kernel, no cut-off jump).
     assert cg["momentum_residual_by_differences"] <= 10 * cg["momentum_rate"] + 1e-12, cg
-for name in ("report.md", "comparison_cells.csv", "relative_l2.csv", "stress_summary.csv", "profiles_szz.png",
+for name in ("report.md", "comparison_cells.csv", "relative_l2.csv", "stress_summary.csv", "wall_shear.csv",
+             "wall_shear.png", "profiles_szz.png",
              "lateral_ratio.png", "wall_share.png", "level_spread.png", "mesh/dem_fem.pvtu", "fem/column.pvtu",
              "fem_elastic_friction/column.pvtu", "fem_drucker_prager/column.pvtu", "mesh/cg_fields.pvtu"):
     assert os.path.exists(name), name
 report = open("report.md").read()
+shear = s["wall_shear_Pa"]
+area = s["wall_shear_level_height_m"] * s["box_perimeter_m"]
+assert len(shear["dem"]) == nz, shear
+assert abs(sum(shear["dem"]) * area + s["side_wall_force_z_N"]) <= 1e-9 * weight, (shear["dem"], s["side_wall_force_z_N"])
+for key, continuum in s["continua"].items():
+    assert len(shear[key]) == nz, (key, shear[key])
+    assert abs(sum(shear[key]) * area - continuum["wall_share"] * weight) <= 1e-8 * weight, (key, shear[key])
+assert "## Wall shear stress (Pa) against height" in report
 material = s["continuum_material"]
 assert "## The continua's material" in report
 nu = material["poisson_ratio"]
