@@ -16,6 +16,7 @@
 #include "coupling/coarse_graining_study.h"
 #include "coupling/dem_fem_comparison.h"
 #include "coupling/dem_run.h"
+#include "coupling/run/stop_request.h"
 #include "coupling/strain_report.h"
 #include "coupling/study_report.h"
 #include "coupling/wall_shear_profile.h"
@@ -180,8 +181,20 @@ BedCalibration calibrate_continuum(SceneInput& in, RunResult& r, MPI_Comm comm,
     std::fflush(stdout);
   });
   const dem::EngineState none;
-  BedCalibration b = calibrate_bed(in.scene, r.final_state ? *r.final_state : none, in.calibration, comm,
-                                   engine_options(in), on_progress);
+  BedCalibration b;
+  try {
+    b = calibrate_bed(in.scene, r.final_state ? *r.final_state : none, in.calibration, comm,
+                      engine_options(in), on_progress);
+  } catch (const RunStopped& e) {
+    throw RunStopped(
+        e.signal(), e.step(), {},
+        "during the calibration of the continua on the bed, which is not checkpointed: the DEM "
+        "run's output in " +
+            in.output.folder.string() +
+            " is complete, the continua and the report are not written; run the study again, or "
+            "set Continuum/material from = entries, or name an earlier calibration's material.prm as "
+            "Continuum/material file");
+  }
   r.final_state.reset();
   const std::filesystem::path cal = std::filesystem::path(in.output.folder) / "calibration";
   on_rank0(comm, [&] {

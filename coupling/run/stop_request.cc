@@ -31,11 +31,13 @@ void stop_if_requested(MPI_Comm comm, long step) {
   if (signal != 0) throw RunStopped(signal, step, {});
 }
 
-RunStopped::RunStopped(int signal, long step, std::filesystem::path checkpoint)
+RunStopped::RunStopped(int signal, long step, std::filesystem::path checkpoint,
+                       const std::string& without_checkpoint)
     : Error("stopped by signal " + std::to_string(signal) + " (" + strsignal(signal) + ") after step " +
             std::to_string(step) +
-            (checkpoint.empty() ? std::string(", no checkpoint (no output)")
-                                : ", checkpoint " + checkpoint.string())),
+            (!checkpoint.empty()          ? ", checkpoint " + checkpoint.string()
+             : without_checkpoint.empty() ? std::string(", no checkpoint (no output)")
+                                          : ", " + without_checkpoint)),
       signal_(signal),
       step_(step),
       checkpoint_(std::move(checkpoint)) {}

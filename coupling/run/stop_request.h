@@ -28,7 +28,10 @@ void stop_if_requested(MPI_Comm comm, long step);
 // process ended by that signal.
 class RunStopped : public Error {
  public:
-  RunStopped(int signal, long step, std::filesystem::path checkpoint);
+  // `without_checkpoint`: what to say instead of "no checkpoint (no output)" when there is none
+  // (where the run stopped, what it left).
+  RunStopped(int signal, long step, std::filesystem::path checkpoint,
+             const std::string& without_checkpoint = {});
   [[nodiscard]] int signal() const { return signal_; }
   [[nodiscard]] long step() const { return step_; }
   // Empty when the run wrote no output (so no checkpoint).

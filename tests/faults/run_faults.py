@@ -19,6 +19,10 @@ CASE is one of:
   rank_killed          one of three ranks killed by SIGKILL under mpiexec
   sigint               SIGINT to a run of one process
   sighup_one_rank      SIGHUP to one of two ranks under mpiexec
+  sigint_during_calibration
+                       SIGINT to a study (tests/end_to_end/tiny_study.prm) while it calibrates
+                       its continua on the bed: exit 130, a message that says where it stopped
+                       and what it left, the DEM output whole, no report
 
 After a write failure the run must stop with exit 1 and an error naming the file, leave no
 file under a final name that does not read (every .h5 opens, checkpoints pass their checksum
@@ -403,6 +407,47 @@ def case_sigint(upgrain, work, log):
 
 def case_sighup_one_rank(upgrain, work, log):
     stop_by_signal(upgrain, work, log, 2, signal.SIGHUP, 1)
+
+
+def case_sigint_during_calibration(upgrain, work, log):
+    scene = os.path.join(HERE, '..', 'end_to_end', 'tiny_study.prm')
+    folder = os.path.join(work, 'run')
+    out_path = os.path.join(work, 'study.log')
+    with open(out_path, 'w') as out:
+        proc = subprocess.Popen([upgrain, '--output', folder, scene], stdout=out, stderr=subprocess.PIPE,
+                                text=True, start_new_session=True)
+    end = time.monotonic() + 120
+    while 'calibration of the continua on this bed' not in open(out_path).read():
+        if proc.poll() is not None or time.monotonic() > end:
+            os.killpg(proc.pid, signal.SIGKILL)
+            fail(f'the study did not reach its calibration ({proc.returncode})')
+        time.sleep(0.05)
+    time.sleep(0.5)
+    os.kill(proc.pid, signal.SIGINT)
+    try:
+        _, err = proc.communicate(timeout=60)
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)
+        fail('the study did not stop within 60 s of the signal')
+    text = open(out_path).read()
+    open(log, 'a').write(text + err)
+    if proc.returncode == 0:
+        print('the calibration ended before the signal took effect: nothing to check')
+        return
+    if proc.returncode != 128 + signal.SIGINT:
+        fail(f'a study stopped by SIGINT must exit with {128 + signal.SIGINT}, not {proc.returncode}: {err.strip()}')
+    if 'during the calibration of the continua' not in text or 'run the study again' not in text:
+        fail('the study did not say that it stopped in its calibration, and what to do')
+    if err.count('error') > 0:
+        fail(f'a stop on request is no error: {err.strip()}')
+    for name in ('summary.json', 'grid_stress.csv', 'time_series.csv'):
+        if not os.path.exists(os.path.join(folder, name)):
+            fail(f'the DEM output lost {name}')
+    for name in ('report.md', 'study.json', 'calibration/material.prm'):
+        if os.path.exists(os.path.join(folder, name)):
+            fail(f'{name} written by a study stopped before its continua')
+    check_files_whole(folder)
+    print('SIGINT during the calibration: exit 130, DEM output whole, no report')
 
 
 def case_reference(upgrain, work, log):
