@@ -79,8 +79,9 @@ std::vector<std::string> differing_parameters(const std::string& run, const std:
 void apply_material_file(SceneInput& in, const std::string& scene_file);
 
 // Why the calibration's tests (docs/calibration.md) cannot load this scene's bed: a contact law
-// without the servo's stiffness bound, a box with a gate or opening walls, a lid of the scene's
-// own. Empty when they can.
+// without the servo's stiffness bound, or a box with a gate or opening walls. Empty when they
+// can. (`--study calibration` deposits without the scene's lid; a study keeps it on its bed,
+// so its own calibration is refused there too: Continuum/material from.)
 std::string calibration_refusal(const SceneInput& in);
 
 // Checks that involve several parameters or the file system: gradation curve, the fill

@@ -192,7 +192,11 @@ void resolve_material_source(SceneInput& in, const std::string& where) {
     return;
   }
   if (c.material_from == ContinuumOptions::MaterialSource::entries) return;
-  const std::string why = calibration_refusal(in);
+  // The study's bed is the scene's, lid included; the calibration places its own.
+  const std::string why =
+      in.control.lid.enabled()
+          ? "the calibration places its own lid on the bed, and the scene has one (Lid section)"
+          : calibration_refusal(in);
   if (why.empty()) {
     c.calibrate_in_study = true;
     return;
@@ -212,7 +216,6 @@ std::string calibration_refusal(const SceneInput& in) {
     return "the calibration's tests load the bed in its closed box; a scene with a gate or with side walls "
            "that "
            "open (Container) is not one";
-  if (in.control.lid.enabled()) return "the calibration places its own lid; the scene has one (Lid section)";
   return "";
 }
 

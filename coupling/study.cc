@@ -191,7 +191,9 @@ BedCalibration calibrate_continuum(SceneInput& in, RunResult& r, MPI_Comm comm,
         "during the calibration of the continua on the bed, which is not checkpointed: the DEM "
         "run's output in " +
             in.output.folder.string() +
-            " is complete, the continua and the report are not written; run the study again, or "
+            " is complete, the continua and the report are not written; run the study again (with "
+            "Output/overwrite = "
+            "true, or into another folder), or "
             "set Continuum/material from = entries, or name an earlier calibration's material.prm as "
             "Continuum/material file");
   }
@@ -206,7 +208,8 @@ BedCalibration calibrate_continuum(SceneInput& in, RunResult& r, MPI_Comm comm,
   ContinuumOptions& c = in.study.continuum;
   if (const std::string why = b.material_error(cal); !why.empty()) {
     if (c.material_from == ContinuumOptions::MaterialSource::calibration)
-      throw Error("Continuum/material from = calibration: the calibration of the bed failed: " + why);
+      throw CollectiveError("Continuum/material from = calibration: the calibration of the bed failed: " +
+                            why);
     c.calibrate_in_study = false;
     c.calibration_skipped = "the calibration of the bed failed (" + why + ")";
     on_rank0(comm, [&] {

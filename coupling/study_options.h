@@ -37,8 +37,8 @@ struct ContinuumOptions {
   // The entries the material file set (of youngs modulus, poisson ratio, friction angle,
   // dilatancy angle): those take the file's values, the others keep the Continuum entries.
   std::vector<std::string> material_file_entries;
-  // Where an entry's value came from, for printouts and reports: "calibration of this bed
-  // (<file>)", "material file <file>" or "Continuum entry".
+  // Where an entry's value came from, for printouts and reports: "calibration of this bed,
+  // <file>", "material file <file>" or "Continuum entry".
   [[nodiscard]] std::string source_of(const std::string& entry) const {
     for (const std::string& e : material_file_entries)
       if (e == entry) return (calibrated ? "calibration of this bed, " : "material file ") + material_file;

@@ -56,9 +56,7 @@ BedScales bed_scales(const dem::SceneConfig& s, const dem::EngineState& bed, MPI
 // wall's.
 dem::EngineState with_wall_friction(dem::EngineState bed, double side, bool floor_too) {
   for (dem::PlaneWall& w : bed.walls) {
-    const bool is_side = std::find(std::begin(dem::kSideWallNames), std::end(dem::kSideWallNames), w.name) !=
-                         std::end(dem::kSideWallNames);
-    if (is_side || floor_too) w.friction = side;
+    if (dem::is_side_wall(w.name) || floor_too) w.friction = side;
   }
   return bed;
 }

@@ -46,10 +46,7 @@ std::vector<SideWallContact> side_wall_contacts(const dem::Simulation& sim) {
   for (const dem::ContactRecord& c : all) {
     if (c.b >= 0) continue;
     const auto wall = static_cast<int>(-1 - c.b);
-    const std::string& name = sim.walls()[static_cast<std::size_t>(wall)].name;
-    if (std::find(std::begin(dem::kSideWallNames), std::end(dem::kSideWallNames), name) ==
-        std::end(dem::kSideWallNames))
-      continue;
+    if (!dem::is_side_wall(sim.walls()[static_cast<std::size_t>(wall)].name)) continue;
     out.push_back({wall, c.point[2], dem::get(c.force)});
   }
   return out;

@@ -34,6 +34,11 @@ struct BoxContainer {
 inline constexpr const char* kGateWallName = "gate";
 // The side walls of make_open_box, by name (the unconstrained collapse removes them all).
 inline constexpr const char* kSideWallNames[4] = {"wall_x_min", "wall_x_max", "wall_y_min", "wall_y_max"};
+inline bool is_side_wall(const std::string& name) {
+  for (const char* side : kSideWallNames)
+    if (name == side) return true;
+  return false;
+}
 
 inline std::vector<PlaneWall> make_open_box(const BoxContainer& box) {
   std::vector<PlaneWall> walls = {

@@ -433,9 +433,8 @@ void Simulation::add_wall(const PlaneWall& wall) {
     restored_wall_loads_->damping.push_back(Vec3::Zero());
   }
   if (summation_ == Summation::fast) {
-    if (out_.wall_force.size() + 1 == walls_.size()) out_.wall_force.push_back(Vec3::Zero());
-    if (!out_.wall_damping.empty() && out_.wall_damping.size() + 1 == walls_.size())
-      out_.wall_damping.push_back(Vec3::Zero());
+    out_.wall_force.resize(walls_.size(), Vec3::Zero());
+    if (!out_.wall_damping.empty()) out_.wall_damping.resize(walls_.size(), Vec3::Zero());
   }
   // Its point at build: far enough that the next step rebuilds (the entries come with it).
   wall_points_at_build_.push_back(wall.point);
