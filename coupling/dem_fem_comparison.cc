@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "coupling/wall_shear_profile.h"
 #include "dem/io/atomic_file.h"
 #include "dem/io/grid_stress_output.h"
 #include "dem/io/json_number.h"
@@ -231,7 +232,7 @@ void write_comparison_tables(const std::filesystem::path& folder, const DemFemCo
          "height (empty when they were not recorded)\nlevel,z_lo,z_hi,dem";
     for (const ContinuumResult& r : c.continua) t << "," << r.key;
     t << "\n";
-    const double dz = (g.hi.z() - g.lo.z()) / g.n[2];
+    const double dz = grid_levels(g).dz;
     for (int k = 0; k < g.n[2]; ++k) {
       const auto at = [k](const std::vector<double>& v) {
         return static_cast<std::size_t>(k) < v.size() ? dem::io::json_number(v[static_cast<std::size_t>(k)])

@@ -295,8 +295,7 @@ int run(int argc, char** argv) {
             "  continuum material: measured on this bed after the DEM run (Continuum/material from = %s): "
             "the "
             "oedometric and friction-angle tests of docs/calibration.md, written to calibration/\n",
-            c.material_from == coupling::ContinuumOptions::MaterialSource::calibration ? "calibration"
-                                                                                       : "auto");
+            c.material_from_entry());
       else if (!c.calibration_skipped.empty())
         std::printf("  continuum material: the Continuum entries (Continuum/material from = auto): %s\n",
                     c.calibration_skipped.c_str());

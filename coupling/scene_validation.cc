@@ -184,11 +184,9 @@ void resolve_material_source(SceneInput& in, const std::string& where) {
   c.calibration_skipped.clear();
   if (!c.material_file.empty()) {
     if (c.material_from != ContinuumOptions::MaterialSource::automatic)
-      throw Error(
-          where + "Continuum/material from = " +
-          (c.material_from == ContinuumOptions::MaterialSource::calibration ? "calibration" : "entries") +
-          " contradicts Continuum/material file = " + c.material_file +
-          ", which supplies the values itself; set one of the two");
+      throw Error(where + "Continuum/material from = " + c.material_from_entry() +
+                  " contradicts Continuum/material file = " + c.material_file +
+                  ", which supplies the values itself; set one of the two");
     return;
   }
   if (c.material_from == ContinuumOptions::MaterialSource::entries) return;

@@ -68,10 +68,6 @@ void broadcast(DemOutcome& d, MPI_Comm comm) {
   MPI_Bcast(d.wall_shear.data(), levels, MPI_DOUBLE, 0, comm);
 }
 
-// The grid's levels (wall_shear_profile.h), and the box's perimeter 2 (Lx + Ly).
-Levels grid_levels(const dem::RegularGrid& g) { return {g.lo.z(), (g.hi.z() - g.lo.z()) / g.n[2], g.n[2]}; }
-double box_perimeter(const dem::SceneConfig& s) { return 2.0 * (s.container.lx + s.container.ly); }
-
 // The one-mesh output: the DEM's formulas, each continuum's stress (the column on rollers
 // with the DEM's difference from it) and the hydrostatic sigma_zz.
 upscale::GridFields comparison_fields(const DemOutcome& d, const DemFemComparison& c,

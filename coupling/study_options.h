@@ -25,6 +25,12 @@ struct ContinuumOptions {
   // the first where the calibration's tests can load the bed (automatic).
   enum class MaterialSource { automatic, calibration, entries };
   MaterialSource material_from = MaterialSource::automatic;
+  // The entry's value for `material_from`: auto, calibration or entries.
+  [[nodiscard]] const char* material_from_entry() const {
+    return material_from == MaterialSource::calibration ? "calibration"
+           : material_from == MaterialSource::entries   ? "entries"
+                                                        : "auto";
+  }
   // Resolved by validate_scene: the study calibrates its continua on its bed; or, automatic
   // without it, why not.
   bool calibrate_in_study = false;

@@ -7,6 +7,7 @@
 
 #include "coupling/report_format.h"
 #include "coupling/strain_report.h"
+#include "coupling/wall_shear_profile.h"
 #include "dem/io/atomic_file.h"
 #include "dem/io/grid_stress_output.h"
 #include "dem/io/json_number.h"
@@ -308,7 +309,7 @@ void wall_shear_section(std::ostringstream& m, const StudyRecord& s) {
   m << " |\n|---|---";
   for (std::size_t k = 0; k < c.continua.size(); ++k) m << "|---";
   m << "|\n";
-  const double dz = (g.hi.z() - g.lo.z()) / g.n[2];
+  const double dz = grid_levels(g).dz;
   const auto at = [](const std::vector<double>& v, int k) {
     return static_cast<std::size_t>(k) < v.size() ? fmt(v[static_cast<std::size_t>(k)], 4) : std::string("-");
   };
@@ -403,8 +404,8 @@ void write_study_json(const std::filesystem::path& folder, const StudyRecord& s)
     for (std::size_t k = 0; k < v.size(); ++k) a += (k ? ", " : "") + n(v[k]);
     return a + "]";
   };
-  j << ",\n  \"wall_shear_level_height_m\": " << n((d.grid.hi.z() - d.grid.lo.z()) / d.grid.n[2])
-    << ",\n  \"box_perimeter_m\": " << n(2.0 * (s.in.scene.container.lx + s.in.scene.container.ly));
+  j << ",\n  \"wall_shear_level_height_m\": " << n(grid_levels(d.grid).dz)
+    << ",\n  \"box_perimeter_m\": " << n(box_perimeter(s.in.scene));
   j << ",\n  \"wall_shear_Pa\": {\"dem\": " << array(c.dem_wall_shear);
   for (const ContinuumResult& cr : c.continua) j << ", \"" << cr.key << "\": " << array(cr.wall_shear);
   j << "}";

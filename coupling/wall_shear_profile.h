@@ -25,6 +25,12 @@ struct Levels {
   }
 };
 
+// The levels of a stress grid, and the box's perimeter P = 2 (Lx + Ly).
+inline Levels grid_levels(const dem::RegularGrid& g) {
+  return {g.lo.z(), (g.hi.z() - g.lo.z()) / g.n[2], g.n[2]};
+}
+inline double box_perimeter(const dem::SceneConfig& s) { return 2.0 * (s.container.lx + s.container.ly); }
+
 // The DEM's: each side-wall contact's vertical force on its grain, in the level of its point.
 inline std::vector<double> dem_wall_shear(const std::vector<SideWallContact>& contacts, const Levels& l,
                                           double perimeter) {

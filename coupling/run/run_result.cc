@@ -41,10 +41,8 @@ void measure_final_state(dem::Simulation& sim, double wall_seconds, long steps_t
 }
 
 std::vector<SideWallContact> side_wall_contacts(const dem::Simulation& sim) {
-  const std::vector<dem::ContactRecord> all = sim.gather_contacts_by_id();
   std::vector<SideWallContact> out;
-  for (const dem::ContactRecord& c : all) {
-    if (c.b >= 0) continue;
+  for (const dem::ContactRecord& c : sim.gather_contacts_by_id(/*walls_only=*/true)) {
     const auto wall = static_cast<int>(-1 - c.b);
     if (!dem::is_side_wall(sim.walls()[static_cast<std::size_t>(wall)].name)) continue;
     out.push_back({wall, c.point[2], dem::get(c.force)});

@@ -575,7 +575,7 @@ ComputeGridStress Simulation::compute_grid_stress() const {
   return summed_compute_grid_stress(p_, n_owned_, out_.contacts, decomposition(), owner, grain_dynamics());
 }
 
-std::vector<ContactRecord> Simulation::gather_contacts_by_id() const {
+std::vector<ContactRecord> Simulation::gather_contacts_by_id(bool walls_only) const {
   if (!recorded_) throw Error("contacts: none recorded at the last step (request_contacts())");
   std::vector<ContactRecord> mine;
   for (const ContactSample& c : out_.contacts) {
@@ -589,7 +589,7 @@ std::vector<ContactRecord> Simulation::gather_contacts_by_id() const {
       mine.push_back(r);
       continue;
     }
-    if (summation_ == Summation::deterministic && c.a >= n_owned_) continue;
+    if (walls_only || (summation_ == Summation::deterministic && c.a >= n_owned_)) continue;
     const bool a_lower = p_.id[c.a] < p_.id[c.b];
     ContactRecord r{a_lower ? p_.id[c.a] : p_.id[c.b], a_lower ? p_.id[c.b] : p_.id[c.a], {}, {}};
     put(r.point, c.point);

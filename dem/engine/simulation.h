@@ -177,8 +177,9 @@ class Simulation {
   }
   [[nodiscard]] bool contacts_recorded() const { return recorded_; }
   // Every recorded contact once, on rank 0, sorted by key (a < b, force on a; or wall w as
-  // b = -1 - w); empty elsewhere.
-  [[nodiscard]] std::vector<ContactRecord> gather_contacts_by_id() const;
+  // b = -1 - w); empty elsewhere. `walls_only`: the wall contacts alone, chosen before they are
+  // sent (a few hundred of a bed's many pair contacts).
+  [[nodiscard]] std::vector<ContactRecord> gather_contacts_by_id(bool walls_only = false) const;
   // After a step that recorded contacts (else upgrain::Error): the stress of a fixed grid and
   // of the compute grids (one cell per block), on every rank (docs/stress.md, "Stress in
   // parallel"). Deterministic summation: bitwise the same on any rank count.

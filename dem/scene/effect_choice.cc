@@ -136,13 +136,12 @@ std::vector<EffectChoice> describe_effects(const EffectSet& e) {
 }
 
 std::string effects_json(const std::vector<EffectChoice>& choices) {
-  const auto quoted = [](const std::string& t) { return io::json_string(t); };
   std::string j = "{";
   for (std::size_t k = 0; k < choices.size(); ++k) {
     const EffectChoice& c = choices[k];
     if (k > 0) j += ", ";
-    j += quoted(c.entry) + ": {\"on\": " + (c.on ? "true" : "false") + ", \"reason\": " + quoted(c.reason) +
-         "}";
+    j += io::json_string(c.entry) + ": {\"on\": " + (c.on ? "true" : "false") +
+         ", \"reason\": " + io::json_string(c.reason) + "}";
   }
   return j + "}";
 }
