@@ -358,14 +358,24 @@ const std::vector<ParameterSpec>& parameter_schema() {
       {"Accuracy", "tolerance", "0.01", K::real, 0.0, 1.0, "", "-",
        "Relative change a setting may make in every measure of the bed (or the noise floor, if larger) "
        "for the report to call it within tolerance."},
+      {"Calibration", "oedometer loading", "gravity", K::selection, 0, 0, "gravity|lid", "-",
+       "How the oedometric test (docs/calibration.md) loads the bed: gravity raises its weight by each of "
+       "'gravity factors' (no wall on the top: nothing to seat; the modulus at the bed's own stress, as a "
+       "continuum loaded by gravity needs it); lid holds each of 'lid stresses' with a servo lid placed on "
+       "the bed's highest grain."},
+      {"Calibration", "gravity factors", "1.5, 2", K::text, 0, 0, "", "-",
+       "The bed's weight times each of these in turn (oedometer loading = gravity), comma-separated, "
+       "ascending, each > 1; the weight rises linearly over the first half of each hold."},
       {"Calibration", "lid stresses", "0.5, 1, 2, 4", K::text, 0, 0, "", "bed weight / footprint",
-       "Targets of the oedometric test's servo lid (upgrain --study calibration, docs/calibration.md), as "
-       "multiples of the bed's weight over the box's footprint, comma-separated, ascending; at least two."},
+       "Targets of the oedometric test's servo lid (oedometer loading = lid), as multiples of the bed's "
+       "weight over the box's footprint, comma-separated, ascending; at least two."},
       {"Calibration", "hold time", "0.05", K::real, 1e-9, 1e6, "", "s",
-       "Simulated time each lid target is held before the bed's stress and strain are taken."},
+       "Simulated time each gravity factor or lid target is held before the bed's stress and strain are "
+       "taken."},
       {"Calibration", "seating time", "0.2", K::real, 0.0, 1e6, "", "s",
        "Simulated time before the first hold in which the lid comes down onto the bed and seats at the "
-       "first target (its first contacts with the uneven top are impacts); not recorded."},
+       "first target (its first contacts with the uneven top are impacts); not recorded (oedometer "
+       "loading = lid)."},
       {"Calibration", "gain factor", "0.5", K::real, 1e-6, 1.0, "", "-",
        "alpha of the lid's servo (as Lid/gain factor)."},
       {"Calibration", "max speed", "0.05", K::real, 1e-9, 1e3, "", "m/s", "Largest speed of the lid."},

@@ -281,6 +281,8 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   prm.enter_subsection("Calibration");
   {
     CalibrationOptions& c = in.calibration;
+    c.oedometer_by_lid = prm.get("oedometer loading") == "lid";
+    c.gravity_factors = numbers_of(prm.get("gravity factors"), "Calibration/gravity factors");
     c.lid_stress_factors = numbers_of(prm.get("lid stresses"), "Calibration/lid stresses");
     c.hold_time = prm.get_double("hold time");
     c.seating_time = prm.get_double("seating time");

@@ -127,12 +127,19 @@ void material_section(std::ostringstream& m, const StudyRecord& s) {
   const dem::ElasticEquivalent& eq = b.elastic;
   const dem::FrictionStrength& st = b.strength;
   m << "| calibration | result |\n|---|---|\n"
-    << "| oedometric test | " << b.oedometer.lid_stresses.size() << " lid targets from "
-    << fmt(b.oedometer.lid_stresses.front()) << " Pa (the bed's weight over the footprint is "
-    << fmt(b.weight_stress) << " Pa), " << b.held << " held; at the bed's mean vertical stress "
-    << fmt(b.sigma_mean) << " Pa: M = " << fmt(eq.modulus) << " Pa (taken at " << fmt(eq.modulus_stress)
-    << " Pa), K0 = " << fmt(eq.k0) << " (the bed before loading: " << fmt(b.k0_deposited) << "); "
-    << fmt(b.oedometer_seconds, 3) << " s |\n"
+    << "| oedometric test | ";
+  if (b.oedometer.loading == OedometerLoading::gravity) {
+    m << "by gravity: the bed's weight times";
+    for (double f : b.oedometer.gravity_factors) m << ' ' << fmt(f);
+    m << ", " << b.held << " of " << b.oedometer.gravity_factors.size() << " at rest";
+  } else {
+    m << "by a servo lid: " << b.oedometer.lid_stresses.size() << " targets from "
+      << fmt(b.oedometer.lid_stresses.front()) << " Pa, " << b.held << " held";
+  }
+  m << " (the bed's weight over the footprint is " << fmt(b.weight_stress)
+    << " Pa); at the bed's mean vertical stress " << fmt(b.sigma_mean) << " Pa: M = " << fmt(eq.modulus)
+    << " Pa (taken at " << fmt(eq.modulus_stress) << " Pa), K0 = " << fmt(eq.k0)
+    << " (the bed before loading: " << fmt(b.k0_deposited) << "); " << fmt(b.oedometer_seconds, 3) << " s |\n"
     << "| friction-angle test | sigma_3 = " << fmt(b.triaxial.confining_stress) << " Pa, axial strain rate "
     << fmt(b.triaxial.strain_rate) << "/s (inertial number " << fmt(b.inertial_number, 2) << "): peak phi "
     << fmt(st.peak_angle) << " deg at axial strain " << fmt(st.peak_strain) << " with psi "

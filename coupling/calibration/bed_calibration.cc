@@ -61,11 +61,10 @@ dem::EngineState with_wall_friction(dem::EngineState bed, double side, bool floo
   return bed;
 }
 
-// A state in which the servo held its target (within kHeldTolerance): the bed is then at rest
-// under the lid, not still being pushed into. Only those enter the fit.
-constexpr double kHeldTolerance = 0.05;
-bool holds_target(const OedometerRecord& r) {
-  return r.target > 0.0 && std::abs(r.lid_stress - r.target) <= kHeldTolerance * r.target;
+// The first state the fit and the step moduli take: by lid, the first held target (the step
+// from the unloaded bed includes the lid's seating); by gravity, the bed as it is.
+std::size_t first_fitted_state(const OedometerOptions& o) {
+  return o.loading == OedometerLoading::lid ? 1 : 0;
 }
 
 std::string number(double v) {
@@ -75,25 +74,43 @@ std::string number(double v) {
   return b;
 }
 
-std::string path_table(const std::vector<OedometerRecord>& rec,
+std::string path_table(const OedometerOptions& o, const std::vector<OedometerRecord>& rec,
                        const std::vector<dem::OedometerStep>& steps) {
+  const std::size_t first_step = first_fitted_state(o) + 1;
   std::ostringstream t;
-  t << "# Upgrain oedometric test (docs/calibration.md). SI units. State 0: the deposited bed, the lid just "
-       "placed; then one state per lid target, at the end of its hold. sigma_v, sigma_h: the bed's mean Bagi "
-       "stress (compression positive; sigma_h the mean of xx and yy); vertical_strain from the lid's height "
-       "at state 0; held: the lid within 5 % of its target (only held states enter the fit); M, nu, E: the "
-       "step "
-       "from the previous loaded state (states >= 2)\n"
-       "state,time,target,lid_stress,held,height,vertical_strain,sigma_v,sigma_h,K0,M,nu,E\n";
+  if (o.loading == OedometerLoading::gravity)
+    t << "# Upgrain oedometric test by gravity (docs/calibration.md). SI units. State 0: the deposited bed "
+         "under "
+         "its weight W; then one state per gravity factor f, at the end of its hold. centroid: the bed's "
+         "centre "
+         "of mass's height zc; vertical_strain = 3/4 (zc_0 - zc)/zc_0, the mean strain of a uniform column "
+         "that "
+         "settles so; sigma_v = f W/(2A), the mean over the height 2 zc by equilibrium; sigma_h = K0 sigma_v "
+         "with K0 the ratio of the bed's Bagi stresses (mean of xx and yy over zz; compression positive); "
+         "at_rest: the centre of mass moved in the last fifth of the hold by at most 2 % of the state's "
+         "settlement (only those enter the fit); M, nu, E: the step from the previous state (states >= 1)\n"
+         "state,time,gravity_factor,at_rest,centroid,vertical_strain,sigma_v,sigma_h,K0,M,nu,E\n";
+  else
+    t << "# Upgrain oedometric test by a servo lid (docs/calibration.md). SI units. State 0: the deposited "
+         "bed, "
+         "the lid just placed; then one state per lid target, at the end of its hold. sigma_v, sigma_h: the "
+         "bed's mean Bagi stress (compression positive; sigma_h the mean of xx and yy); vertical_strain from "
+         "the lid's height at state 0; at_rest: the lid within 5 % of its target (only those enter the fit); "
+         "M, nu, E: the step from the previous loaded state (states >= 2)\n"
+         "state,time,target,lid_stress,at_rest,height,vertical_strain,sigma_v,sigma_h,K0,M,nu,E\n";
   for (std::size_t k = 0; k < rec.size(); ++k) {
     const OedometerRecord& r = rec[k];
     const dem::OedometerState& s = r.state;
-    t << k << ',' << number(r.time) << ',' << number(r.target) << ',' << number(r.lid_stress) << ','
-      << (holds_target(r) ? 1 : 0) << ',' << number(r.height) << ',' << number(s.vertical_strain) << ','
-      << number(s.vertical_stress) << ',' << number(s.horizontal_stress) << ','
-      << number(s.horizontal_stress / s.vertical_stress);
-    if (k >= 2 && k - 2 < steps.size()) {
-      const dem::OedometerStep& q = steps[k - 2];
+    t << k << ',' << number(r.time) << ',';
+    if (o.loading == OedometerLoading::gravity)
+      t << number(r.gravity_factor) << ',' << (r.at_rest ? 1 : 0) << ',' << number(r.centroid);
+    else
+      t << number(r.target) << ',' << number(r.lid_stress) << ',' << (r.at_rest && k > 0 ? 1 : 0) << ','
+        << number(r.height);
+    t << ',' << number(s.vertical_strain) << ',' << number(s.vertical_stress) << ','
+      << number(s.horizontal_stress) << ',' << number(s.horizontal_stress / s.vertical_stress);
+    if (k >= first_step && k - first_step < steps.size()) {
+      const dem::OedometerStep& q = steps[k - first_step];
       t << ',' << number(q.modulus) << ',' << number(q.poisson) << ',' << number(q.youngs);
     } else {
       t << ",,,";
@@ -165,6 +182,8 @@ BedCalibration calibrate_bed(const dem::SceneConfig& scene, const dem::EngineSta
   dem::SceneConfig ring = scene;
   for (int w = 1; w < 5; ++w) ring.container.friction[w] = c.side_wall_friction;
   OedometerOptions& o = b.oedometer;
+  o.loading = c.oedometer_by_lid ? OedometerLoading::lid : OedometerLoading::gravity;
+  o.gravity_factors = c.gravity_factors;
   for (double f : c.lid_stress_factors) o.lid_stresses.push_back(f * scales.weight_stress);
   o.hold_time = c.hold_time;
   o.seating_time = c.seating_time;
@@ -208,12 +227,14 @@ BedCalibration calibrate_bed(const dem::SceneConfig& scene, const dem::EngineSta
   o.after_step = x.after_step = nullptr;  // `clock` and `done` end here
   b.inertial_number = dem::inertial_number(x.strain_rate, scales.mean_diameter,
                                            scene.particles.material.density, x.confining_stress);
+  // The states from the first fitted one: their steps for the table, those at rest for the fit.
   std::vector<dem::OedometerState> loaded, held;
-  for (std::size_t k = 1; k < b.path.size(); ++k) {
+  for (std::size_t k = first_fitted_state(o); k < b.path.size(); ++k) {
     loaded.push_back(b.path[k].state);
-    if (holds_target(b.path[k])) held.push_back(b.path[k].state);
+    if (b.path[k].at_rest) held.push_back(b.path[k].state);
   }
-  b.held = held.size();
+  b.held = static_cast<std::size_t>(
+      std::count_if(b.path.begin() + 1, b.path.end(), [](const OedometerRecord& r) { return r.at_rest; }));
   b.sigma_mean = b.path.front().state.vertical_stress;
   b.k0_deposited = b.path.front().state.horizontal_stress / b.sigma_mean;
   constexpr double nan = std::numeric_limits<double>::quiet_NaN();
@@ -221,10 +242,13 @@ BedCalibration calibrate_bed(const dem::SceneConfig& scene, const dem::EngineSta
   try {
     b.steps = dem::oedometer_steps(loaded);
     if (held.size() < 2)
-      throw Error(
-          "only " + std::to_string(held.size()) + " of the " + std::to_string(loaded.size()) +
-          " targets were held (the lid within 5 % of its target at the end of the hold); a modulus needs "
-          "two: lengthen Calibration/hold time or seating time");
+      throw Error(o.loading == OedometerLoading::gravity
+                      ? "only " + std::to_string(b.held) + " of the " + std::to_string(b.path.size() - 1) +
+                            " gravity states came to rest (the centre of mass still moving at the end of the "
+                            "hold); lengthen Calibration/hold time"
+                      : "only " + std::to_string(held.size()) + " of the " + std::to_string(loaded.size()) +
+                            " targets were held (the lid within 5 % of its target at the end of the hold); a "
+                            "modulus needs two: lengthen Calibration/hold time or seating time");
     b.elastic = dem::elastic_equivalent(held, b.sigma_mean);
   } catch (const Error& e) {
     b.fit_error = e.what();
@@ -249,16 +273,18 @@ BedCalibration calibrate_bed(const dem::SceneConfig& scene, const dem::EngineSta
 
 void write_bed_calibration(const fs::path& folder, const std::string& source, const BedCalibration& b) {
   dem::io::create_folder(folder);
-  dem::io::write_text_atomically(folder / "oedometer.csv", path_table(b.path, b.steps));
+  dem::io::write_text_atomically(folder / "oedometer.csv", path_table(b.oedometer, b.path, b.steps));
   dem::io::write_text_atomically(folder / "triaxial.csv", triaxial_table(b.shear));
   if (!b.material_error(folder).empty()) return;
   const dem::ElasticEquivalent& eq = b.elastic;
   const dem::FrictionStrength& s = b.strength;
   std::ostringstream m;
   m << "# Upgrain calibrated material (docs/calibration.md) of " << source << ": the linear elastic\n"
-    << "# material equivalent to its bed in oedometric compression at the bed's mean vertical stress\n"
+    << "# material equivalent to its bed in oedometric compression "
+    << (b.oedometer.loading == OedometerLoading::gravity ? "by gravity" : "by a servo lid")
+    << " at the bed's mean vertical stress\n"
     << "# sigma_v = " << number(b.sigma_mean) << " Pa: M = " << number(eq.modulus)
-    << " Pa (power law M ~ sigma^" << number(eq.exponent) << " through the held states, taken at "
+    << " Pa (power law M ~ sigma^" << number(eq.exponent) << " through the states at rest, taken at "
     << number(eq.modulus_stress) << " Pa), K0 = " << number(eq.k0)
     << " (the deposited bed's: " << number(b.k0_deposited) << ").\n"
     << "# nu = K0 / (1 + K0), E = M (1 + nu)(1 - 2 nu) / (1 - nu). The path: oedometer.csv.\n"
@@ -283,7 +309,9 @@ std::string bed_calibration_json(const BedCalibration& b) {
   const dem::ElasticEquivalent& eq = b.elastic;
   const dem::FrictionStrength& s = b.strength;
   std::ostringstream j;
-  j << "  \"oedometer_wall_time_s\": " << json_number(b.oedometer_seconds)
+  j << "  \"oedometer_loading\": \"" << (b.oedometer.loading == OedometerLoading::gravity ? "gravity" : "lid")
+    << "\""
+    << ",\n  \"oedometer_wall_time_s\": " << json_number(b.oedometer_seconds)
     << ",\n  \"triaxial_wall_time_s\": " << json_number(b.triaxial_seconds)
     << ",\n  \"bed_mean_vertical_stress_Pa\": " << json_number(b.sigma_mean)
     << ",\n  \"constrained_modulus_Pa\": " << json_number(eq.modulus)
@@ -312,23 +340,33 @@ void print_bed_calibration(const BedCalibration& b) {
   const OedometerOptions& o = b.oedometer;
   const dem::ElasticEquivalent& eq = b.elastic;
   const dem::FrictionStrength& s = b.strength;
-  std::printf("oedometric test %.1f s (seating %g s, %zu targets x %g s), friction-angle test %.1f s\n",
-              b.oedometer_seconds, o.seating_time, o.lid_stresses.size(), o.hold_time, b.triaxial_seconds);
-  std::printf("  %-6s %12s %12s %5s %12s %12s %8s %12s %8s %12s\n", "state", "target Pa", "lid Pa", "held",
-              "sigma_v Pa", "strain", "K0", "M Pa", "nu", "E Pa");
+  const bool by_gravity = o.loading == OedometerLoading::gravity;
+  const std::size_t first_step = first_fitted_state(o) + 1;
+  if (by_gravity)
+    std::printf("oedometric test by gravity %.1f s (%zu factors x %g s), friction-angle test %.1f s\n",
+                b.oedometer_seconds, o.gravity_factors.size(), o.hold_time, b.triaxial_seconds);
+  else
+    std::printf(
+        "oedometric test by lid %.1f s (seating %g s, %zu targets x %g s), friction-angle test %.1f s\n",
+        b.oedometer_seconds, o.seating_time, o.lid_stresses.size(), o.hold_time, b.triaxial_seconds);
+  std::printf("  %-6s %12s %12s %7s %12s %12s %8s %12s %8s %12s\n", "state",
+              by_gravity ? "g factor" : "target Pa", by_gravity ? "zc m" : "lid Pa", "at rest", "sigma_v Pa",
+              "strain", "K0", "M Pa", "nu", "E Pa");
   for (std::size_t k = 0; k < b.path.size(); ++k) {
-    const dem::OedometerState& st = b.path[k].state;
-    std::printf("  %-6zu %12.4g %12.4g %5s %12.4g %12.4e %8.3f", k, b.path[k].target, b.path[k].lid_stress,
-                holds_target(b.path[k]) ? "yes" : "no", st.vertical_stress, st.vertical_strain,
-                st.horizontal_stress / st.vertical_stress);
-    if (k >= 2 && k - 2 < b.steps.size())
-      std::printf(" %12.4g %8.3f %12.4g\n", b.steps[k - 2].modulus, b.steps[k - 2].poisson,
-                  b.steps[k - 2].youngs);
+    const OedometerRecord& r = b.path[k];
+    const dem::OedometerState& st = r.state;
+    std::printf("  %-6zu %12.4g %12.4g %7s %12.4g %12.4e %8.3f", k, by_gravity ? r.gravity_factor : r.target,
+                by_gravity ? r.centroid : r.lid_stress, r.at_rest ? "yes" : "no", st.vertical_stress,
+                st.vertical_strain, st.horizontal_stress / st.vertical_stress);
+    if (k >= first_step && k - first_step < b.steps.size())
+      std::printf(" %12.4g %8.3f %12.4g\n", b.steps[k - first_step].modulus, b.steps[k - first_step].poisson,
+                  b.steps[k - first_step].youngs);
     else
       std::printf("\n");
   }
   std::printf(
-      "  at the bed's mean stress %.4g Pa (fit through the %zu held states): M %.4g Pa (exponent %.3f, taken "
+      "  at the bed's mean stress %.4g Pa (fit through the states at rest, %zu loaded): M %.4g Pa (exponent "
+      "%.3f, taken "
       "at "
       "%.4g Pa), K0 %.3f -> E %.4g Pa, nu %.3f\n",
       b.sigma_mean, b.held, eq.modulus, eq.exponent, eq.modulus_stress, eq.k0, eq.youngs, eq.poisson);

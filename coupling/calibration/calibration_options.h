@@ -7,9 +7,14 @@
 namespace upgrain::coupling {
 
 struct CalibrationOptions {
+  // How the oedometric test loads the bed (oedometer_run.h): by raising its weight (gravity) or
+  // by a servo lid.
+  bool oedometer_by_lid = false;
+  // The bed's weight times each, in turn (gravity loading), ascending from above 1.
+  std::vector<double> gravity_factors = {1.5, 2.0};
   // The lid's targets as multiples of the bed's weight over the box's footprint, ascending.
   std::vector<double> lid_stress_factors = {0.5, 1.0, 2.0, 4.0};
-  double hold_time = 0.05;          // s of simulated time per target
+  double hold_time = 0.05;          // s of simulated time per target or gravity factor
   double seating_time = 0.2;        // s for the lid to come down and seat before the first hold
   double gain_factor = 0.5;         // the servo's alpha
   double max_speed = 0.05;          // m/s

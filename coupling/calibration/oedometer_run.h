@@ -1,8 +1,14 @@
 #pragma once
-// The oedometric test on a bed in an engine (docs/calibration.md, "Oedometric test"): a servo
-// lid (coupling/run/lid.h) is placed on the bed's highest grain and holds each target stress
-// for a hold time; at the end of each hold the bed's mean stress is taken by Bagi's formula over
-// the box from the floor to the lid (one cell), and its vertical strain from the lid's travel.
+// The oedometric test on a bed in an engine (docs/calibration.md, "Oedometric test"), loaded
+// in one of two ways:
+//  - by gravity: the bed's weight is raised by each of a list of factors in turn (a centrifuge
+//    test in silico), ramped over half a hold time and held; its mean vertical stress is
+//    f W / (2 A) by equilibrium, K0 the ratio of its Bagi stresses over the box that holds it,
+//    and its mean vertical strain from the descent of its centre of mass
+//    (dem::centroid_vertical_strain). No wall touches the top: nothing to seat;
+//  - by a servo lid (coupling/run/lid.h), placed on the bed's highest grain, holding each target
+//    stress for a hold time; the bed's mean stress by Bagi's formula over the box from the floor
+//    to the lid (one cell), its vertical strain from the lid's travel.
 // Collective over the engine's ranks; the records are the same bits on every rank and rank count
 // with the deterministic summation.
 #include <functional>
@@ -14,10 +20,14 @@
 
 namespace upgrain::coupling {
 
+enum class OedometerLoading { gravity, lid };
+
 struct OedometerOptions {
-  std::vector<double> lid_stresses;  // Pa, each held in turn
-  double hold_time = 0.05;           // s of simulated time per target
-  // s before the first hold in which the lid comes down onto the bed and seats at the first
+  OedometerLoading loading = OedometerLoading::gravity;
+  std::vector<double> gravity_factors;  // > 1, ascending: the bed's weight times each, in turn
+  std::vector<double> lid_stresses;     // Pa, each held in turn
+  double hold_time = 0.05;              // s of simulated time per target or gravity factor
+  // (lid) s before the first hold in which the lid comes down onto the bed and seats at the first
   // target: the bed's top is uneven, and the lid's first contacts are impacts (not recorded).
   double seating_time = 0.1;
   double gain_factor = 0.5;
@@ -28,19 +38,26 @@ struct OedometerOptions {
 
 struct OedometerRecord {
   double time = 0.0;
-  double target = 0.0;                 // the lid's target (0 for the unloaded bed)
+  double gravity_factor = 1.0;         // the bed's weight over its own (gravity loading)
+  double target = 0.0;                 // the lid's target (0 for the unloaded bed, and by gravity)
   double lid_stress = 0.0;             // the lid's normal force over the footprint (Pa)
-  double height = 0.0;                 // the lid's height above the floor (m)
-  dem::Mat3 bagi = dem::Mat3::Zero();  // the bed's mean stress (Pa, tension positive)
-  dem::OedometerState state;           // from the Bagi stress; strain from the lid's first height
+  double height = 0.0;                 // the lid's height above the floor, or 2 zc by gravity (m)
+  double centroid = 0.0;               // zc, the bed's centre of mass's height (m)
+  dem::Mat3 bagi = dem::Mat3::Zero();  // the bed's mean Bagi stress over the box (Pa, tension positive)
+  dem::OedometerState state;           // compression positive (see the loading above)
+  // The bed at rest under its load, so that the state enters the fit: the lid within 5 % of its
+  // target; by gravity, the centre of mass moved in the last fifth of the hold by at most 2 % of
+  // its settlement since the last state. State 0 is the bed as it is.
+  bool at_rest = false;
 };
 
-// Record 0 is the bed as it is (the lid just placed, touching nothing), then one per target, at
-// the end of its hold (the first after the seating).
-// Throws upgrain::Error when the scene has no floor at z = 0 or the run fails.
+// Record 0 is the bed as it is (by lid: the lid just placed, touching nothing), then one per
+// gravity factor or lid target, at the end of its hold (by lid, the first after the seating).
+// Throws upgrain::Error when the scene has no floor at z = 0, gravity does not point down -z
+// (gravity loading), or the run fails.
 std::vector<OedometerRecord> run_oedometer(dem::Simulation& sim, const OedometerOptions& o);
 
-// The steps the test takes at time step `dt`: the unloaded state's, the seating's, the holds'.
+// The steps the test takes at time step `dt`: the unloaded state's, the (lid) seating's, the holds'.
 long oedometer_steps(const OedometerOptions& o, double dt);
 
 }  // namespace upgrain::coupling

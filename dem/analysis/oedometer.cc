@@ -91,13 +91,31 @@ ElasticEquivalent elastic_equivalent(const std::vector<OedometerState>& path, do
   return e;
 }
 
+namespace {
+double hertz_closing(double force, double e_star, double r_star) {
+  return std::pow(3.0 * force / (4.0 * e_star * std::sqrt(r_star)), 2.0 / 3.0);
+}
+}  // namespace
+
 double hertz_column_strain(double stress, double e_star, double radius, int spheres) {
   const double force = stress * 4.0 * radius * radius;
-  const auto closing = [&](double r_star) {
-    return std::pow(3.0 * force / (4.0 * e_star * std::sqrt(r_star)), 2.0 / 3.0);
-  };
-  const double shortening = static_cast<double>(spheres - 1) * closing(0.5 * radius) + 2.0 * closing(radius);
+  const double shortening = static_cast<double>(spheres - 1) * hertz_closing(force, e_star, 0.5 * radius) +
+                            2.0 * hertz_closing(force, e_star, radius);
   return shortening / (2.0 * radius * static_cast<double>(spheres));
+}
+
+double centroid_vertical_strain(double centroid0, double centroid) {
+  return 0.75 * (centroid0 - centroid) / centroid0;
+}
+
+double hertz_column_centroid(double sphere_weight, double e_star, double radius, int spheres) {
+  double z = radius - hertz_closing(spheres * sphere_weight, e_star, radius);
+  double sum = z;
+  for (int k = 0; k + 1 < spheres; ++k) {
+    z += 2.0 * radius - hertz_closing((spheres - 1 - k) * sphere_weight, e_star, 0.5 * radius);
+    sum += z;
+  }
+  return sum / static_cast<double>(spheres);
 }
 
 }  // namespace upgrain::dem

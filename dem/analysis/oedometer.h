@@ -61,4 +61,25 @@ ElasticEquivalent elastic_equivalent(const std::vector<OedometerState>& path, do
 // M = E*^(2/3) (3 sigma / 2)^(1/3).
 double hertz_column_strain(double stress, double e_star, double radius, int spheres);
 
+// The oedometric test by gravity (docs/calibration.md, "Oedometric test by gravity"): a bed
+// of height H in a box with frictionless side walls, loaded by its own weight W raised by a
+// factor. By equilibrium its mean vertical stress over the footprint A and the height
+// H = 2 zc (zc its centre of mass) is W / (2 A), whatever its stiffness (the integral of
+// sigma_zz over the bed is W zc). A column of uniform constrained modulus M settles by
+// u(z) = gamma (H z - z^2 / 2) / M (gamma = W / (A H)): its mean strain is u(H) / H =
+// sigma_v / M, and its centre of mass comes down by gamma H^2 / (3 M), 4/3 of the mean strain
+// times zc. So the mean vertical strain of a settlement from zc0 to zc is
+//     eps_v = 3/4 (zc0 - zc) / zc0,
+// and M = d sigma_v / d eps_v of the states of a gravity path is the constrained modulus of the
+// uniform column that settles as the bed does: for a bed whose stiffness grows with the stress,
+// an average over its depth, the one a uniform continuum loaded by gravity needs.
+double centroid_vertical_strain(double centroid0, double centroid);
+
+// The centre of mass's height of a column of n Hertz spheres of radius r stacked on a rigid
+// floor (a simple-cubic frictionless lattice) under the weight w of each sphere: the floor
+// contact carries n w and closes by delta(n w, r), the contact above sphere k (from the
+// floor, k = 0 .. n - 2) carries (n - 1 - k) w and closes by delta(., r / 2), with delta of
+// hertz_column_strain (Johnson 1985, eq. 4.23).
+double hertz_column_centroid(double sphere_weight, double e_star, double radius, int spheres);
+
 }  // namespace upgrain::dem

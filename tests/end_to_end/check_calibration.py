@@ -1,10 +1,14 @@
 #!/usr/bin/python3
 """Runs the calibration study (docs/calibration.md) of a scene on 1 and 2 ranks and checks:
 - oedometer.csv, triaxial.csv and material.prm are the same bytes on both rank counts;
-- the path: state 0 unloaded, then one state per target; the lid's stress grows from state to
-  state and ends within 50 % of the last target (the servo converges over the compliance of
-  this loose tiny bed, not within one hold: measured 575 Pa for 735 Pa), and the strain grows; K0 and nu = K0 / (1 + K0) in the columns agree; the M, nu and E columns satisfy
-  E = M (1 + nu)(1 - 2 nu) / (1 - nu);
+- the oedometric path, by whichever loading the scene sets: state 0 unloaded, then one state per
+  gravity factor or lid target, the strain growing. By gravity: sigma_v = f W/(2A) of state 0's
+  W/(2A) (the bed's mean vertical stress of summary.json), the strain 3/4 of the centre of mass's
+  descent over its height. By lid: the at_rest column is the lid within 5 % of its target, the
+  lid's stress grows from state to state and ends within 50 % of the last target (the servo
+  converges over the compliance of this loose tiny bed, not within one hold: measured 575 Pa for
+  735 Pa). Both: K0 and nu = K0 / (1 + K0) in the columns agree; M is the secant of the step from
+  the state before, and E = M (1 + nu)(1 - 2 nu) / (1 - nu);
 - material.prm holds a Continuum section whose E and nu are those of summary.json, and which the
   driver reads as a scene file (upgrain --check); a scene naming it as Continuum/material file
   takes its E (the driver says so), and one naming a missing file is refused;
@@ -45,27 +49,51 @@ for name in ('oedometer.csv', 'triaxial.csv', 'material.prm'):
     assert a == b, f'{name} differs between 1 and 2 ranks'
 
 rows = list(csv.DictReader(l for l in open(os.path.join(folders[1], 'oedometer.csv')) if not l.startswith('#')))
-assert len(rows) == 5, len(rows)
-assert float(rows[0]['target']) == 0 and float(rows[0]['vertical_strain']) == 0
+summary = json.load(open(os.path.join(work, 'ranks_1', 'summary.json')))
 strain = [float(r['vertical_strain']) for r in rows]
-assert all(b > a for a, b in zip(strain, strain[1:])), strain
-held = [r for r in rows if r['held'] == '1']
-assert len(held) >= 2, 'fewer than two held states: no modulus'
-for r in rows:
-    t, s = float(r['target']), float(r['lid_stress'])
-    assert (r['held'] == '1') == (t > 0 and abs(s - t) <= 0.05 * t), r
-lid = [float(r['lid_stress']) for r in rows[1:]]
-assert all(b > a for a, b in zip(lid, lid[1:])), lid
-assert abs(lid[-1] - float(rows[-1]['target'])) < 0.5 * float(rows[-1]['target']), (lid, rows[-1]['target'])
+assert strain[0] == 0 and all(b > a for a, b in zip(strain, strain[1:])), strain
+at_rest = [r for r in rows[1:] if r['at_rest'] == '1']
+assert len(at_rest) >= 1, 'no loaded state at rest: no modulus'
+if 'gravity_factor' in rows[0]:
+    # By gravity: state 0 the bed under its weight, then one state per factor; sigma_v = f W / (2 A)
+    # by equilibrium, the mean strain 3/4 of the centre of mass's descent over its height.
+    assert summary['oedometer_loading'] == 'gravity'
+    factors = [float(r['gravity_factor']) for r in rows]
+    assert factors[0] == 1 and all(b > a for a, b in zip(factors, factors[1:])), factors
+    z0 = float(rows[0]['centroid'])
+    w = float(rows[0]['sigma_v'])
+    # oedometer.csv has 9 significant digits: the centres of mass to 1e-11 m of 7e-3 m.
+    assert abs(w - summary['bed_mean_vertical_stress_Pa']) < 1e-8 * w
+    for r in rows:
+        assert abs(float(r['sigma_v']) - float(r['gravity_factor']) * w) < 2e-8 * w, r
+        assert abs(float(r['vertical_strain']) - 0.75 * (z0 - float(r['centroid'])) / z0) < 3e-9, r
+    first_step = 1
+else:
+    assert summary['oedometer_loading'] == 'lid'
+    assert len(rows) == 5, len(rows)
+    assert float(rows[0]['target']) == 0
+    for r in rows[1:]:
+        t, s = float(r['target']), float(r['lid_stress'])
+        assert (r['at_rest'] == '1') == (t > 0 and abs(s - t) <= 0.05 * t), r
+    lid = [float(r['lid_stress']) for r in rows[1:]]
+    assert all(b > a for a, b in zip(lid, lid[1:])), lid
+    assert abs(lid[-1] - float(rows[-1]['target'])) < 0.5 * float(rows[-1]['target']), (lid, rows[-1]['target'])
+    assert len(at_rest) >= 2, 'fewer than two held states: no modulus'
+    first_step = 2
 for r in rows:
     k0 = float(r['sigma_h']) / float(r['sigma_v'])
     assert abs(k0 - float(r['K0'])) < 1e-8 * abs(k0), r
-for r in rows[2:]:
+for k, r in enumerate(rows):
+    if k < first_step:
+        assert r['M'] == '', r
+        continue
     m, nu, e = float(r['M']), float(r['nu']), float(r['E'])
+    q = rows[k - 1]
+    assert abs(m - (float(r['sigma_v']) - float(q['sigma_v'])) /
+               (float(r['vertical_strain']) - float(q['vertical_strain']))) < 1e-7 * abs(m), r
     assert abs(nu - float(r['K0']) / (1 + float(r['K0']))) < 1e-8, r
     assert abs(e - m * (1 + nu) * (1 - 2 * nu) / (1 - nu)) < 1e-7 * abs(e), r
 
-summary = json.load(open(os.path.join(work, 'ranks_1', 'summary.json')))
 material = open(os.path.join(folders[1], 'material.prm')).read()
 values = {}
 for line in material.splitlines():

@@ -34,6 +34,7 @@ TEST(OedometerLattice, HertzLatticeFollowsItsClosedForm) {
                      Vec3::Zero());
   Simulation sim(s, p, make_open_box(s.container));
   coupling::OedometerOptions o;
+  o.loading = coupling::OedometerLoading::lid;
   o.lid_stresses = {2.0e4, 4.0e4, 8.0e4};
   o.hold_time = 0.02;
   o.seating_time = 0.0;  // a flat top: the lid seats without impacts
@@ -70,5 +71,69 @@ TEST(OedometerLattice, HertzLatticeFollowsItsClosedForm) {
                 steps[k].k0, steps[k].youngs);
     EXPECT_NEAR(steps[k].modulus, m, 1e-4 * m);
     EXPECT_NEAR(steps[k].poisson, 0.0, 1e-9);
+  }
+}
+
+// The oedometric test by gravity on the same lattice, 2 x 2 columns of 6, settled under its
+// weight: raising the weight f-fold, each column's contacts close as the Hertz law says for the
+// weight above them (dem::hertz_column_centroid), the mean vertical stress is f W / (2 A) by
+// equilibrium, the side walls carry nothing (K0 = 0), and the step moduli are those of the
+// closed form's centres of mass.
+TEST(OedometerLattice, GravityLoadedColumnsFollowTheirClosedForm) {
+  constexpr double r = 1e-3, rho = 2650.0;
+  constexpr int layers = 6;
+  SceneConfig s = test::bare_scene(2e-6);
+  s.effects.gravity = true;
+  s.effects.damping = true;
+  s.damping_ratio = 0.5;
+  s.friction = 0.0;
+  s.container.lx = s.container.ly = 4.0 * r;
+  for (double& f : s.container.friction) f = 0.0;
+  ParticleStore p;
+  long id = 0;
+  for (int k = 0; k < layers; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i)
+        p.add_sphere(id++, r, rho, Vec3(r + 2 * r * i, r + 2 * r * j, r + 2 * r * k), Vec3::Zero(),
+                     Vec3::Zero());
+  const double m = p.mass(0), weight = 4 * layers * m * s.gravity, area = 16.0 * r * r;
+  Simulation sim(s, p, make_open_box(s.container));
+  for (int k = 0; k < 50000; ++k) sim.step();  // 0.1 s: the lattice settles under its weight
+  coupling::OedometerOptions o;
+  o.loading = coupling::OedometerLoading::gravity;
+  o.gravity_factors = {2.0, 4.0};
+  o.hold_time = 0.05;
+  const std::vector<coupling::OedometerRecord> rec = coupling::run_oedometer(sim, o);
+  ASSERT_EQ(rec.size(), 3U);
+  EXPECT_EQ(sim.gravity(), Vec3(0.0, 0.0, -s.gravity));  // restored
+  const double e_star = effective_youngs_modulus(s.particles.material, s.particles.material);
+  std::vector<OedometerState> states;
+  for (std::size_t k = 0; k < rec.size(); ++k) {
+    const coupling::OedometerRecord& q = rec[k];
+    const double f = k == 0 ? 1.0 : o.gravity_factors[k - 1];
+    const double exact = hertz_column_centroid(f * m * s.gravity, e_star, r, layers);
+    const double settlement = layers * r - exact;
+    std::printf(
+        "g x %.0f: centre of mass %.9e m (closed form %.9e, settlement %.3e m), sigma_v %.2f Pa, K0 %.2e\n",
+        f, q.centroid, exact, settlement, q.state.vertical_stress,
+        q.state.horizontal_stress / q.state.vertical_stress);
+    EXPECT_EQ(q.gravity_factor, f);
+    EXPECT_TRUE(q.at_rest);
+    EXPECT_NEAR(q.centroid, exact, 1e-4 * settlement);
+    EXPECT_DOUBLE_EQ(q.height, 2.0 * q.centroid);
+    EXPECT_NEAR(q.state.vertical_stress, f * weight / (2.0 * area), 1e-12 * weight / area);
+    EXPECT_LT(std::abs(q.state.horizontal_stress), 1e-9 * q.state.vertical_stress);
+    states.push_back(q.state);
+  }
+  const std::vector<OedometerStep> steps = oedometer_steps(states);
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    const auto zc = [&](std::size_t i) {
+      return hertz_column_centroid((i == 0 ? 1.0 : o.gravity_factors[i - 1]) * m * s.gravity, e_star, r,
+                                   layers);
+    };
+    const double de = centroid_vertical_strain(zc(0), zc(k + 1)) - centroid_vertical_strain(zc(0), zc(k));
+    const double exact = (states[k + 1].vertical_stress - states[k].vertical_stress) / de;
+    std::printf("step %zu: M %.5e Pa (closed form %.5e Pa)\n", k, steps[k].modulus, exact);
+    EXPECT_NEAR(steps[k].modulus, exact, 1e-4 * exact);
   }
 }
