@@ -369,7 +369,7 @@ const std::vector<ParameterSpec>& parameter_schema() {
       {"Calibration", "lid stresses", "0.5, 1, 2, 4", K::text, 0, 0, "", "bed weight / footprint",
        "Targets of the oedometric test's servo lid (oedometer loading = lid), as multiples of the bed's "
        "weight over the box's footprint, comma-separated, ascending; at least two."},
-      {"Calibration", "hold time", "0.05", K::real, 1e-9, 1e6, "", "s",
+      {"Calibration", "hold time", "0.03", K::real, 1e-9, 1e6, "", "s",
        "Simulated time each gravity factor or lid target is held before the bed's stress and strain are "
        "taken."},
       {"Calibration", "seating time", "0.2", K::real, 0.0, 1e6, "", "s",
@@ -382,13 +382,14 @@ const std::vector<ParameterSpec>& parameter_schema() {
       {"Calibration", "update interval", "10", K::integer, 1, 1000000, "", "steps",
        "Steps between the lid's servo updates."},
       {"Calibration", "side wall friction", "0", K::real, 0.0, 10.0, "", "-",
-       "Coulomb coefficient of the side walls in the calibration's bed (0: a lubricated oedometer ring, so "
-       "that the test measures the grains, not the walls); the floor keeps Container/floor friction."},
-      {"Calibration", "confining stress", "2", K::real, 1e-3, 1e6, "", "bed weight / footprint",
+       "Coulomb coefficient of the side walls in the bed of upgrain --study calibration (0: a lubricated "
+       "oedometer ring, so that the test measures the grains, not the walls); the floor keeps Container/floor "
+       "friction. A study's own bed keeps the scene's walls (docs/calibration.md)."},
+      {"Calibration", "confining stress", "8", K::real, 1e-3, 1e6, "", "bed weight / footprint",
        "sigma_3 of the friction-angle test (docs/calibration.md), held by the four servo side walls, as a "
        "multiple of the bed's weight over the box's footprint; the bed is first consolidated to it "
        "isotropically (without gravity)."},
-      {"Calibration", "axial strain rate", "0.15", K::real, 1e-6, 1e3, "", "1/s",
+      {"Calibration", "axial strain rate", "0.3", K::real, 1e-6, 1e3, "", "1/s",
        "Axial strain rate of the friction-angle test: the lid comes down at this rate times the consolidated "
        "height. The driver prints the inertial number I = rate d sqrt(rho / sigma_3) (quasi-static below "
        "about 1e-3)."},

@@ -330,12 +330,6 @@ void validate_scene(SceneInput& in) {
     for (std::size_t k = 0; k < f.size(); ++k)
       if (!(f[k] > 1.0) || (k > 0 && !(f[k] > f[k - 1])))
         throw Error(where + "Calibration/gravity factors: the factors must be > 1 and ascending");
-    if (!in.calibration.oedometer_by_lid && in.calibration.side_wall_friction > 0.0)
-      throw Error(
-          where +
-          "Calibration/side wall friction > 0 with oedometer loading = gravity: side walls with friction "
-          "carry part of the raised weight, and the bed's mean vertical stress is no longer f W / (2 A); "
-          "set it to 0 or load by lid (docs/calibration.md)");
   }
   {
     const std::vector<double>& f = in.calibration.lid_stress_factors;

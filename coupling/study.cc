@@ -179,8 +179,12 @@ BedCalibration calibrate_continuum(SceneInput& in, RunResult& r, MPI_Comm comm,
   const dem::EngineState none;
   BedCalibration b;
   try {
-    b = calibrate_bed(in.scene, r.final_state ? *r.final_state : none, in.calibration, comm,
-                      engine_options(in), on_progress);
+    // The bed keeps its walls: lubricated, a bed deposited and relaxed between walls with
+    // friction settles (docs/calibration.md, "By gravity").
+    CalibrationOptions own_bed = in.calibration;
+    own_bed.lubricate_side_walls = false;
+    b = calibrate_bed(in.scene, r.final_state ? *r.final_state : none, own_bed, comm, engine_options(in),
+                      on_progress);
   } catch (const RunStopped& e) {
     throw RunStopped(
         e.signal(), e.step(), {},

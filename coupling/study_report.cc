@@ -129,9 +129,10 @@ void material_section(std::ostringstream& m, const StudyRecord& s) {
   m << "| calibration | result |\n|---|---|\n"
     << "| oedometric test | ";
   if (b.oedometer.loading == OedometerLoading::gravity) {
-    m << "by gravity: the bed's weight times";
-    for (double f : b.oedometer.gravity_factors) m << ' ' << fmt(f);
-    m << ", " << b.held << " of " << b.oedometer.gravity_factors.size() << " at rest";
+    m << "by gravity: the bed's weight times ";
+    for (std::size_t k = 0; k < b.oedometer.gravity_factors.size(); ++k)
+      m << (k > 0 ? ", " : "") << fmt(b.oedometer.gravity_factors[k]);
+    m << "; " << b.held << " of " << b.oedometer.gravity_factors.size() << " at rest";
   } else {
     m << "by a servo lid: " << b.oedometer.lid_stresses.size() << " targets from "
       << fmt(b.oedometer.lid_stresses.front()) << " Pa, " << b.held << " held";

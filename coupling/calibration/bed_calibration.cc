@@ -79,17 +79,20 @@ std::string path_table(const OedometerOptions& o, const std::vector<OedometerRec
   const std::size_t first_step = first_fitted_state(o) + 1;
   std::ostringstream t;
   if (o.loading == OedometerLoading::gravity)
-    t << "# Upgrain oedometric test by gravity (docs/calibration.md). SI units. State 0: the deposited bed "
-         "under "
-         "its weight W; then one state per gravity factor f, at the end of its hold. centroid: the bed's "
-         "centre "
-         "of mass's height zc; vertical_strain = 3/4 (zc_0 - zc)/zc_0, the mean strain of a uniform column "
-         "that "
-         "settles so; sigma_v = f W/(2A), the mean over the height 2 zc by equilibrium; sigma_h = K0 sigma_v "
-         "with K0 the ratio of the bed's Bagi stresses (mean of xx and yy over zz; compression positive); "
-         "at_rest: the centre of mass moved in the last fifth of the hold by at most 2 % of the state's "
-         "settlement (only those enter the fit); M, nu, E: the step from the previous state (states >= 1)\n"
-         "state,time,gravity_factor,at_rest,centroid,vertical_strain,sigma_v,sigma_h,K0,M,nu,E\n";
+    t << "# Upgrain oedometric test by gravity (docs/calibration.md). SI units. State 0: the bed under its "
+         "weight W after one hold; then one state per gravity factor f, at the end of its hold. centroid: "
+         "the "
+         "bed's centre of mass's height zc; side_wall_share: the side walls' lift over f W; vertical_strain "
+         "= "
+         "3/4 (zc_0 - zc)/zc_0, the mean strain of a uniform column that settles so; sigma_v = (f W zc - sum "
+         "z F_z of the side walls' contacts)/(2 A zc), the mean over the height 2 zc by equilibrium (f "
+         "W/(2A) "
+         "with frictionless side walls); sigma_h = K0 sigma_v with K0 the ratio of the bed's Bagi stresses "
+         "(mean of xx and yy over zz); compression positive; at_rest: the centre of mass moved in the last "
+         "fifth of the hold by at most 2 % of the settlement from the state before (state 0: of state 1's; "
+         "only those enter the fit); M, nu, E: the step from the previous state (states >= 1)\n"
+         "state,time,gravity_factor,at_rest,centroid,side_wall_share,vertical_strain,sigma_v,sigma_h,K0,M,nu,"
+         "E\n";
   else
     t << "# Upgrain oedometric test by a servo lid (docs/calibration.md). SI units. State 0: the deposited "
          "bed, "
@@ -103,7 +106,8 @@ std::string path_table(const OedometerOptions& o, const std::vector<OedometerRec
     const dem::OedometerState& s = r.state;
     t << k << ',' << number(r.time) << ',';
     if (o.loading == OedometerLoading::gravity)
-      t << number(r.gravity_factor) << ',' << (r.at_rest ? 1 : 0) << ',' << number(r.centroid);
+      t << number(r.gravity_factor) << ',' << (r.at_rest ? 1 : 0) << ',' << number(r.centroid) << ','
+        << number(r.side_wall_share);
     else
       t << number(r.target) << ',' << number(r.lid_stress) << ',' << (r.at_rest && k > 0 ? 1 : 0) << ','
         << number(r.height);
@@ -180,7 +184,8 @@ BedCalibration calibrate_bed(const dem::SceneConfig& scene, const dem::EngineSta
   // The oedometer's ring: the side walls get the calibration's friction (a lubricated ring by
   // default), the floor keeps the scene's.
   dem::SceneConfig ring = scene;
-  for (int w = 1; w < 5; ++w) ring.container.friction[w] = c.side_wall_friction;
+  if (c.lubricate_side_walls)
+    for (int w = 1; w < 5; ++w) ring.container.friction[w] = c.side_wall_friction;
   OedometerOptions& o = b.oedometer;
   o.loading = c.oedometer_by_lid ? OedometerLoading::lid : OedometerLoading::gravity;
   o.gravity_factors = c.gravity_factors;
@@ -210,7 +215,9 @@ BedCalibration calibrate_bed(const dem::SceneConfig& scene, const dem::EngineSta
   };
   const auto t1 = Clock::now();
   {
-    dem::Simulation sim(ring, with_wall_friction(bed, c.side_wall_friction, false), comm, engine);
+    dem::Simulation sim(ring,
+                        c.lubricate_side_walls ? with_wall_friction(bed, c.side_wall_friction, false) : bed,
+                        comm, engine);
     b.path = run_oedometer(sim, o);
   }
   b.oedometer_seconds = seconds_since(t1);

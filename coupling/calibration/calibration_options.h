@@ -14,15 +14,19 @@ struct CalibrationOptions {
   std::vector<double> gravity_factors = {1.5, 2.0};
   // The lid's targets as multiples of the bed's weight over the box's footprint, ascending.
   std::vector<double> lid_stress_factors = {0.5, 1.0, 2.0, 4.0};
-  double hold_time = 0.05;          // s of simulated time per target or gravity factor
+  double hold_time = 0.03;          // s of simulated time per target or gravity factor
   double seating_time = 0.2;        // s for the lid to come down and seat before the first hold
   double gain_factor = 0.5;         // the servo's alpha
   double max_speed = 0.05;          // m/s
   long update_every = 10;           // steps between servo updates
   double side_wall_friction = 0.0;  // the oedometer ring's (the floor keeps the scene's)
+  // Whether the oedometric test gives the bed's side walls side_wall_friction (the calibration
+  // study, which deposits its bed in that ring), or keeps them as the bed has them (a study's own
+  // bed, deposited and relaxed between its scene's walls: without their friction it settles).
+  bool lubricate_side_walls = true;
   // The friction-angle test (triaxial_run.h); the servo settings above apply to its walls too.
-  double confining_stress_factor = 2.0;  // sigma_3 in units of the bed's weight over the footprint
-  double axial_strain_rate = 0.15;       // 1/s
+  double confining_stress_factor = 8.0;  // sigma_3 in units of the bed's weight over the footprint
+  double axial_strain_rate = 0.3;        // 1/s
   double final_axial_strain = 0.15;
   double consolidation_time = 0.05;  // s
   // Which strength the calibrated material takes: the peak angle with the dilatancy angle at

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "coupling/run/lid.h"
+#include "coupling/run/run_result.h"
 #include "coupling/run/stop_request.h"
 #include "dem/core/error.h"
 #include "dem/parallel/exact_sum.h"
@@ -118,11 +119,13 @@ MassMoment mass_moment(const dem::Simulation& sim) {
   return {s[0].value(), s[1].value()};
 }
 
-// The bed's state under gravity times `factor`; needs a step that recorded its contacts. K0 is
-// the ratio of the Bagi sums over a box that holds every grain (the box's volume cancels);
-// sigma_v is the equilibrium's f W / (2 A) over the height 2 zc.
-OedometerRecord measure_by_gravity(const dem::Simulation& sim, double factor, double weight,
-                                   double first_centroid) {
+// The bed's state under gravity times `factor` but its strain; needs a step that recorded its
+// contacts. K0 is the ratio of the Bagi sums over a box that holds every grain (the box's volume
+// cancels). sigma_v is the equilibrium's: the integral of -sigma_zz over the bed is
+// f W zc - sum z_c F_z over the side walls' contacts (F_z the wall's lift on the grain at height
+// z_c; the floor's at z = 0 add nothing), over the volume A 2 zc; f W / (2 A) with frictionless
+// side walls.
+OedometerRecord measure_by_gravity(const dem::Simulation& sim, double factor, double weight) {
   const dem::SceneConfig& scene = sim.scene();
   const dem::ParticleStore& p = sim.particles();
   double top = 0.0;
@@ -133,14 +136,21 @@ OedometerRecord measure_by_gravity(const dem::Simulation& sim, double factor, do
   r.gravity_factor = factor;
   r.centroid = mass_moment(sim).centroid();
   r.height = 2.0 * r.centroid;
+  // The side walls' lift and its moment, summed on rank 0 in the contacts' id order.
+  double walls[2] = {0.0, 0.0};
+  for (const SideWallContact& w : side_wall_contacts(sim)) {
+    walls[0] += w.force_on_grain.z();
+    walls[1] += w.z * w.force_on_grain.z();
+  }
+  MPI_Bcast(walls, 2, MPI_DOUBLE, 0, sim.comm());
+  r.side_wall_share = walls[0] / (factor * weight);
   dem::RegularGrid grid;
   grid.lo = dem::Vec3::Zero();
   grid.hi = dem::Vec3(scene.container.lx, scene.container.ly, top);
   r.bagi = sim.grid_stress(grid)[dem::StressFormula::bagi][0];
   const double area = scene.container.lx * scene.container.ly;
-  r.state.vertical_stress = factor * weight / (2.0 * area);
+  r.state.vertical_stress = (factor * weight * r.centroid - walls[1]) / (2.0 * area * r.centroid);
   r.state.horizontal_stress = r.state.vertical_stress * 0.5 * (r.bagi(0, 0) + r.bagi(1, 1)) / r.bagi(2, 2);
-  r.state.vertical_strain = dem::centroid_vertical_strain(first_centroid, r.centroid);
   return r;
 }
 
@@ -154,12 +164,10 @@ std::vector<OedometerRecord> run_gravity_oedometer(dem::Simulation& sim, const O
   if (!(g.z() < 0.0) || g.x() != 0.0 || g.y() != 0.0)
     throw Error("oedometric test by gravity: the scene's gravity must point down (-z), not (" +
                 std::to_string(g.x()) + ", " + std::to_string(g.y()) + ", " + std::to_string(g.z()) + ")");
-  double previous_factor = 1.0;
-  for (double f : o.gravity_factors)
-    if (!(f > previous_factor))
+  const std::vector<double>& factors = o.gravity_factors;
+  for (std::size_t k = 0; k < factors.size(); ++k)
+    if (!(factors[k] > (k == 0 ? 1.0 : factors[k - 1])))
       throw Error("oedometric test by gravity: the factors must ascend from above 1");
-    else
-      previous_factor = f;
   const std::size_t floor = sim.wall_index("floor");
   if (sim.walls()[floor].point.z() != 0.0 || sim.walls()[floor].normal != dem::Vec3(0.0, 0.0, 1.0))
     throw Error("oedometric test by gravity: the box's floor is not the plane z = 0");
@@ -168,18 +176,15 @@ std::vector<OedometerRecord> run_gravity_oedometer(dem::Simulation& sim, const O
   const long hold = hold_steps(o, sim.time_step());
   const long ramp = std::max(1L, hold / 2), window = std::max(1L, std::lround(kRestWindow * hold));
   const long update = std::max(1L, o.update_every);
-  std::vector<OedometerRecord> records;
-  sim.request_contacts();
-  step(sim, o);
-  const double first_centroid = mass_moment(sim).centroid();
-  records.push_back(measure_by_gravity(sim, 1.0, weight, first_centroid));
-  records.back().at_rest = true;
-  double from = 1.0;
-  for (double to : o.gravity_factors) {
+  // One hold at the bed's own weight first: the bed comes to its state 0 in this box, whose
+  // side walls may have lost the friction that held it (a lubricated ring); then one hold per
+  // factor. Each hold's centre of mass over its last fifth says whether it came to rest.
+  std::vector<double> window_centroids;
+  const auto hold_at = [&](double from, double to) {
     double window_centroid = 0.0;
     for (long s = 0; s < hold; ++s) {
       // The weight raised linearly over the ramp, in stairs of the servo's update interval.
-      if (s % update == 0 && s <= ramp) {
+      if (to != from && s % update == 0 && s <= ramp) {
         const double f =
             from + (to - from) * static_cast<double>(std::min(s + update, ramp)) / static_cast<double>(ramp);
         sim.set_gravity(f * g);
@@ -189,11 +194,23 @@ std::vector<OedometerRecord> run_gravity_oedometer(dem::Simulation& sim, const O
       if (sim.step_count() % kStopCheckEvery == 0) stop_if_requested(sim.comm(), sim.step_count());
       step(sim, o);
     }
-    OedometerRecord r = measure_by_gravity(sim, to, weight, first_centroid);
-    const double settlement = std::abs(records.back().centroid - r.centroid);
-    r.at_rest = std::abs(window_centroid - r.centroid) <= kRestShare * settlement;
-    records.push_back(r);
+    window_centroids.push_back(window_centroid);
+    return measure_by_gravity(sim, to, weight);
+  };
+  std::vector<OedometerRecord> records = {hold_at(1.0, 1.0)};
+  double from = 1.0;
+  for (double to : factors) {
+    records.push_back(hold_at(from, to));
     from = to;
+  }
+  // At rest: the last fifth of a hold moved the centre of mass by at most kRestShare of the
+  // settlement from the state before (for state 0, of the first factor's settlement).
+  for (std::size_t k = 0; k < records.size(); ++k) {
+    const std::size_t a = k == 0 ? 0 : k - 1, b = k == 0 ? std::min<std::size_t>(1, records.size() - 1) : k;
+    const double settlement = std::abs(records[a].centroid - records[b].centroid);
+    records[k].at_rest = std::abs(window_centroids[k] - records[k].centroid) <= kRestShare * settlement;
+    records[k].state.vertical_strain =
+        dem::centroid_vertical_strain(records[0].centroid, records[k].centroid);
   }
   sim.set_gravity(g);
   return records;
@@ -207,7 +224,7 @@ std::vector<OedometerRecord> run_oedometer(dem::Simulation& sim, const Oedometer
 
 long oedometer_steps(const OedometerOptions& o, double dt) {
   if (o.loading == OedometerLoading::gravity)
-    return 1 + hold_steps(o, dt) * static_cast<long>(o.gravity_factors.size());
+    return hold_steps(o, dt) * static_cast<long>(o.gravity_factors.size() + 1);
   return 1 + seating_steps(o, dt) + hold_steps(o, dt) * static_cast<long>(o.lid_stresses.size());
 }
 

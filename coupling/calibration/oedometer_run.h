@@ -1,11 +1,12 @@
 #pragma once
 // The oedometric test on a bed in an engine (docs/calibration.md, "Oedometric test"), loaded
 // in one of two ways:
-//  - by gravity: the bed's weight is raised by each of a list of factors in turn (a centrifuge
-//    test in silico), ramped over half a hold time and held; its mean vertical stress is
-//    f W / (2 A) by equilibrium, K0 the ratio of its Bagi stresses over the box that holds it,
-//    and its mean vertical strain from the descent of its centre of mass
-//    (dem::centroid_vertical_strain). No wall touches the top: nothing to seat;
+//  - by gravity: the bed is held at its own weight for a hold time, then its weight is raised by
+//    each of a list of factors in turn (a centrifuge test in silico), ramped over half a hold
+//    time and held; its mean vertical stress follows from equilibrium (f W / (2 A) less the side
+//    walls' share), K0 is the ratio of its Bagi stresses over the box that holds it, and its mean
+//    vertical strain comes from the descent of its centre of mass (dem::centroid_vertical_strain).
+//    No wall touches the top: nothing to seat;
 //  - by a servo lid (coupling/run/lid.h), placed on the bed's highest grain, holding each target
 //    stress for a hold time; the bed's mean stress by Bagi's formula over the box from the floor
 //    to the lid (one cell), its vertical strain from the lid's travel.
@@ -43,6 +44,7 @@ struct OedometerRecord {
   double lid_stress = 0.0;             // the lid's normal force over the footprint (Pa)
   double height = 0.0;                 // the lid's height above the floor, or 2 zc by gravity (m)
   double centroid = 0.0;               // zc, the bed's centre of mass's height (m)
+  double side_wall_share = 0.0;        // by gravity: the side walls' lift over the bed's weight
   dem::Mat3 bagi = dem::Mat3::Zero();  // the bed's mean Bagi stress over the box (Pa, tension positive)
   dem::OedometerState state;           // compression positive (see the loading above)
   // The bed at rest under its load, so that the state enters the fit: the lid within 5 % of its
@@ -51,13 +53,15 @@ struct OedometerRecord {
   bool at_rest = false;
 };
 
-// Record 0 is the bed as it is (by lid: the lid just placed, touching nothing), then one per
-// gravity factor or lid target, at the end of its hold (by lid, the first after the seating).
+// Record 0 is the bed under its own weight (by gravity: after a hold; by lid: the lid just
+// placed, touching nothing), then one per gravity factor or lid target, at the end of its hold
+// (by lid, the first after the seating).
 // Throws upgrain::Error when the scene has no floor at z = 0, gravity does not point down -z
 // (gravity loading), or the run fails.
 std::vector<OedometerRecord> run_oedometer(dem::Simulation& sim, const OedometerOptions& o);
 
-// The steps the test takes at time step `dt`: the unloaded state's, the (lid) seating's, the holds'.
+// The steps the test takes at time step `dt`: by gravity the holds' (one more than the factors);
+// by lid the unloaded state's, the seating's and the holds'.
 long oedometer_steps(const OedometerOptions& o, double dt);
 
 }  // namespace upgrain::coupling
