@@ -380,16 +380,18 @@ const std::vector<ParameterSpec>& parameter_schema() {
        "alpha of the lid's servo (as Lid/gain factor)."},
       {"Calibration", "max speed", "0.05", K::real, 1e-9, 1e3, "", "m/s", "Largest speed of the lid."},
       {"Calibration", "update interval", "10", K::integer, 1, 1000000, "", "steps",
-       "Steps between the lid's servo updates."},
+       "Steps between the servo walls' updates (the lid's, the friction-angle test's walls); also the "
+       "longest stair of the oedometric test's gravity ramp."},
       {"Calibration", "side wall friction", "0", K::real, 0.0, 10.0, "", "-",
        "Coulomb coefficient of the side walls in the bed of upgrain --study calibration (0: a lubricated "
-       "oedometer ring, so that the test measures the grains, not the walls); the floor keeps Container/floor "
+       "oedometer ring, so that the test measures the grains, not the walls); the floor keeps "
+       "Container/floor "
        "friction. A study's own bed keeps the scene's walls (docs/calibration.md)."},
-      {"Calibration", "confining stress", "8", K::real, 1e-3, 1e6, "", "bed weight / footprint",
+      {"Calibration", "confining stress", "12.5", K::real, 1e-3, 1e6, "", "bed weight / footprint",
        "sigma_3 of the friction-angle test (docs/calibration.md), held by the four servo side walls, as a "
        "multiple of the bed's weight over the box's footprint; the bed is first consolidated to it "
        "isotropically (without gravity)."},
-      {"Calibration", "axial strain rate", "0.3", K::real, 1e-6, 1e3, "", "1/s",
+      {"Calibration", "axial strain rate", "0.375", K::real, 1e-6, 1e3, "", "1/s",
        "Axial strain rate of the friction-angle test: the lid comes down at this rate times the consolidated "
        "height. The driver prints the inertial number I = rate d sqrt(rho / sigma_3) (quasi-static below "
        "about 1e-3)."},

@@ -214,6 +214,9 @@ std::string calibration_refusal(const SceneInput& in) {
     return "the calibration's tests load the bed in its closed box; a scene with a gate or with side walls "
            "that "
            "open (Container) is not one";
+  if (!in.calibration.oedometer_by_lid && !(in.scene.effects.gravity && in.scene.gravity > 0.0))
+    return "the oedometric test by gravity (Calibration/oedometer loading) raises the bed's weight, and this "
+           "scene has none (Effects/gravity)";
   return "";
 }
 

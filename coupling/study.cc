@@ -179,10 +179,11 @@ BedCalibration calibrate_continuum(SceneInput& in, RunResult& r, MPI_Comm comm,
   const dem::EngineState none;
   BedCalibration b;
   try {
-    // The bed keeps its walls: lubricated, a bed deposited and relaxed between walls with
-    // friction settles (docs/calibration.md, "By gravity").
+    // By gravity the bed keeps its walls: lubricated, a bed deposited and relaxed between walls
+    // with friction settles (docs/calibration.md, "By gravity"). The lid seats on and compacts
+    // the bed's top anyway, in the lubricated ring.
     CalibrationOptions own_bed = in.calibration;
-    own_bed.lubricate_side_walls = false;
+    own_bed.lubricate_side_walls = in.calibration.oedometer_by_lid;
     b = calibrate_bed(in.scene, r.final_state ? *r.final_state : none, own_bed, comm, engine_options(in),
                       on_progress);
   } catch (const RunStopped& e) {

@@ -109,7 +109,7 @@ std::string path_table(const OedometerOptions& o, const std::vector<OedometerRec
       t << number(r.gravity_factor) << ',' << (r.at_rest ? 1 : 0) << ',' << number(r.centroid) << ','
         << number(r.side_wall_share);
     else
-      t << number(r.target) << ',' << number(r.lid_stress) << ',' << (r.at_rest && k > 0 ? 1 : 0) << ','
+      t << number(r.target) << ',' << number(r.lid_stress) << ',' << (r.at_rest ? 1 : 0) << ','
         << number(r.height);
     t << ',' << number(s.vertical_strain) << ',' << number(s.vertical_stress) << ','
       << number(s.horizontal_stress) << ',' << number(s.horizontal_stress / s.vertical_stress);
@@ -240,8 +240,8 @@ BedCalibration calibrate_bed(const dem::SceneConfig& scene, const dem::EngineSta
     loaded.push_back(b.path[k].state);
     if (b.path[k].at_rest) held.push_back(b.path[k].state);
   }
-  b.held = static_cast<std::size_t>(
-      std::count_if(b.path.begin() + 1, b.path.end(), [](const OedometerRecord& r) { return r.at_rest; }));
+  b.held = held.size();
+  b.fitted_states = loaded.size();
   b.sigma_mean = b.path.front().state.vertical_stress;
   b.k0_deposited = b.path.front().state.horizontal_stress / b.sigma_mean;
   constexpr double nan = std::numeric_limits<double>::quiet_NaN();
@@ -249,13 +249,14 @@ BedCalibration calibrate_bed(const dem::SceneConfig& scene, const dem::EngineSta
   try {
     b.steps = dem::oedometer_steps(loaded);
     if (held.size() < 2)
-      throw Error(o.loading == OedometerLoading::gravity
-                      ? "only " + std::to_string(b.held) + " of the " + std::to_string(b.path.size() - 1) +
-                            " gravity states came to rest (the centre of mass still moving at the end of the "
-                            "hold); lengthen Calibration/hold time"
-                      : "only " + std::to_string(held.size()) + " of the " + std::to_string(loaded.size()) +
-                            " targets were held (the lid within 5 % of its target at the end of the hold); a "
-                            "modulus needs two: lengthen Calibration/hold time or seating time");
+      throw Error(
+          "only " + std::to_string(held.size()) + " of the " + std::to_string(loaded.size()) +
+          (o.loading == OedometerLoading::gravity
+               ? " states (the bed under its own weight and each gravity factor) came to rest (the centre "
+                 "of mass still moving at the end of the hold); a modulus needs two: lengthen "
+                 "Calibration/hold time"
+               : " targets were held (the lid within 5 % of its target at the end of the hold); a modulus "
+                 "needs two: lengthen Calibration/hold time or seating time"));
     b.elastic = dem::elastic_equivalent(held, b.sigma_mean);
   } catch (const Error& e) {
     b.fit_error = e.what();
@@ -320,6 +321,7 @@ std::string bed_calibration_json(const BedCalibration& b) {
     << "\""
     << ",\n  \"oedometer_wall_time_s\": " << json_number(b.oedometer_seconds)
     << ",\n  \"triaxial_wall_time_s\": " << json_number(b.triaxial_seconds)
+    << ",\n  \"weight_stress_Pa\": " << json_number(b.weight_stress)
     << ",\n  \"bed_mean_vertical_stress_Pa\": " << json_number(b.sigma_mean)
     << ",\n  \"constrained_modulus_Pa\": " << json_number(eq.modulus)
     << ",\n  \"modulus_exponent\": " << json_number(eq.exponent)
@@ -372,11 +374,12 @@ void print_bed_calibration(const BedCalibration& b) {
       std::printf("\n");
   }
   std::printf(
-      "  at the bed's mean stress %.4g Pa (fit through the states at rest, %zu loaded): M %.4g Pa (exponent "
+      "  at the bed's mean stress %.4g Pa (fit through the %zu states at rest of %zu): M %.4g Pa (exponent "
       "%.3f, taken "
       "at "
       "%.4g Pa), K0 %.3f -> E %.4g Pa, nu %.3f\n",
-      b.sigma_mean, b.held, eq.modulus, eq.exponent, eq.modulus_stress, eq.k0, eq.youngs, eq.poisson);
+      b.sigma_mean, b.held, b.fitted_states, eq.modulus, eq.exponent, eq.modulus_stress, eq.k0, eq.youngs,
+      eq.poisson);
   std::printf(
       "  friction angle (sigma_3 %.4g Pa, axial strain rate %g/s, inertial number %.2e%s): peak %.2f deg at "
       "axial strain %.3f, dilatancy %.2f deg; critical state %.2f +- %.2f deg (%d records, d eps_v/d eps_1 "

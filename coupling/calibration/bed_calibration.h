@@ -31,13 +31,14 @@ struct BedCalibration {
   std::vector<OedometerRecord> path;      // state 0 unloaded, then one per target
   std::vector<dem::OedometerStep> steps;  // between consecutive loaded states
   std::vector<TriaxialRecord> shear;      // the consolidated state, then the shearing
-  std::size_t held = 0;                   // targets the lid held (only those enter the fit)
-  double sigma_mean = 0.0;                // the bed's mean vertical stress (Pa): where E is taken
-  double k0_deposited = 0.0;              // sigma_h / sigma_v of the bed as it was
-  double inertial_number = 0.0;           // of the shearing (GDR MiDi 2004)
-  dem::ElasticEquivalent elastic;         // NaN without a fit
-  dem::FrictionStrength strength;         // NaN without a fit
-  double jaky_k0 = 0.0;                   // 1 - sin(phi_cs)
+  std::size_t held = 0;                   // states at rest, of those the fit may take (only those enter it)
+  std::size_t fitted_states = 0;   // the states the fit may take: by gravity all, by lid the loaded ones
+  double sigma_mean = 0.0;         // the bed's mean vertical stress (Pa): where E is taken
+  double k0_deposited = 0.0;       // sigma_h / sigma_v of the bed as it was
+  double inertial_number = 0.0;    // of the shearing (GDR MiDi 2004)
+  dem::ElasticEquivalent elastic;  // NaN without a fit
+  dem::FrictionStrength strength;  // NaN without a fit
+  double jaky_k0 = 0.0;            // 1 - sin(phi_cs)
   bool critical_state_strength = false;   // Calibration/continuum strength
   double friction_angle = 0.0;            // the continuum's phi (degrees)
   double dilatancy_angle = 0.0;           // and psi, in [0, phi]

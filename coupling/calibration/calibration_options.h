@@ -25,8 +25,8 @@ struct CalibrationOptions {
   // bed, deposited and relaxed between its scene's walls: without their friction it settles).
   bool lubricate_side_walls = true;
   // The friction-angle test (triaxial_run.h); the servo settings above apply to its walls too.
-  double confining_stress_factor = 8.0;  // sigma_3 in units of the bed's weight over the footprint
-  double axial_strain_rate = 0.3;        // 1/s
+  double confining_stress_factor = 12.5;  // sigma_3 in units of the bed's weight over the footprint
+  double axial_strain_rate = 0.375;       // 1/s
   double final_axial_strain = 0.15;
   double consolidation_time = 0.05;  // s
   // Which strength the calibrated material takes: the peak angle with the dilatancy angle at

@@ -148,16 +148,36 @@ OedometerRecord measure_by_gravity(const dem::Simulation& sim, double factor, do
   grid.lo = dem::Vec3::Zero();
   grid.hi = dem::Vec3(scene.container.lx, scene.container.ly, top);
   r.bagi = sim.grid_stress(grid)[dem::StressFormula::bagi][0];
+  if (!(r.bagi(2, 2) < 0.0))
+    throw Error("oedometric test by gravity: the bed carries no vertical stress (Bagi sigma_zz = " +
+                std::to_string(r.bagi(2, 2)) + " Pa): it is not resting on the floor");
   const double area = scene.container.lx * scene.container.ly;
   r.state.vertical_stress = (factor * weight * r.centroid - walls[1]) / (2.0 * area * r.centroid);
   r.state.horizontal_stress = r.state.vertical_stress * 0.5 * (r.bagi(0, 0) + r.bagi(1, 1)) / r.bagi(2, 2);
   return r;
 }
 
-// A gravity state is at rest when its centre of mass moved in the last fifth of the hold by at
-// most this share of its settlement since the last state.
+// A gravity state is at rest when its centre of mass, sampled kRestSamples times over the last
+// fifth of the hold (so that an oscillation of about the window's period is seen), strayed from
+// its final height by at most this share of its settlement since the last state.
 constexpr double kRestShare = 0.02;
 constexpr double kRestWindow = 0.2;
+constexpr long kRestSamples = 5;
+// The weight rises in at least this many stairs (of Calibration/update interval steps, fewer if
+// the ramp is short), each the value at its end.
+constexpr long kRampStairs = 10;
+
+// The scene's gravity back on the engine when the test ends, also by an exception.
+struct GravityRestored {
+  dem::Simulation& sim;
+  dem::Vec3 g;
+  ~GravityRestored() {
+    try {
+      sim.set_gravity(g);
+    } catch (...) {  // a failed collective while unwinding: the engine is being abandoned anyway
+    }
+  }
+};
 
 std::vector<OedometerRecord> run_gravity_oedometer(dem::Simulation& sim, const OedometerOptions& o) {
   const dem::Vec3 g = sim.gravity();
@@ -172,29 +192,33 @@ std::vector<OedometerRecord> run_gravity_oedometer(dem::Simulation& sim, const O
   if (sim.walls()[floor].point.z() != 0.0 || sim.walls()[floor].normal != dem::Vec3(0.0, 0.0, 1.0))
     throw Error("oedometric test by gravity: the box's floor is not the plane z = 0");
   const MassMoment bed = mass_moment(sim);
+  if (!(bed.mass > 0.0)) throw Error("oedometric test by gravity: the box holds no grain");
   const double weight = bed.mass * -g.z();
   const long hold = hold_steps(o, sim.time_step());
   const long ramp = std::max(1L, hold / 2), window = std::max(1L, std::lround(kRestWindow * hold));
-  const long update = std::max(1L, o.update_every);
+  const long stair = std::clamp(ramp / kRampStairs, 1L, std::max(1L, o.update_every));
+  const long sample_every = std::max(1L, window / kRestSamples);
+  const GravityRestored restore{sim, g};
   // One hold at the bed's own weight first: the bed comes to its state 0 in this box, whose
   // side walls may have lost the friction that held it (a lubricated ring); then one hold per
   // factor. Each hold's centre of mass over its last fifth says whether it came to rest.
-  std::vector<double> window_centroids;
+  std::vector<std::vector<double>> window_centroids;
   const auto hold_at = [&](double from, double to) {
-    double window_centroid = 0.0;
+    std::vector<double> samples;
     for (long s = 0; s < hold; ++s) {
-      // The weight raised linearly over the ramp, in stairs of the servo's update interval.
-      if (to != from && s % update == 0 && s <= ramp) {
+      // The weight raised linearly over the ramp, in stairs.
+      if (to != from && s % stair == 0 && s < ramp) {
         const double f =
-            from + (to - from) * static_cast<double>(std::min(s + update, ramp)) / static_cast<double>(ramp);
+            from + (to - from) * static_cast<double>(std::min(s + stair, ramp)) / static_cast<double>(ramp);
         sim.set_gravity(f * g);
       }
-      if (s == hold - window) window_centroid = mass_moment(sim).centroid();
+      if (s >= hold - window && (hold - s) % sample_every == 0)
+        samples.push_back(mass_moment(sim).centroid());
       if (s + 1 == hold) sim.request_contacts();
       if (sim.step_count() % kStopCheckEvery == 0) stop_if_requested(sim.comm(), sim.step_count());
       step(sim, o);
     }
-    window_centroids.push_back(window_centroid);
+    window_centroids.push_back(samples);
     return measure_by_gravity(sim, to, weight);
   };
   std::vector<OedometerRecord> records = {hold_at(1.0, 1.0)};
@@ -203,16 +227,17 @@ std::vector<OedometerRecord> run_gravity_oedometer(dem::Simulation& sim, const O
     records.push_back(hold_at(from, to));
     from = to;
   }
-  // At rest: the last fifth of a hold moved the centre of mass by at most kRestShare of the
-  // settlement from the state before (for state 0, of the first factor's settlement).
+  // At rest: over the last fifth of a hold the centre of mass strayed from its final height by at
+  // most kRestShare of the settlement from the state before (state 0: of the first factor's).
   for (std::size_t k = 0; k < records.size(); ++k) {
     const std::size_t a = k == 0 ? 0 : k - 1, b = k == 0 ? std::min<std::size_t>(1, records.size() - 1) : k;
     const double settlement = std::abs(records[a].centroid - records[b].centroid);
-    records[k].at_rest = std::abs(window_centroids[k] - records[k].centroid) <= kRestShare * settlement;
+    double strayed = 0.0;
+    for (double z : window_centroids[k]) strayed = std::max(strayed, std::abs(z - records[k].centroid));
+    records[k].at_rest = strayed <= kRestShare * settlement;
     records[k].state.vertical_strain =
         dem::centroid_vertical_strain(records[0].centroid, records[k].centroid);
   }
-  sim.set_gravity(g);
   return records;
 }
 

@@ -16,23 +16,47 @@
 using namespace upgrain;
 using namespace upgrain::dem;
 
-TEST(OedometerLattice, HertzLatticeFollowsItsClosedForm) {
-  constexpr double r = 1e-3, rho = 2650.0;
-  constexpr int layers = 4;
-  SceneConfig s = test::bare_scene(2e-6);
+namespace {
+
+constexpr double kRadius = 1e-3, kDensity = 2650.0;
+
+// 2 x 2 columns of `layers` frictionless Hertz spheres of radius kRadius, touching each other,
+// in a box of side 4 r - squeeze (squeezed symmetrically: the walls and the lateral contacts
+// close by squeeze / 4 and squeeze / 2), the walls with Coulomb coefficient wall_friction;
+// damping ratio 0.5, gravity as asked.
+struct Lattice {
+  SceneConfig scene;
+  ParticleStore grains;
+};
+Lattice lattice(int layers, bool gravity, double squeeze = 0.0, double wall_friction = 0.0) {
+  constexpr double r = kRadius;
+  Lattice l{test::bare_scene(2e-6), {}};
+  SceneConfig& s = l.scene;
+  s.effects.gravity = gravity;
   s.effects.damping = true;
+  s.effects.wall_friction = wall_friction > 0.0;
   s.damping_ratio = 0.5;
   s.friction = 0.0;
-  s.container.lx = s.container.ly = 4.0 * r;
-  for (double& f : s.container.friction) f = 0.0;
-  ParticleStore p;
+  s.container.lx = s.container.ly = 4.0 * r - squeeze;
+  for (double& f : s.container.friction) f = wall_friction;
+  const double pitch = 2.0 * r - 0.5 * squeeze, first = r - 0.25 * squeeze;
   long id = 0;
   for (int k = 0; k < layers; ++k)
     for (int j = 0; j < 2; ++j)
       for (int i = 0; i < 2; ++i)
-        p.add_sphere(id++, r, rho, Vec3(r + 2 * r * i, r + 2 * r * j, r + 2 * r * k), Vec3::Zero(),
-                     Vec3::Zero());
-  Simulation sim(s, p, make_open_box(s.container));
+        l.grains.add_sphere(id++, r, kDensity, Vec3(first + pitch * i, first + pitch * j, r + 2 * r * k),
+                            Vec3::Zero(), Vec3::Zero());
+  return l;
+}
+
+}  // namespace
+
+TEST(OedometerLattice, HertzLatticeFollowsItsClosedForm) {
+  constexpr double r = kRadius;
+  constexpr int layers = 4;
+  const Lattice l = lattice(layers, false);
+  const SceneConfig& s = l.scene;
+  Simulation sim(s, l.grains, make_open_box(s.container));
   coupling::OedometerOptions o;
   o.loading = coupling::OedometerLoading::lid;
   o.lid_stresses = {2.0e4, 4.0e4, 8.0e4};
@@ -80,24 +104,12 @@ TEST(OedometerLattice, HertzLatticeFollowsItsClosedForm) {
 // equilibrium, the side walls carry nothing (K0 = 0), and the step moduli are those of the
 // closed form's centres of mass.
 TEST(OedometerLattice, GravityLoadedColumnsFollowTheirClosedForm) {
-  constexpr double r = 1e-3, rho = 2650.0;
+  constexpr double r = kRadius;
   constexpr int layers = 6;
-  SceneConfig s = test::bare_scene(2e-6);
-  s.effects.gravity = true;
-  s.effects.damping = true;
-  s.damping_ratio = 0.5;
-  s.friction = 0.0;
-  s.container.lx = s.container.ly = 4.0 * r;
-  for (double& f : s.container.friction) f = 0.0;
-  ParticleStore p;
-  long id = 0;
-  for (int k = 0; k < layers; ++k)
-    for (int j = 0; j < 2; ++j)
-      for (int i = 0; i < 2; ++i)
-        p.add_sphere(id++, r, rho, Vec3(r + 2 * r * i, r + 2 * r * j, r + 2 * r * k), Vec3::Zero(),
-                     Vec3::Zero());
-  const double m = p.mass(0), weight = 4 * layers * m * s.gravity, area = 16.0 * r * r;
-  Simulation sim(s, p, make_open_box(s.container));
+  const Lattice l = lattice(layers, true);
+  const SceneConfig& s = l.scene;
+  const double m = l.grains.mass(0), weight = 4 * layers * m * s.gravity, area = 16.0 * r * r;
+  Simulation sim(s, l.grains, make_open_box(s.container));
   for (int k = 0; k < 50000; ++k) sim.step();  // 0.1 s: the lattice settles under its weight
   coupling::OedometerOptions o;
   o.loading = coupling::OedometerLoading::gravity;
@@ -135,5 +147,38 @@ TEST(OedometerLattice, GravityLoadedColumnsFollowTheirClosedForm) {
     const double exact = (states[k + 1].vertical_stress - states[k].vertical_stress) / de;
     std::printf("step %zu: M %.5e Pa (closed form %.5e Pa)\n", k, steps[k].modulus, exact);
     EXPECT_NEAR(steps[k].modulus, exact, 1e-4 * exact);
+  }
+}
+
+// The oedometric test by gravity with side walls that carry part of the weight: the same lattice
+// squeezed 0.3 um into a box with wall friction 0.5, so that the walls' Coulomb springs hold the
+// columns up as they settle. sigma_v takes the walls' share out by equilibrium (the integral of
+// -sigma_zz over the bed is f W zc - sum z_c F_z of the side walls' contacts); checked against
+// the contacts' own virial, Bagi's sigma_zz over the box to the top grain, rescaled to the volume
+// A 2 zc (independent of the walls' term, to the discretisation of the grains' weight in it).
+TEST(OedometerLattice, GravityLoadingTakesTheSideWallsShareOut) {
+  constexpr double r = kRadius;
+  constexpr int layers = 6;
+  const Lattice l = lattice(layers, true, 3e-7, 0.5);  // the walls carry 20-28 %
+  const SceneConfig& s = l.scene;
+  const double weight = 4 * layers * l.grains.mass(0) * s.gravity, area = s.container.lx * s.container.ly;
+  Simulation sim(s, l.grains, make_open_box(s.container));
+  for (int k = 0; k < 50000; ++k) sim.step();
+  coupling::OedometerOptions o;
+  o.loading = coupling::OedometerLoading::gravity;
+  o.gravity_factors = {2.0};
+  o.hold_time = 0.05;
+  const std::vector<coupling::OedometerRecord> rec = coupling::run_oedometer(sim, o);
+  ASSERT_EQ(rec.size(), 2U);
+  for (const coupling::OedometerRecord& q : rec) {
+    const double top = q.centroid + layers * r;
+    const double virial = -q.bagi(2, 2) * area * top / (area * 2.0 * q.centroid);
+    const double floor_only = q.gravity_factor * weight / (2.0 * area);
+    std::printf(
+        "g x %.0f: side walls' share %.4f, sigma_v %.4f Pa (f W/(2A) %.4f Pa, Bagi's virial %.4f Pa)\n",
+        q.gravity_factor, q.side_wall_share, q.state.vertical_stress, floor_only, virial);
+    EXPECT_GT(q.side_wall_share, 0.05);
+    EXPECT_LT(q.state.vertical_stress, (1.0 - 0.5 * q.side_wall_share) * floor_only);
+    EXPECT_NEAR(q.state.vertical_stress, virial, 1e-3 * floor_only);
   }
 }
