@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "coupling/accuracy/accuracy_knobs.h"
+#include "coupling/calibration/oedometer_run.h"
 #include "coupling/scene_input.h"
 #include "coupling/scene_limits.h"
 #include "dem/core/error.h"
@@ -330,9 +331,8 @@ void validate_scene(SceneInput& in) {
     if (f.empty())
       throw Error(where +
                   "Calibration/gravity factors: give at least one factor (a modulus needs two states)");
-    for (std::size_t k = 0; k < f.size(); ++k)
-      if (!(f[k] > 1.0) || (k > 0 && !(f[k] > f[k - 1])))
-        throw Error(where + "Calibration/gravity factors: the factors must be > 1 and ascending");
+    if (const std::string why = gravity_factors_error(f); !why.empty())
+      throw Error(where + "Calibration/gravity factors: " + why);
   }
   {
     const std::vector<double>& f = in.calibration.lid_stress_factors;

@@ -67,6 +67,13 @@ std::size_t first_fitted_state(const OedometerOptions& o) {
   return o.loading == OedometerLoading::lid ? 1 : 0;
 }
 
+// The step that ends at state k (from the state before), or nullptr for a state no step ends at.
+const dem::OedometerStep* step_ending_at(const OedometerOptions& o,
+                                         const std::vector<dem::OedometerStep>& steps, std::size_t k) {
+  const std::size_t first_step = first_fitted_state(o) + 1;
+  return k >= first_step && k - first_step < steps.size() ? &steps[k - first_step] : nullptr;
+}
+
 std::string number(double v) {
   if (!std::isfinite(v)) return "";
   char b[40];
@@ -76,7 +83,6 @@ std::string number(double v) {
 
 std::string path_table(const OedometerOptions& o, const std::vector<OedometerRecord>& rec,
                        const std::vector<dem::OedometerStep>& steps) {
-  const std::size_t first_step = first_fitted_state(o) + 1;
   std::ostringstream t;
   if (o.loading == OedometerLoading::gravity)
     t << "# Upgrain oedometric test by gravity (docs/calibration.md). SI units. State 0: the bed under its "
@@ -113,9 +119,8 @@ std::string path_table(const OedometerOptions& o, const std::vector<OedometerRec
         << number(r.height);
     t << ',' << number(s.vertical_strain) << ',' << number(s.vertical_stress) << ','
       << number(s.horizontal_stress) << ',' << number(s.horizontal_stress / s.vertical_stress);
-    if (k >= first_step && k - first_step < steps.size()) {
-      const dem::OedometerStep& q = steps[k - first_step];
-      t << ',' << number(q.modulus) << ',' << number(q.poisson) << ',' << number(q.youngs);
+    if (const dem::OedometerStep* q = step_ending_at(o, steps, k)) {
+      t << ',' << number(q->modulus) << ',' << number(q->poisson) << ',' << number(q->youngs);
     } else {
       t << ",,,";
     }
@@ -350,7 +355,6 @@ void print_bed_calibration(const BedCalibration& b) {
   const dem::ElasticEquivalent& eq = b.elastic;
   const dem::FrictionStrength& s = b.strength;
   const bool by_gravity = o.loading == OedometerLoading::gravity;
-  const std::size_t first_step = first_fitted_state(o) + 1;
   if (by_gravity)
     std::printf("oedometric test by gravity %.1f s (%zu factors x %g s), friction-angle test %.1f s\n",
                 b.oedometer_seconds, o.gravity_factors.size(), o.hold_time, b.triaxial_seconds);
@@ -367,9 +371,8 @@ void print_bed_calibration(const BedCalibration& b) {
     std::printf("  %-6zu %12.4g %12.4g %7s %12.4g %12.4e %8.3f", k, by_gravity ? r.gravity_factor : r.target,
                 by_gravity ? r.centroid : r.lid_stress, r.at_rest ? "yes" : "no", st.vertical_stress,
                 st.vertical_strain, st.horizontal_stress / st.vertical_stress);
-    if (k >= first_step && k - first_step < b.steps.size())
-      std::printf(" %12.4g %8.3f %12.4g\n", b.steps[k - first_step].modulus, b.steps[k - first_step].poisson,
-                  b.steps[k - first_step].youngs);
+    if (const dem::OedometerStep* q = step_ending_at(o, b.steps, k))
+      std::printf(" %12.4g %8.3f %12.4g\n", q->modulus, q->poisson, q->youngs);
     else
       std::printf("\n");
   }

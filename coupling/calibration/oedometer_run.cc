@@ -127,10 +127,7 @@ MassMoment mass_moment(const dem::Simulation& sim) {
 // side walls.
 OedometerRecord measure_by_gravity(const dem::Simulation& sim, double factor, double weight) {
   const dem::SceneConfig& scene = sim.scene();
-  const dem::ParticleStore& p = sim.particles();
-  double top = 0.0;
-  for (int i = 0; i < sim.owned(); ++i) top = std::max(top, p.x[i].z() + p.radius[i]);
-  MPI_Allreduce(MPI_IN_PLACE, &top, 1, MPI_DOUBLE, MPI_MAX, sim.comm());
+  const double top = highest_grain_top(sim);
   OedometerRecord r;
   r.time = sim.time();
   r.gravity_factor = factor;
@@ -185,9 +182,8 @@ std::vector<OedometerRecord> run_gravity_oedometer(dem::Simulation& sim, const O
     throw Error("oedometric test by gravity: the scene's gravity must point down (-z), not (" +
                 std::to_string(g.x()) + ", " + std::to_string(g.y()) + ", " + std::to_string(g.z()) + ")");
   const std::vector<double>& factors = o.gravity_factors;
-  for (std::size_t k = 0; k < factors.size(); ++k)
-    if (!(factors[k] > (k == 0 ? 1.0 : factors[k - 1])))
-      throw Error("oedometric test by gravity: the factors must ascend from above 1");
+  if (const std::string why = gravity_factors_error(factors); !why.empty())
+    throw Error("oedometric test by gravity: " + why);
   const std::size_t floor = sim.wall_index("floor");
   if (sim.walls()[floor].point.z() != 0.0 || sim.walls()[floor].normal != dem::Vec3(0.0, 0.0, 1.0))
     throw Error("oedometric test by gravity: the box's floor is not the plane z = 0");
@@ -242,6 +238,12 @@ std::vector<OedometerRecord> run_gravity_oedometer(dem::Simulation& sim, const O
 }
 
 }  // namespace
+
+std::string gravity_factors_error(const std::vector<double>& factors) {
+  for (std::size_t k = 0; k < factors.size(); ++k)
+    if (!(factors[k] > (k == 0 ? 1.0 : factors[k - 1]))) return "the factors must be > 1 and ascending";
+  return "";
+}
 
 std::vector<OedometerRecord> run_oedometer(dem::Simulation& sim, const OedometerOptions& o) {
   return o.loading == OedometerLoading::gravity ? run_gravity_oedometer(sim, o) : run_lid_oedometer(sim, o);

@@ -25,11 +25,16 @@ double Lid::stress(const dem::Simulation& sim) {
   return wall_normal_stress(sim.walls()[k], forces[k], sim.scene().container.lx * sim.scene().container.ly);
 }
 
-std::size_t place_lid(dem::Simulation& sim, double gap, double friction) {
+double highest_grain_top(const dem::Simulation& sim) {
   const dem::ParticleStore& p = sim.particles();
   double top = -std::numeric_limits<double>::infinity();
   for (int i = 0; i < sim.owned(); ++i) top = std::max(top, p.x[i].z() + p.radius[i]);
   MPI_Allreduce(MPI_IN_PLACE, &top, 1, MPI_DOUBLE, MPI_MAX, sim.comm());
+  return top;
+}
+
+std::size_t place_lid(dem::Simulation& sim, double gap, double friction) {
+  const double top = highest_grain_top(sim);
   if (!std::isfinite(top)) throw Error("Lid: no grain to place the lid on");
   sim.add_wall({kLidWallName, dem::Vec3(0.0, 0.0, top + gap), dem::Vec3(0.0, 0.0, -1.0), friction});
   return sim.wall_index(kLidWallName);

@@ -37,6 +37,10 @@ class Lid {
   ServoWalls servo_;
 };
 
+// The height of the highest grain top (a bounding sphere's for ellipsoids) over every rank; -inf
+// without grains. Collective.
+[[nodiscard]] double highest_grain_top(const dem::Simulation& sim);
+
 // Adds a horizontal wall named `lid` (normal -z) `gap` above the highest grain top (a bounding
 // sphere's for ellipsoids) over every rank, with that Coulomb coefficient; returns its index.
 // Collective; throws upgrain::Error without grains.

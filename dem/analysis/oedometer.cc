@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "dem/contact/hertz_mindlin.h"
 #include "dem/core/error.h"
 
 namespace upgrain::dem {
@@ -91,16 +92,11 @@ ElasticEquivalent elastic_equivalent(const std::vector<OedometerState>& path, do
   return e;
 }
 
-namespace {
-double hertz_closing(double force, double e_star, double r_star) {
-  return std::pow(3.0 * force / (4.0 * e_star * std::sqrt(r_star)), 2.0 / 3.0);
-}
-}  // namespace
-
 double hertz_column_strain(double stress, double e_star, double radius, int spheres) {
   const double force = stress * 4.0 * radius * radius;
-  const double shortening = static_cast<double>(spheres - 1) * hertz_closing(force, e_star, 0.5 * radius) +
-                            2.0 * hertz_closing(force, e_star, radius);
+  const double shortening =
+      static_cast<double>(spheres - 1) * hertz::overlap_for_force(e_star, 0.5 * radius, force) +
+      2.0 * hertz::overlap_for_force(e_star, radius, force);
   return shortening / (2.0 * radius * static_cast<double>(spheres));
 }
 
@@ -109,10 +105,10 @@ double centroid_vertical_strain(double centroid0, double centroid) {
 }
 
 double hertz_column_centroid(double sphere_weight, double e_star, double radius, int spheres) {
-  double z = radius - hertz_closing(spheres * sphere_weight, e_star, radius);
+  double z = radius - hertz::overlap_for_force(e_star, radius, spheres * sphere_weight);
   double sum = z;
   for (int k = 0; k + 1 < spheres; ++k) {
-    z += 2.0 * radius - hertz_closing((spheres - 1 - k) * sphere_weight, e_star, 0.5 * radius);
+    z += 2.0 * radius - hertz::overlap_for_force(e_star, 0.5 * radius, (spheres - 1 - k) * sphere_weight);
     sum += z;
   }
   return sum / static_cast<double>(spheres);

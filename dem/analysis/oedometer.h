@@ -79,7 +79,7 @@ double centroid_vertical_strain(double centroid0, double centroid);
 // floor (a simple-cubic frictionless lattice) under the weight w of each sphere: the floor
 // contact carries n w and closes by delta(n w, r), the contact above sphere k (from the
 // floor, k = 0 .. n - 2) carries (n - 1 - k) w and closes by delta(., r / 2), with delta of
-// hertz_column_strain (Johnson 1985, eq. 4.23).
+// hertz::overlap_for_force (Johnson 1985, eq. 4.23).
 double hertz_column_centroid(double sphere_weight, double e_star, double radius, int spheres);
 
 }  // namespace upgrain::dem
