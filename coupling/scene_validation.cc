@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "coupling/accuracy/accuracy_knobs.h"
-#include "coupling/calibration/oedometer_run.h"
+#include "coupling/calibration/calibration_options.h"
 #include "coupling/scene_input.h"
 #include "coupling/scene_limits.h"
 #include "dem/core/error.h"

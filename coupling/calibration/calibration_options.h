@@ -2,6 +2,7 @@
 // The Calibration section of a scene file (docs/calibration.md): how the calibration study
 // (`upgrain --study calibration`) loads the bed: the oedometric test and the friction-angle test,
 // both from the deposited bed.
+#include <string>
 #include <vector>
 
 namespace upgrain::coupling {
@@ -33,5 +34,13 @@ struct CalibrationOptions {
   // the peak, or the critical-state angle with no dilatancy.
   bool critical_state_strength = false;
 };
+
+// Why `factors` are not gravity factors of the oedometric test (each > 1, ascending), or "" when
+// they are. Header-only: the scene's validation takes it without the engine.
+inline std::string gravity_factors_error(const std::vector<double>& factors) {
+  for (std::size_t k = 0; k < factors.size(); ++k)
+    if (!(factors[k] > (k == 0 ? 1.0 : factors[k - 1]))) return "the factors must be > 1 and ascending";
+  return "";
+}
 
 }  // namespace upgrain::coupling

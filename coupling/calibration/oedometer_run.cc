@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string>
 
+#include "coupling/calibration/calibration_options.h"
 #include "coupling/run/lid.h"
 #include "coupling/run/run_result.h"
 #include "coupling/run/stop_request.h"
@@ -238,12 +239,6 @@ std::vector<OedometerRecord> run_gravity_oedometer(dem::Simulation& sim, const O
 }
 
 }  // namespace
-
-std::string gravity_factors_error(const std::vector<double>& factors) {
-  for (std::size_t k = 0; k < factors.size(); ++k)
-    if (!(factors[k] > (k == 0 ? 1.0 : factors[k - 1]))) return "the factors must be > 1 and ascending";
-  return "";
-}
 
 std::vector<OedometerRecord> run_oedometer(dem::Simulation& sim, const OedometerOptions& o) {
   return o.loading == OedometerLoading::gravity ? run_gravity_oedometer(sim, o) : run_lid_oedometer(sim, o);

@@ -13,7 +13,6 @@
 // Collective over the engine's ranks; the records are the same bits on every rank and rank count
 // with the deterministic summation.
 #include <functional>
-#include <string>
 #include <vector>
 
 #include "dem/analysis/oedometer.h"
@@ -53,9 +52,6 @@ struct OedometerRecord {
   // its settlement since the last state. State 0 is the bed as it is.
   bool at_rest = false;
 };
-
-// Why `factors` are not gravity factors (each > 1, ascending), or "" when they are.
-[[nodiscard]] std::string gravity_factors_error(const std::vector<double>& factors);
 
 // Record 0 is the bed under its own weight (by gravity: after a hold; by lid: the lid just
 // placed, touching nothing), then one per gravity factor or lid target, at the end of its hold
