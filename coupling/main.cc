@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -16,15 +17,19 @@
 #include "coupling/calibration/calibration_study.h"
 #include "coupling/dem_run.h"
 #include "coupling/quiet_p4est.h"
+#include "coupling/run/checkpoint.h"
+#include "coupling/run/folder_lock.h"
 #include "coupling/run/output_folder.h"
 #include "coupling/run/scene_run.h"
 #include "coupling/run/stop_request.h"
 #include "coupling/run/stress_summary.h"
 #include "coupling/scene_input.h"
+#include "coupling/scene_limits.h"
 #include "coupling/scene_text.h"
 #include "coupling/strain_report.h"
 #include "coupling/study.h"
 #include "dem/core/error.h"
+#include "dem/io/output_journal.h"
 #include "dem/parallel/exchange.h"
 #include "dem/parallel/mpi_start.h"
 #include "dem/time_step.h"
@@ -55,12 +60,15 @@ constexpr const char* kUsage =
     "                                stress steps (its Calibration section, docs/calibration.md):\n"
     "                                the stress-strain path and the equivalent elastic material,\n"
     "                                into <Output/folder>/calibration/\n"
+    "  --verify DIR                  check the output folder DIR against its manifest: the files\n"
+    "                                missing, changed, extra or left half-written (docs/output.md)\n"
     "  --restart DIR                 continue the run in DIR from its newest valid checkpoint\n"
     "                                (DIR/checkpoints/, docs/restart.md), with the scene it was\n"
     "                                started with; a scene file given as well may change only\n"
     "                                Simulation/end time and the Checkpoint and Parallel sections\n"
     "\n"
-    "Exit status: 0 done, 1 an error (named on one line), 128 + N stopped by signal N\n"
+    "Exit status: 0 done (--verify: the folder is whole), 1 an error (named on one line; --verify:\n"
+    "the folder is not as its run left it), 128 + N stopped by signal N\n"
     "(130 SIGINT, 143 SIGTERM, 129 SIGHUP) after writing a checkpoint.\n";
 
 // One line, rewritten in place; a new phase starts a new line. The time left is at the rate of
@@ -217,6 +225,72 @@ upgrain::coupling::SceneInput restart_input(const std::string& dir, const std::s
   return in;
 }
 
+// upgrain --verify DIR (rank 0 prints): 0 when the folder is as its run left it.
+int verify(const std::string& dir) {
+  using namespace upgrain;
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  int whole = 0;
+  std::string error;
+  if (rank == 0) {
+    try {
+      const coupling::Verification v = coupling::verify_output_folder(dir);
+      for (const std::string& line : v.lines) std::printf("%s\n", line.c_str());
+      whole = v.whole ? 1 : 0;
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  }
+  dem::throw_if_any(MPI_COMM_WORLD, error);
+  MPI_Bcast(&whole, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return whole ? 0 : 1;
+}
+
+// The output journal of a run (rank 0; docs/output.md, "Manifest"): a new run's manifest, or the
+// manifest of the run a restart continues, after checking that the checkpoint is that run's.
+void open_journal(const upgrain::coupling::SceneInput& in) {
+  using namespace upgrain;
+  const std::filesystem::path& folder = in.output.folder;
+  if (!in.restarting) {
+    dem::io::OutputManifest m;
+    m.run_id = coupling::new_run_id();
+    m.scene_hash = coupling::scene_hash(in.output.checkpoint.scene);
+    dem::io::open_output_journal(folder, std::move(m));
+    return;
+  }
+  dem::io::OutputManifest m = dem::io::read_manifest(folder);
+  const coupling::Checkpoint& c = *in.resume;
+  if (c.run_id.empty())
+    throw Error("checkpoint " + c.file.string() +
+                " names no run: it was not written by this run (its folder's manifest names run " + m.run_id +
+                "); remove it from " + (folder / "checkpoints").string());
+  if (c.run_id != m.run_id)
+    throw Error("checkpoint " + c.file.string() + " is of run " + c.run_id + ", but the folder " + folder.string() +
+                " holds run " + m.run_id +
+                " (its manifest): a checkpoint of another run was put there; remove it from " +
+                (folder / "checkpoints").string());
+  m.status = "running";
+  dem::io::open_output_journal(folder, std::move(m));
+}
+
+// The journal's final status on every way out of a run. A run that failed before it wrote
+// anything leaves nothing: its bookkeeping goes, and the folder too when the run made it.
+struct JournalClose {
+  std::filesystem::path folder;
+  bool made_folder = false;
+  std::string status = "failed";
+  ~JournalClose() {
+    namespace io = upgrain::dem::io;
+    const bool wrote = io::output_journal_open() && !io::journal_paths().empty();
+    const bool open = io::output_journal_open();
+    io::close_output_journal(status);
+    if (!open || wrote || status != "failed") return;
+    std::error_code ec;
+    std::filesystem::remove_all(folder / io::kBookkeepingFolder, ec);
+    if (made_folder && std::filesystem::is_empty(folder, ec)) std::filesystem::remove(folder, ec);
+  }
+};
+
 int run(int argc, char** argv) {
   using namespace upgrain;
   std::string file, output_override, restart_dir, study;
@@ -240,6 +314,9 @@ int run(int argc, char** argv) {
       study = argv[++k];
       if (study != "accuracy" && study != "calibration")
         throw Error("--study: unknown study '" + study + "' (known: accuracy, calibration)");
+    } else if (a == "--verify") {
+      if (k + 1 >= argc) throw CollectiveError("--verify needs the output folder of a run");
+      return verify(argv[++k]);
     } else if (a == "--restart") {
       if (k + 1 >= argc) throw CollectiveError("--restart needs the output folder of the run");
       restart_dir = argv[++k];
@@ -269,13 +346,19 @@ int run(int argc, char** argv) {
       in = restart_input(restart_dir, file, restart_notes);
     } else {
       in = file.empty() ? coupling::default_scene() : coupling::read_scene_file(file);
-      if (!output_override.empty()) {
-        in.output.folder = output_override;
-        coupling::validate_scene(in);
-      }
+      if (!output_override.empty()) in.output.folder = output_override;
     }
   } catch (const std::exception& e) {
     refusal = e.what();
+  }
+  dem::throw_if_any(MPI_COMM_WORLD, refusal);
+  // The folder the command line chose (--output, --restart) or the scene's: for a run it must be
+  // free (docs/output.md); --check only says what a run would meet there.
+  std::string folder_note;
+  try {
+    coupling::check_output_folder(in, in.source + ": ");
+  } catch (const std::exception& e) {
+    (check_only ? folder_note : refusal) = e.what();
   }
   dem::throw_if_any(MPI_COMM_WORLD, refusal);
   const dem::TimeStepEstimate ts = dem::estimate_time_step(in.scene);
@@ -321,7 +404,11 @@ int run(int argc, char** argv) {
           in.parallel.legacy_engine.c_str());
   }
   if (check_only) {
-    if (rank == 0) std::printf("  scene is valid; nothing written (--check)\n");
+    if (rank == 0) {
+      if (!folder_note.empty())
+        std::printf("  note: a run of it would be refused here: %s\n", folder_note.c_str());
+      std::printf("  scene is valid; nothing written (--check)\n");
+    }
     return 0;
   }
   if (rank == 0) {
@@ -334,14 +421,27 @@ int run(int argc, char** argv) {
           c.interval, c.wall_interval, c.keep);
   }
   std::fflush(stdout);  // the preamble reaches a log file before a run that may be killed
-  // overwrite: the earlier run's files go before the first new one is written.
+  // The folder is this run's while it lives (docs/output.md, "Lock"); with overwrite the earlier
+  // run's files go before the first new one is written; then every file written is entered in
+  // the folder's manifest.
+  const coupling::FolderLock lock(in.output.folder, MPI_COMM_WORLD);
   if (in.overwrite && !in.restarting)
     dem::run_on_root(MPI_COMM_WORLD, [&] { coupling::replace_earlier_run(in.output.folder); });
+  JournalClose journal{in.output.folder, lock.made_folder()};
+  dem::run_on_root(MPI_COMM_WORLD, [&] {
+    open_journal(in);
+    // A restart removes what the run wrote after its checkpoint, and nothing else (docs/restart.md).
+    if (in.restarting) {
+      const std::set<std::string> listed(in.resume->outputs.begin(), in.resume->outputs.end());
+      for (const std::string& note : coupling::remove_outputs_after(in.output.folder, listed, in.resume->step))
+        std::printf("  %s\n", note.c_str());
+    }
+  });
   coupling::install_stop_handlers();
   auto progress = [rank](const coupling::Progress& p) {
     if (rank == 0) print_progress(p);
   };
-  try {
+  const auto run_it = [&]() -> int {
     if (study == "accuracy") return coupling::run_accuracy_study(in, MPI_COMM_WORLD);
     if (study == "calibration") return coupling::run_calibration_study(in, MPI_COMM_WORLD, progress);
     if (in.study.compare_with_continuum) {
@@ -357,7 +457,14 @@ int run(int argc, char** argv) {
         std::printf("  report: %s\n", (in.output.folder / "report.md").c_str());
       }
     }
+    return 0;
+  };
+  try {
+    const int code = run_it();
+    journal.status = code == 0 ? "finished" : "failed";
+    return code;
   } catch (const coupling::RunStopped& stopped) {
+    journal.status = "stopped";
     if (rank == 0) {
       std::printf("\n  %s\n", stopped.what());
       if (!stopped.checkpoint().empty())
@@ -370,7 +477,6 @@ int run(int argc, char** argv) {
   } catch (const Error& e) {
     throw Error(in.source + ": " + e.what());
   }
-  return 0;
 }
 
 }  // namespace

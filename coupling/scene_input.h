@@ -85,8 +85,9 @@ void apply_material_file(SceneInput& in, const std::string& scene_file);
 std::string calibration_refusal(const SceneInput& in);
 
 // Checks that involve several parameters or the file system: gradation curve, the fill
-// fits the container, the time step is safe, the stress grid's box, the output folder
-// holds no earlier results. Fills in what depends on several entries. Nothing is written.
+// fits the container, the time step is safe, the stress grid's box. Fills in what depends on
+// several entries. Nothing is written. (The output folder is checked for a run by the driver:
+// scene_limits.h, check_output_folder.)
 void validate_scene(SceneInput& input);
 
 // The annotated default parameter file, and its Markdown form for docs/parameters.md.

@@ -9,9 +9,11 @@
 #include <sstream>
 
 #include "coupling/memory_estimate.h"
+#include "coupling/run/folder_lock.h"
 #include "coupling/run/output_folder.h"
 #include "dem/contact/weight_overlap.h"
 #include "dem/core/error.h"
+#include "dem/io/output_manifest.h"
 #include "dem/engine/simulation.h"
 #include "dem/scene/gradation.h"
 
@@ -64,11 +66,26 @@ void check_output_folder(const SceneInput& in, const std::string& where) {
   std::error_code ec;
   if (fs::exists(folder, ec)) {
     if (!fs::is_directory(folder, ec)) throw Error(entry + " exists and is not a folder");
-    if (!fs::is_empty(folder, ec) && !in.restarting) {
-      if (!in.overwrite)
+    if (const std::string who = lock_holder(folder); !who.empty())
+      throw Error(entry + " is in use by another run of upgrain (" + who + "); wait for it to end, or stop it");
+    if (in.restarting && !dem::io::has_manifest(folder))
+      throw Error(entry + " holds no manifest of a run (" + dem::io::manifest_path(folder).string() +
+                  "), so a restart cannot tell the run's files from others; it was not written by this "
+                  "version of upgrain");
+    if (!holds_no_results(folder) && !in.restarting) {
+      if (!in.overwrite) {
+        // A run that did not finish is continued, not replaced by accident.
+        const bool interrupted = dem::io::has_manifest(folder) && fs::is_directory(folder / "checkpoints", ec) &&
+                                 dem::io::read_manifest(folder).status != "finished";
+        if (interrupted)
+          throw Error(entry + " holds a run that did not finish; continue it with 'upgrain --restart " +
+                      folder.string() +
+                      "', or choose another folder ('--output DIR' on the command line), or set "
+                      "'Output/overwrite = true' to replace it");
         throw Error(entry +
                     " already holds results; choose another folder ('--output DIR' on the command line) or "
                     "set 'Output/overwrite = true'");
+      }
       if (const std::string why = why_not_replaceable(folder); !why.empty()) throw Error(entry + " " + why);
     }
     if (::access(folder.c_str(), W_OK | X_OK) != 0)

@@ -14,7 +14,10 @@ namespace upgrain::coupling {
 void check_memory(const SceneInput& in, const std::string& where);
 // A gradation whose radii span so many decades that drawing the grains would take hours.
 void check_gradation_sampling(const SceneInput& in, const std::string& where);
-// The folder exists and is empty (or may be written over), or can be created.
+// The folder exists and is empty (or may be written over), or can be created; no other run holds
+// it; a restart's folder has its manifest. Not part of validate_scene: the driver calls it for a
+// run, after the command line has chosen the folder (`--output`, `--restart`), and `--check`
+// reports it as a note.
 void check_output_folder(const SceneInput& in, const std::string& where);
 void check_output_intervals(const SceneInput& in, const std::string& where);
 // `fill_top`: the height of the highest grain of the fill (dem::plan_fill).

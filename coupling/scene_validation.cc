@@ -444,7 +444,8 @@ void validate_scene(SceneInput& in) {
       throw Error(m.str());
     }
   }
-  check_output_folder(in, where);
+  // The output folder is not part of the scene: the driver checks it for a run, after the command
+  // line has chosen it (check_output_folder).
   // Last, once the scene itself is known sound: the Accuracy section's knobs and values (upgrain --study
   // accuracy), refused here with the entry named, before any run.
   try {

@@ -1,9 +1,11 @@
 #include "coupling/strain_report.h"
 
+
 #include <algorithm>
 #include <cstdlib>
 #include <sstream>
 
+#include "coupling/figure_script.h"
 #include "coupling/report_format.h"
 #include "dem/io/atomic_file.h"
 #include "dem/io/grid_stress_output.h"
@@ -43,15 +45,9 @@ std::string collapse_of(const SceneInput& in) {
 }  // namespace
 
 std::vector<std::string> plot_strain(const std::filesystem::path& folder) {
-  std::vector<std::string> plots;
-  const std::string script = std::string(UPGRAIN_SCRIPT_DIR) + "/plot_strain.py";
-  if (!std::filesystem::exists(script) || !std::filesystem::exists("/usr/bin/python3")) return plots;
-  const std::string cmd = "/usr/bin/python3 '" + script + "' '" + folder.string() + "' > '" +
-                          (folder / "strain_plots.log").string() + "' 2>&1";
-  if (std::system(cmd.c_str()) == 0)
-    for (const char* p : {"strain_ln_J.png", "strain_shear.png", "strain_final_map.png"})
-      if (std::filesystem::exists(folder / p)) plots.emplace_back(p);
-  return plots;
+  return run_figure_script("plot_strain.py", folder, "strain_plots.log",
+                           {"strain_ln_J.png", "strain_shear.png", "strain_final_map.png"})
+      .made;
 }
 
 std::string write_strain_mesh(const std::filesystem::path& folder) {

@@ -16,6 +16,7 @@
 #include "coupling/coarse_graining_study.h"
 #include "coupling/dem_fem_comparison.h"
 #include "coupling/dem_run.h"
+#include "coupling/figure_script.h"
 #include "coupling/run/stop_request.h"
 #include "coupling/strain_report.h"
 #include "coupling/study_report.h"
@@ -359,16 +360,11 @@ int run_study(const SceneInput& scene_input, MPI_Comm comm,
   on_rank0(comm, [&] {
     t0 = Clock::now();
     write_comparison_tables(folder, c, d.stress);
-    std::vector<std::string> plots;
-    const std::string script = std::string(UPGRAIN_SCRIPT_DIR) + "/plot_study.py";
-    if (std::filesystem::exists(script) && std::filesystem::exists("/usr/bin/python3")) {
-      const std::string cmd = "/usr/bin/python3 '" + script + "' '" + folder.string() + "' > '" +
-                              (folder / "plots.log").string() + "' 2>&1";
-      if (std::system(cmd.c_str()) == 0)
-        for (const char* p : {"profiles_szz.png", "lateral_ratio.png", "wall_share.png", "wall_shear.png",
-                              "level_spread.png"})
-          if (std::filesystem::exists(folder / p)) plots.emplace_back(p);
-    }
+    const std::vector<std::string> plots =
+        run_figure_script("plot_study.py", folder, "plots.log",
+                          {"profiles_szz.png", "lateral_ratio.png", "wall_share.png", "wall_shear.png",
+                           "level_spread.png"})
+            .made;
     std::vector<std::string> strain_plots;
     if (r.final_strain) {
       (void)write_strain_mesh(folder);

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "dem/io/atomic_file.h"
+#include "dem/io/output_journal.h"
 #include "dem/io/undated_vtk.h"
 #include "fem/elastic_column.h"
 
@@ -123,10 +124,12 @@ inline void write_pieces_and_record(const dealii::DataOut<dim>& data_out, const 
     return dealii::Utilities::MPI::min(local_error.empty() ? 1 : 0, comm) == 1;
   };
   const std::filesystem::path dir(folder);
+  std::vector<std::filesystem::path> piece_paths;
+  for (unsigned int r = 0; r < n_ranks; ++r) piece_paths.push_back(dir / piece_name(r));
+  if (rank == 0) dem::io::create_folder(dir);
+  dem::io::note_pieces_writing(comm, piece_paths);  // docs/output.md, "Manifest"
   std::string error;
   try {
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);  // concurrent creation by the ranks is fine
     if (!std::filesystem::is_directory(dir)) throw std::runtime_error("cannot create folder " + folder);
     std::ostringstream vtu;
     data_out.write_vtu(vtu);
@@ -151,6 +154,7 @@ inline void write_pieces_and_record(const dealii::DataOut<dim>& data_out, const 
   }
   if (!all_succeeded(error))
     throw std::runtime_error("fem output: " + (error.empty() ? "rank 0 failed to write column.pvtu" : error));
+  dem::io::note_pieces_written(comm, piece_paths);
 }
 
 // What both solvers write: the displacement, the cell averages of sigma, any further cell

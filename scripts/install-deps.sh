@@ -5,7 +5,8 @@ PACKAGES=(cmake g++ ninja-build ccache lld pkg-config
   libdeal.ii-dev libeigen3-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev libcgal-dev libgmp-dev libmpfr-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-numpy python3-matplotlib python3-h5py
-  clang libclang-rt-14-dev)  # the libFuzzer targets (docs/input.md, "Fuzzing")
+  clang libclang-rt-14-dev  # the libFuzzer targets (docs/input.md, "Fuzzing")
+  strace)  # kills at a chosen system call in the fault tests (tests/end_to_end/check_output_safety.py)
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

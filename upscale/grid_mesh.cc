@@ -39,6 +39,8 @@
 #include <system_error>
 
 #include "dem/core/error.h"
+#include "dem/io/atomic_file.h"
+#include "dem/io/output_journal.h"
 #include "dem/io/undated_vtk.h"
 
 namespace upgrain::upscale {
@@ -334,15 +336,24 @@ class GridToMesh {
       bool active;
       ~RemoveStaging() {
         std::error_code ec;
-        if (active) fs::remove_all(path, ec);
+        if (!active) return;
+        fs::remove_all(path, ec);
+        try {
+          if (!ec) dem::io::note_removed(path);
+        } catch (const std::exception&) {
+          // The manifest then still lists the folder as being written: a leftover of the run.
+        }
       }
     } cleanup{staging, rank == 0};
 
     on_every_rank(comm_, [&] {
       if (rank != 0) return;
       std::error_code ec;
-      fs::create_directories(folder, ec);
-      if (ec) throw Error("upscale: cannot create " + folder.string() + ": " + ec.message());
+      dem::io::create_folder(folder);
+      // The staging folder first, then the names it will give (docs/output.md, "Manifest").
+      dem::io::note_writing(staging);
+      for (unsigned r = 0; r < ranks; ++r) dem::io::note_writing(folder / piece(r));
+      dem::io::note_writing(folder / record);
       fs::remove_all(staging, ec);  // left by a crashed run with the same process id
       if (!fs::create_directory(staging, ec) || ec)
         throw Error("upscale: cannot create " + staging.string() + ": " + ec.message());
@@ -382,6 +393,8 @@ class GridToMesh {
       });
       for (const std::string& name : pieces) fs::rename(staging / name, folder / name);
       fs::rename(staging / record, folder / record);
+      for (const std::string& name : pieces) dem::io::note_written(folder / name);
+      dem::io::note_written(folder / record);
     });
 
     result_.written_files.push_back((folder / record).string());

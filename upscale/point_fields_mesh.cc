@@ -29,6 +29,7 @@
 
 #include "dem/core/error.h"
 #include "dem/io/atomic_file.h"
+#include "dem/io/output_journal.h"
 #include "dem/io/undated_vtk.h"
 #include "dem/parallel/exchange.h"
 
@@ -259,10 +260,12 @@ class PointFieldsOnMesh {
     data_out.build_patches(at_support_ ? box_.degree : 1);
     data_out.set_flags(DataOutBase::VtkFlags(time, static_cast<unsigned>(std::max(0L, step)), false,
                                              DataOutBase::VtkFlags::best_speed));
+    std::vector<fs::path> piece_paths;
+    for (unsigned r = 0; r < ranks; ++r) piece_paths.push_back(folder / piece(r));
+    if (rank == 0) dem::io::create_folder(folder);
+    dem::io::note_pieces_writing(comm_, piece_paths);  // docs/output.md, "Manifest"
     std::string error;
     try {
-      std::error_code ec;
-      fs::create_directories(folder, ec);
       std::ostringstream vtu;
       data_out.write_vtu(vtu);
       dem::io::write_text_atomically(folder / piece(rank), vtu.str());
@@ -282,6 +285,7 @@ class PointFieldsOnMesh {
       }
     }
     dem::throw_if_any(comm_, error);
+    dem::io::note_pieces_written(comm_, piece_paths);
     result_.written_files.push_back((folder / (basename + ".pvtu")).string());
     for (const std::string& p : pieces) result_.written_files.push_back((folder / p).string());
   }

@@ -1,5 +1,6 @@
 #include "coupling/accuracy/accuracy_study.h"
 
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -15,6 +16,7 @@
 #include "coupling/accuracy/collision_reference.h"
 #include "coupling/accuracy/contact_solver_reference.h"
 #include "coupling/dem_run.h"
+#include "coupling/figure_script.h"
 #include "dem/core/error.h"
 #include "dem/io/atomic_file.h"
 #include "dem/parallel/exchange.h"
@@ -400,13 +402,8 @@ class Study {
       for (const std::string& s : skipped_) md << "- " << s << "\n";
     }
     dem::io::write_text_atomically(folder_ / "accuracy.md", md.str());
-    const std::string script = std::string(UPGRAIN_SCRIPT_DIR) + "/plot_accuracy.py";
-    if (fs::exists(script) && fs::exists("/usr/bin/python3")) {
-      const std::string cmd = "/usr/bin/python3 '" + script + "' '" + folder_.string() + "' > '" +
-                              (folder_ / "plots.log").string() + "' 2>&1";
-      if (std::system(cmd.c_str()) != 0)
-        std::printf("  accuracy: plots not made (see %s)\n", (folder_ / "plots.log").c_str());
-    }
+    if (const FigureRun f = run_figure_script("plot_accuracy.py", folder_, "plots.log", {}); f.ran && !f.succeeded)
+      std::printf("  accuracy: plots not made (see %s)\n", (folder_ / "plots.log").c_str());
     std::printf("  accuracy: %s, %s\n", (folder_ / "accuracy.md").c_str(),
                 (folder_ / "accuracy.csv").c_str());
     return code;

@@ -3,14 +3,17 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <optional>
 #include <regex>
 
 #include "dem/core/error.h"
 #include "dem/io/atomic_file.h"
 #include "dem/io/checksum_block.h"
 #include "dem/io/engine_state_file.h"
+#include "dem/io/fnv1a.h"
 #include "dem/io/hdf5_reader.h"
 #include "dem/io/hdf5_util.h"
+#include "dem/io/output_journal.h"
 #include "dem/io/output_state_file.h"
 #include "upscale/strain/strain_state_file.h"
 
@@ -73,14 +76,9 @@ GridEvaluationState read_grid_state(const hdf5::Reader& in, const std::string& g
 }  // namespace
 
 std::string scene_hash(const std::string& scene) {
-  std::uint64_t h = 14695981039346656037ULL;
-  for (unsigned char c : scene) {
-    h ^= c;
-    h *= 1099511628211ULL;
-  }
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-  return hex;
+  dem::io::Fnv1a h;
+  h.add(scene);
+  return h.hex();
 }
 
 fs::path write_checkpoint(const fs::path& folder, const Checkpoint& c, int keep) {
@@ -99,6 +97,14 @@ fs::path write_checkpoint(const fs::path& folder, const Checkpoint& c, int keep)
     hdf5::write_attribute(file, "time", c.time);
     hdf5::write_attribute(file, "scene", c.scene);
     hdf5::write_attribute(file, "scene_hash", scene_hash(c.scene));
+    // The run's identity and the files it had written, from its open output journal.
+    if (const std::optional<dem::io::OutputManifest> m = dem::io::journal_manifest()) {
+      hdf5::write_attribute(file, "run_id", m->run_id);
+      std::string listed;
+      for (const std::string& p : dem::io::journal_paths()) listed += p + "\n";
+      const std::vector<std::uint8_t> bytes(listed.begin(), listed.end());
+      if (!bytes.empty()) hdf5::write_dataset(file, "outputs", bytes.data(), bytes.size());
+    }
     dem::io::write_engine_state(file, "engine", c.engine);
     hdf5::Handle run(hdf5::create_group(file, "run"), H5Gclose, "create group run");
     const ScheduleState& s = c.run.schedule;
@@ -133,7 +139,7 @@ fs::path write_checkpoint(const fs::path& folder, const Checkpoint& c, int keep)
   const std::vector<fs::path> all = checkpoint_files(folder);
   for (std::size_t k = static_cast<std::size_t>(std::max(keep, 1)); k < all.size(); ++k) {
     std::error_code ec;
-    fs::remove(all[k], ec);
+    if (fs::remove(all[k], ec)) dem::io::note_removed(all[k]);
   }
   return target.final_path();
 }
@@ -166,6 +172,20 @@ Checkpoint read_checkpoint(const fs::path& file) {
   c.scene = in.text_attribute("scene");
   c.scene_hash = in.text_attribute("scene_hash");
   if (scene_hash(c.scene) != c.scene_hash) throw Error(in.where() + "the scene does not match its hash");
+  // Absent from checkpoints written without an output journal (tests, benchmarks).
+  if (in.has_attribute("run_id")) c.run_id = in.text_attribute("run_id");
+  if (in.exists("/outputs")) {
+    const std::vector<std::uint8_t> bytes = in.read_all<std::uint8_t>("/outputs");
+    std::string name;
+    for (const std::uint8_t b : bytes) {
+      if (b != '\n') {
+        name += static_cast<char>(b);
+      } else if (!name.empty()) {
+        c.outputs.push_back(name);
+        name.clear();
+      }
+    }
+  }
   c.engine = dem::io::read_engine_state(in, "/engine");
   if (c.engine.step != c.step) throw Error(in.where() + "the engine's step is not the checkpoint's");
   RunState& r = c.run;

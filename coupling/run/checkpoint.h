@@ -39,6 +39,11 @@ struct Checkpoint {
   double time = 0.0;
   std::string scene;  // the scene's parameters, one entry per line (CheckpointOptions::scene)
   std::string scene_hash;
+  // The run whose folder it belongs to (docs/output.md, "Manifest"): its identity, and what its
+  // manifest listed when the checkpoint was written, so that a restart removes what came after.
+  // Taken from the open output journal by write_checkpoint; empty without one.
+  std::string run_id;
+  std::vector<std::string> outputs;
   dem::EngineState engine;
   RunState run;
 };

@@ -72,26 +72,6 @@ void release_walls(dem::Simulation& sim, const RunSchedule& schedule, ScheduleSt
   }
 }
 
-// A restart's clean-up (rank 0): the files of steps after the checkpoint (snapshots, grid
-// stress and strain, checkpoints), and the temporary files a killed run left behind.
-void remove_outputs_after(const fs::path& folder, long step) {
-  static const std::regex numbered(R"(.*_(\d+)\.h5)");
-  static const std::regex temporary(R"(.*\.tmp\.\d+)");
-  for (const char* sub :
-       {"snapshots", "grid_stress", "grid_strain", "compute_grid_strain", "checkpoints", "force_network"}) {
-    std::error_code ec;
-    for (const fs::directory_entry& e : fs::directory_iterator(folder / sub, ec)) {
-      const std::string name = e.path().filename().string();
-      std::smatch m;
-      const bool later = std::regex_match(name, m, numbered) && std::stol(m[1]) > step;
-      if (later || std::regex_match(name, temporary)) fs::remove_all(e.path(), ec);
-    }
-  }
-  std::error_code ec;
-  for (const fs::directory_entry& e : fs::directory_iterator(folder, ec))
-    if (std::regex_match(e.path().filename().string(), temporary)) fs::remove_all(e.path(), ec);
-}
-
 // One run of the loop, fresh or resumed.
 class SceneRun {
  public:
@@ -362,7 +342,6 @@ RunResult resume_scene(const dem::SceneConfig& scene, const Checkpoint& checkpoi
                        const OutputOptions& output, const ProgressReport& on_progress, MPI_Comm comm,
                        const dem::EngineOptions& options) {
   dem::Simulation sim(scene, checkpoint.engine, comm, options);
-  sim.on_root([&] { remove_outputs_after(output.folder, checkpoint.step); });
   const std::optional<OutputOptions> out = output;
   SceneRun run(sim, control, out, on_progress, &checkpoint.run);
   return run.run();

@@ -6,14 +6,17 @@
 #include <cerrno>
 #include <cstring>
 #include <system_error>
+#include <vector>
 
 #include "dem/core/error.h"
+#include "dem/io/output_journal.h"
 
 namespace upgrain::dem::io {
 
 AtomicFile::AtomicFile(std::filesystem::path final_path) : final_(std::move(final_path)) {
   tmp_ = final_;
   tmp_ += ".tmp." + std::to_string(::getpid());
+  note_writing(final_);
 }
 
 AtomicFile::~AtomicFile() {
@@ -28,6 +31,7 @@ void AtomicFile::commit() {
   std::filesystem::rename(tmp_, final_, ec);
   if (ec) throw Error("cannot rename " + tmp_.string() + " to " + final_.string() + ": " + ec.message());
   committed_ = true;
+  note_written(final_);
 }
 
 void write_bytes(const std::filesystem::path& path, const void* data, std::size_t n,
@@ -62,6 +66,13 @@ void write_text_atomically(const std::filesystem::path& path, const std::string&
 
 void create_folder(const std::filesystem::path& folder) {
   std::error_code ec;
+  // Each folder it makes is entered in the output manifest, parents first.
+  std::vector<std::filesystem::path> made;
+  for (std::filesystem::path f = folder; !f.empty() && !std::filesystem::exists(f, ec); f = f.parent_path()) {
+    made.push_back(f);
+    if (f == f.parent_path()) break;
+  }
+  for (auto it = made.rbegin(); it != made.rend(); ++it) note_folder(*it);
   std::filesystem::create_directories(folder, ec);
   if (ec) throw Error("cannot create folder " + folder.string() + ": " + ec.message());
 }

@@ -9,6 +9,7 @@
 #include <cstring>
 
 #include "dem/core/error.h"
+#include "dem/io/fnv1a.h"
 
 namespace upgrain::dem::io {
 
@@ -16,26 +17,12 @@ namespace {
 
 constexpr const char* kTag = "Upgrain checksum FNV-1a-64";
 
-// 64-bit FNV-1a (Fowler, Noll and Vo): no defence against an adversary, but every changed
-// byte changes it, and it needs no library.
-class Fnv1a {
- public:
-  void add(const unsigned char* data, std::size_t n) {
-    for (std::size_t k = 0; k < n; ++k) {
-      hash_ ^= data[k];
-      hash_ *= 1099511628211ULL;
-    }
-  }
-  [[nodiscard]] std::string block(unsigned long long bytes) const {
-    char text[128];
-    std::snprintf(text, sizeof text, "%s %016llx of %llu bytes\n", kTag,
-                  static_cast<unsigned long long>(hash_), bytes);
-    return text;
-  }
-
- private:
-  std::uint64_t hash_ = 14695981039346656037ULL;
-};
+// The block's text: the tag, the hash and the number of bytes it covers.
+std::string block(const Fnv1a& hash, unsigned long long bytes) {
+  char text[128];
+  std::snprintf(text, sizeof text, "%s %s of %llu bytes\n", kTag, hash.hex().c_str(), bytes);
+  return text;
+}
 
 // A file descriptor closed on every path.
 struct Descriptor {
@@ -51,7 +38,7 @@ void stamp_checksum(std::vector<unsigned char>& image) {
   if (image.size() < kChecksumBlockBytes) throw Error("checksum: the file is shorter than its user block");
   Fnv1a hash;
   hash.add(image.data() + kChecksumBlockBytes, image.size() - kChecksumBlockBytes);
-  const std::string text = hash.block(image.size() - kChecksumBlockBytes);
+  const std::string text = block(hash, image.size() - kChecksumBlockBytes);
   std::fill(image.begin(), image.begin() + kChecksumBlockBytes, 0);
   std::copy(text.begin(), text.end(), image.begin());
 }
@@ -74,11 +61,11 @@ void verify_checksum(const std::filesystem::path& file, const std::string& kind)
     if (got < 0 && errno == EINTR) continue;
     if (got < 0) throw Error(where + ": cannot read: " + std::strerror(errno));
     if (got == 0) break;
-    hash.add(reinterpret_cast<const unsigned char*>(buffer.data()), static_cast<std::size_t>(got));
+    hash.add(buffer.data(), static_cast<std::size_t>(got));
     at += got;
     bytes += static_cast<unsigned long long>(got);
   }
-  if (hash.block(bytes) != stored)
+  if (block(hash, bytes) != stored)
     throw Error(where +
                 ": its bytes do not match its checksum (cut short or corrupted since it was written)");
 }

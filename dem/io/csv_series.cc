@@ -14,6 +14,7 @@
 
 #include "dem/core/error.h"
 #include "dem/io/atomic_file.h"
+#include "dem/io/output_journal.h"
 
 namespace upgrain::dem::io {
 
@@ -29,6 +30,7 @@ void CsvSeries::append(const std::string& rows) {
     return;
   }
   if (rows.empty()) return;
+  note_writing(path_);
   const int fd = ::open(path_.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
   if (fd < 0) throw Error("cannot append to " + path_.string() + ": " + std::strerror(errno));
   struct stat before {};
@@ -46,6 +48,7 @@ void CsvSeries::append(const std::string& rows) {
   if (error != 0 && done > 0 && ::ftruncate(fd, before.st_size) != 0) error = errno;
   ::close(fd);
   if (error != 0) throw Error("cannot append to " + path_.string() + ": " + std::strerror(error));
+  note_appended(path_, rows.data(), rows.size());
   rows_ += added;
 }
 

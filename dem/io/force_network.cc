@@ -164,7 +164,7 @@ void write_force_network_xdmf(const std::filesystem::path& path, const std::vect
 
 void ForceNetworkRecorder::write(const ParticleStore& p, const std::vector<PlaneWall>& walls,
                                  const std::vector<ContactRecord>& records, double time, long step) {
-  std::filesystem::create_directories(folder_ / "force_network");
+  create_folder(folder_ / "force_network");
   char name[64];
   std::snprintf(name, sizeof name, "contacts_%09ld.h5", step);
   files_.push_back(

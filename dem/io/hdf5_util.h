@@ -40,6 +40,11 @@ struct ElementType<std::int32_t> {
   static hid_t file() { return H5T_STD_I32LE; }
 };
 template <>
+struct ElementType<std::uint8_t> {
+  static hid_t memory() { return H5T_NATIVE_UINT8; }
+  static hid_t file() { return H5T_STD_U8LE; }
+};
+template <>
 struct ElementType<std::int64_t> {
   static hid_t memory() { return H5T_NATIVE_INT64; }
   static hid_t file() { return H5T_STD_I64LE; }

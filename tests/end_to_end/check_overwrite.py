@@ -11,8 +11,9 @@ Usage: check_overwrite.py UPGRAIN SCENE WORK
    series must end at the end time, and every JSON file must be valid JSON (no NaN or Infinity,
    which Python's reader would otherwise take), also for a run without gravity, whose ratio of
    kinetic to released energy has no value.
-4. A folder holding other files than a run, or a run and a scene file, is refused with
-   overwrite = true, and keeps them.
+4. A folder holding other files than a run (no manifest), or a run and a scene file (a file its
+   manifest does not list), is refused with overwrite = true, and keeps them
+   (faults.overwrite_keeps_foreign_files tests more such folders).
 """
 import json
 import os
@@ -96,12 +97,12 @@ def main():
     os.makedirs(mine)
     open(os.path.join(mine, 'notes.txt'), 'w').write('my notes\n')
     r = run(upgrain, short, mine, expect_ok=False)
-    if r.returncode == 0 or 'no earlier run' not in r.stderr or files(mine) != ['notes.txt']:
+    if r.returncode == 0 or 'no manifest of a run' not in r.stderr or files(mine) != ['notes.txt']:
         sys.exit(f'overwrite of a folder that holds no run was not refused, or touched it: {r.stderr}')
     # Nor is a run's folder that holds the user's scene file: overwrite would remove it.
     shutil.copy(short, os.path.join(out, 'mine.prm'))
     r = run(upgrain, short, out, expect_ok=False)
-    if r.returncode == 0 or 'holds the scene file mine.prm' not in r.stderr or 'mine.prm' not in files(out):
+    if r.returncode == 0 or 'did not write (mine.prm)' not in r.stderr or 'mine.prm' not in files(out):
         sys.exit(f'overwrite of a folder holding a scene file was not refused, or removed it: {r.stderr}')
     print(f'overwrite: {len(long_files)} files of the longer run replaced by the {len(want)} of the new one; '
           f'{checked} JSON files valid')

@@ -4,7 +4,8 @@
 Usage: compare_rank_outputs.py [--other-blocks | --no-checkpoints] [--meshes] REFERENCE_FOLDER OTHER_FOLDER...
 
 - Every HDF5 file (snapshots, grid stress, grid strain), XDMF file and grid CSV table:
-  byte-identical.
+  byte-identical; the checkpoints in every dataset and attribute but the run's identity, which
+  two runs do not share.
 - time_series.csv and summary.json: every number bitwise equal (the cumulative dissipation is
   an exact sum, docs/parallel.md), but the timings and how the work was shared.
 Report, plots and logs are skipped, and so are the deal.II meshes (a piece per rank) unless
@@ -29,6 +30,9 @@ BLOCK_FILES = {'compute_grid_stress.csv', 'compute_grid_strain.csv'}
 BLOCK_FOLDERS = ('compute_grid_strain' + os.sep, 'checkpoints' + os.sep)
 SKIP_FILES = set()
 SKIP_FOLDERS = ()
+# The run's bookkeeping (docs/output.md, "Manifest", "Lock"): its identity, checksums of the
+# timed report and its processes differ from run to run by design.
+BOOKKEEPING = '.upgrain' + os.sep
 # Timings, and how the work was shared, which depend on the rank count by design.
 TIMINGS = {'wall_time_s', 'particle_steps_per_second', 'mpi_ranks', 'load_rebalances', 'load_owned_imbalance',
            'load_compute_imbalance', 'load_communication_share'}
@@ -39,9 +43,39 @@ def files(folder):
     for root, _, names in os.walk(folder):
         for n in names:
             rel = os.path.relpath(os.path.join(root, n), folder)
-            if not rel.startswith(SKIP_FOLDERS):
+            if not rel.startswith(SKIP_FOLDERS) and not rel.startswith(BOOKKEEPING):
                 out.append(rel)
     return sorted(out)
+
+
+# A checkpoint names the run it belongs to (docs/restart.md): its identity differs between two
+# runs by design, so checkpoints are compared by content, every dataset and attribute but it.
+CHECKPOINT_IDENTITY = {'run_id'}
+
+
+def checkpoint_differences(a, b):
+    import h5py
+    import numpy as np
+    out = []
+
+    def items(path):
+        found = {}
+        with h5py.File(path, 'r') as h:
+            def visit(name, obj):
+                for k, v in obj.attrs.items():
+                    if k not in CHECKPOINT_IDENTITY:
+                        found[f'{name}@{k}'] = np.asarray(v).tobytes()
+                if isinstance(obj, h5py.Dataset):
+                    found[name] = obj[()].tobytes() if obj.shape != () else np.asarray(obj[()]).tobytes()
+            visit('/', h)
+            h.visititems(visit)
+        return found
+
+    ia, ib = items(a), items(b)
+    for k in sorted(set(ia) | set(ib)):
+        if ia.get(k) != ib.get(k):
+            out.append(k)
+    return out
 
 
 def compare(ref, other):
@@ -74,6 +108,12 @@ def compare(ref, other):
                     continue
                 if ja[key] != jb.get(key):
                     problems.append(f'{f} {key}: {ja[key]} vs {jb.get(key)}')
+        elif f.startswith('checkpoints' + os.sep) and f.endswith('.h5') and a != b:
+            differ = checkpoint_differences(os.path.join(ref, f), os.path.join(other, f))
+            if differ:
+                problems.append(f'{f}: differs in {differ[:5]}')
+            else:
+                identical += 1
         elif a != b:
             problems.append(f'{f}: bytes differ')
         else:
