@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -16,6 +15,7 @@
 #include "coupling/coarse_graining_study.h"
 #include "coupling/dem_fem_comparison.h"
 #include "coupling/dem_run.h"
+#include "coupling/plot_script.h"
 #include "coupling/run/stop_request.h"
 #include "coupling/strain_report.h"
 #include "coupling/study_report.h"
@@ -271,9 +271,13 @@ int run_study(const SceneInput& scene_input, MPI_Comm comm,
     if (r.side_wall_contacts)
       d.wall_shear = dem_wall_shear(*r.side_wall_contacts, grid_levels(d.grid), box_perimeter(in.scene));
   });
+  // A resumed run's earlier segments count in its stage and in the whole study (rank 0's
+  // figure; run_history.h).
+  const double earlier = r.wall_seconds - r.segment_seconds;
   timings.emplace_back("DEM deposition, relaxation and grid stress (" + std::to_string(ranks) + " rank" +
-                           (ranks > 1 ? "s, " : ", ") + dem::to_string(in.parallel.summation) + " summation)",
-                       since(t0));
+                           (ranks > 1 ? "s, " : ", ") + dem::to_string(in.parallel.summation) + " summation" +
+                           (r.history.resumed_at.empty() ? "" : ", every segment") + ")",
+                       earlier + since(t0));
   broadcast(d, comm);
 
   // 1b. The continua's material measured on this bed (Continuum/material from; docs/study.md).
@@ -360,22 +364,17 @@ int run_study(const SceneInput& scene_input, MPI_Comm comm,
     t0 = Clock::now();
     write_comparison_tables(folder, c, d.stress);
     std::vector<std::string> plots;
-    const std::string script = std::string(UPGRAIN_SCRIPT_DIR) + "/plot_study.py";
-    if (std::filesystem::exists(script) && std::filesystem::exists("/usr/bin/python3")) {
-      const std::string cmd = "/usr/bin/python3 '" + script + "' '" + folder.string() + "' > '" +
-                              (folder / "plots.log").string() + "' 2>&1";
-      if (std::system(cmd.c_str()) == 0)
-        for (const char* p : {"profiles_szz.png", "lateral_ratio.png", "wall_share.png", "wall_shear.png",
-                              "level_spread.png"})
-          if (std::filesystem::exists(folder / p)) plots.emplace_back(p);
-    }
+    if (run_plot_script(std::string(UPGRAIN_SCRIPT_DIR) + "/plot_study.py", folder, folder / "plots.log"))
+      for (const char* p :
+           {"profiles_szz.png", "lateral_ratio.png", "wall_share.png", "wall_shear.png", "level_spread.png"})
+        if (std::filesystem::exists(folder / p)) plots.emplace_back(p);
     std::vector<std::string> strain_plots;
     if (r.final_strain) {
       (void)write_strain_mesh(folder);
       strain_plots = plot_strain(folder);
     }
     timings.emplace_back("tables and plots", since(t0));
-    timings.emplace_back("whole study", since(t_all));
+    timings.emplace_back("whole study", earlier + since(t_all));
     const StudyRecord record{in, r,       d,     problem,      sol,   frictional, failed,     janssen,
                              c,  timings, plots, strain_plots, ranks, cg,         calibration};
     write_report(folder, record);
