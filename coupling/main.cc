@@ -231,7 +231,11 @@ upgrain::coupling::SceneInput restart_input(const std::string& dir, const std::s
         checkpoint = std::make_shared<coupling::Checkpoint>(coupling::newest_checkpoint(dir, refused, end));
         for (const std::string& r : refused) notes.push_back("refused " + r);
       } catch (const std::exception& e) {
-        error = e.what();
+        error = "cannot continue the run in " + dir + " to its end step " + std::to_string(end) +
+                ": its newest checkpoint, " + newest +
+                ", is at that step, and a restart takes at least one step (the end of a run is made from "
+                "what its last step left in memory, which a checkpoint does not hold); " +
+                e.what() + ". Give a later end time, or run the scene again";
       }
     }
     dem::throw_if_any(MPI_COMM_WORLD, error);
