@@ -1,9 +1,9 @@
 #include "coupling/figure_script.h"
 
-#include <cstdlib>
 #include <map>
 #include <system_error>
 
+#include "coupling/plot_script.h"
 #include "dem/io/output_journal.h"
 
 namespace upgrain::coupling {
@@ -32,9 +32,7 @@ FigureRun run_figure_script(const std::string& script, const fs::path& folder, c
   const auto before = listing(folder);
   dem::io::note_writing(folder / log);
   for (const std::string& f : figures) dem::io::note_writing(folder / f);
-  const std::string cmd =
-      "/usr/bin/python3 '" + path + "' '" + folder.string() + "' > '" + (folder / log).string() + "' 2>&1";
-  r.succeeded = std::system(cmd.c_str()) == 0;
+  r.succeeded = run_plot_script(path, folder, folder / log);
   std::error_code ec;
   for (const std::string& f : figures) {
     if (!fs::exists(folder / f, ec)) {

@@ -1,6 +1,7 @@
 #pragma once
 // The figure scripts beside the driver's sources (plot_study.py, plot_strain.py,
-// plot_accuracy.py), run with /usr/bin/python3 on an output folder. What a script writes is
+// plot_accuracy.py), run with /usr/bin/python3 on an output folder, out of a stop signal's reach
+// (plot_script.h). What a script writes is
 // entered in the folder's manifest (docs/output.md, "Manifest"): the figures it is known to make
 // before it runs, so that a run killed meanwhile still knows them for its own, and after it every
 // file of the folder it made or changed.

@@ -20,6 +20,7 @@
 #include "coupling/run/checkpoint.h"
 #include "coupling/run/folder_lock.h"
 #include "coupling/run/output_folder.h"
+#include "coupling/run/resume_point.h"
 #include "coupling/run/scene_run.h"
 #include "coupling/run/stop_request.h"
 #include "coupling/run/stress_summary.h"
@@ -101,6 +102,9 @@ void print_deposition(const upgrain::coupling::SceneInput& in, const upgrain::co
   std::printf("\n  done: %ld steps, %.3g s simulated in %.1f s (%.3g particle-steps/s)%s\n", r.steps,
               r.simulated_time, r.wall_seconds, r.particle_steps_per_second,
               r.stopped_at_rest ? ", stopped at rest" : "");
+  if (!r.history.resumed_at.empty())
+    std::printf("  over %zu segments (resumed at step %ld last), this one %.1f s\n",
+                r.history.resumed_at.size() + 1, r.history.resumed_at.back(), r.segment_seconds);
   if (r.relaxation)
     std::printf("  relaxed to static equilibrium: %ld FIRE steps, residual force %.2e, torque %.2e%s\n",
                 r.relaxation->steps, r.relaxation->max_force_residual, r.relaxation->max_torque_residual,
@@ -168,35 +172,43 @@ void print_deposition(const upgrain::coupling::SceneInput& in, const upgrain::co
 
 // The scene of a run to continue (upgrain --restart DIR [scene.prm]): rank 0 reads the newest
 // valid checkpoint of DIR, every rank the scene it stores; a scene file given as well may change
-// only what a restart may (coupling::differing_parameters). `notes` receives what the log
-// should say (refused checkpoints, where the run resumes), on rank 0.
+// only what a restart may (coupling::differing_parameters), and may not end before the
+// checkpoint (coupling/run/resume_point.h). `notes` receives what the log should say (refused
+// checkpoints, where the run resumes), on rank 0.
 upgrain::coupling::SceneInput restart_input(const std::string& dir, const std::string& file,
                                             std::vector<std::string>& notes) {
   using namespace upgrain;
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   std::shared_ptr<coupling::Checkpoint> checkpoint;
-  std::string scene, error;
+  std::string scene, newest, error;
+  long step = 0;
+  double time = 0.0;
   if (rank == 0) {
     try {
       std::vector<std::string> refused;
       checkpoint = std::make_shared<coupling::Checkpoint>(coupling::newest_checkpoint(dir, refused));
       for (const std::string& r : refused) notes.push_back("refused " + r);
+      (void)coupling::check_run_identity(dir, *checkpoint);  // before its scene is taken
       scene = checkpoint->scene;
-      char where[256];
-      std::snprintf(where, sizeof where, "resuming from %s at step %ld (t = %.9g s)",
-                    checkpoint->file.c_str(), checkpoint->step, checkpoint->time);
-      notes.push_back(where);
+      newest = checkpoint->file.string();
+      step = checkpoint->step;
+      time = checkpoint->time;
     } catch (const std::exception& e) {
       error = e.what();
     }
   }
   dem::throw_if_any(MPI_COMM_WORLD, error);
-  int length = static_cast<int>(scene.size());
-  MPI_Bcast(&length, 1, MPI_INT, 0, MPI_COMM_WORLD);
-  scene.resize(static_cast<std::size_t>(length));
-  MPI_Bcast(scene.data(), length, MPI_CHAR, 0, MPI_COMM_WORLD);
+  MPI_Bcast(&step, 1, MPI_LONG, 0, MPI_COMM_WORLD);
+  MPI_Bcast(&time, 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  for (std::string* text : {&scene, &newest}) {
+    int length = static_cast<int>(text->size());
+    MPI_Bcast(&length, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    text->resize(static_cast<std::size_t>(length));
+    MPI_Bcast(text->data(), length, MPI_CHAR, 0, MPI_COMM_WORLD);
+  }
   coupling::SceneInput in = coupling::parse_scene_text(scene, dir + ": the scene of its checkpoint");
+  const long checkpoint_end = coupling::end_step(in.scene);
   if (!file.empty()) {
     // The given file's values for what a restart may change, the checkpoint's for the rest.
     coupling::SceneInput given = coupling::parse_scene_text(coupling::read_scene_bytes(file), file);
@@ -213,6 +225,36 @@ upgrain::coupling::SceneInput restart_input(const std::string& dir, const std::s
     in.scene.end_time = given.scene.end_time;
     in.output.checkpoint = given.output.checkpoint;  // with the given file's text: its end time
     in.parallel = given.parallel;
+  }
+  // Every rank has the checkpoint's step and the end time: a refusal is every rank's.
+  const long end = coupling::end_step(in.scene);
+  coupling::refuse_end_before(file.empty() ? dir : file, in.scene.end_time, end, newest, step, time);
+  if (!coupling::may_continue_from(step, end, checkpoint_end, in.control.relax_at_end)) {
+    if (rank == 0) {
+      try {
+        notes.push_back("checkpoint " + checkpoint->file.string() + " is at the run's end step, " +
+                        std::to_string(end) +
+                        ": the end of a run is made from what that step left in memory, which a checkpoint "
+                        "does not hold; continuing from the one before");
+        std::vector<std::string> refused;
+        checkpoint = std::make_shared<coupling::Checkpoint>(coupling::newest_checkpoint(dir, refused, end));
+        for (const std::string& r : refused) notes.push_back("refused " + r);
+        (void)coupling::check_run_identity(dir, *checkpoint);
+      } catch (const std::exception& e) {
+        error = "cannot continue the run in " + dir + " to its end step " + std::to_string(end) +
+                ": its newest checkpoint, " + newest +
+                ", is at that step, and a restart takes at least one step (the end of a run is made from "
+                "what its last step left in memory, which a checkpoint does not hold); " +
+                e.what() + ". Give a later end time, or run the scene again";
+      }
+    }
+    dem::throw_if_any(MPI_COMM_WORLD, error);
+  }
+  if (rank == 0) {
+    char where[256];
+    std::snprintf(where, sizeof where, "resuming from %s at step %ld (t = %.9g s)", checkpoint->file.c_str(),
+                  checkpoint->step, checkpoint->time);
+    notes.push_back(where);
   }
   // Later errors name what the user ran, not the checkpoint's copy of the scene.
   in.source = file.empty() ? "upgrain --restart " + dir : file;
@@ -258,17 +300,7 @@ void open_journal(const upgrain::coupling::SceneInput& in) {
     dem::io::open_output_journal(folder, std::move(m));
     return;
   }
-  dem::io::OutputManifest m = dem::io::read_manifest(folder);
-  const coupling::Checkpoint& c = *in.resume;
-  if (c.run_id.empty())
-    throw Error("checkpoint " + c.file.string() +
-                " names no run: it was not written by this run (its folder's manifest names run " + m.run_id +
-                "); remove it from " + (folder / "checkpoints").string());
-  if (c.run_id != m.run_id)
-    throw Error("checkpoint " + c.file.string() + " is of run " + c.run_id + ", but the folder " + folder.string() +
-                " holds run " + m.run_id +
-                " (its manifest): a checkpoint of another run was put there; remove it from " +
-                (folder / "checkpoints").string());
+  dem::io::OutputManifest m = coupling::check_run_identity(folder, *in.resume);
   m.status = "running";
   dem::io::open_output_journal(folder, std::move(m));
 }
@@ -347,6 +379,7 @@ int run(int argc, char** argv) {
     } else {
       in = file.empty() ? coupling::default_scene() : coupling::read_scene_file(file);
       if (!output_override.empty()) in.output.folder = output_override;
+      in.output.checkpoint.source = in.source;  // a restarted run's report names it
     }
   } catch (const std::exception& e) {
     refusal = e.what();
@@ -445,23 +478,38 @@ int run(int argc, char** argv) {
     if (study == "accuracy") return coupling::run_accuracy_study(in, MPI_COMM_WORLD);
     if (study == "calibration") return coupling::run_calibration_study(in, MPI_COMM_WORLD, progress);
     if (in.study.compare_with_continuum) {
-      return coupling::run_study(in, MPI_COMM_WORLD, progress,
-                                 [&](const coupling::RunResult& r) { print_deposition(in, r); });
-    }
-    const coupling::RunResult r = coupling::run_dem(in, MPI_COMM_WORLD, progress);
-    if (rank == 0) {
-      print_deposition(in, r);
-      if (r.final_strain) {  // the strain on the mesh; report.md with the strain section and plots
-        (void)coupling::write_strain_mesh(in.output.folder);
-        coupling::write_run_report(in.output.folder, in, r, coupling::plot_strain(in.output.folder));
-        std::printf("  report: %s\n", (in.output.folder / "report.md").c_str());
+      if (const int code = coupling::run_study(
+              in, MPI_COMM_WORLD, progress, [&](const coupling::RunResult& r) { print_deposition(in, r); });
+          code != 0)
+        return code;
+    } else {
+      const coupling::RunResult r = coupling::run_dem(in, MPI_COMM_WORLD, progress);
+      if (rank == 0) {
+        print_deposition(in, r);
+        if (r.final_strain) {  // the strain on the mesh; report.md with the strain section and plots
+          (void)coupling::write_strain_mesh(in.output.folder);
+          coupling::write_run_report(in.output.folder, in, r, coupling::plot_strain(in.output.folder));
+          std::printf("  report: %s\n", (in.output.folder / "report.md").c_str());
+        }
       }
+    }
+    // A stop request after the last step: the end of the run, seconds of writing (or a study's
+    // continua), was finished first; it is not ignored either (docs/restart.md).
+    if (const int signal = coupling::stop_signal_received(MPI_COMM_WORLD); signal != 0) {
+      if (rank == 0) {
+        std::printf(
+            "\n  stopped by signal %d (%s) after the last step, while the run wrote its results: they were "
+            "finished first, and the output in %s is complete (nothing to continue)\n",
+            signal, strsignal(signal), in.output.folder.c_str());
+        std::fflush(stdout);
+      }
+      return 128 + signal;
     }
     return 0;
   };
   try {
     const int code = run_it();
-    journal.status = code == 0 ? "finished" : "failed";
+    journal.status = code == 0 ? "finished" : code > 128 ? "stopped" : "failed";
     return code;
   } catch (const coupling::RunStopped& stopped) {
     journal.status = "stopped";

@@ -1,12 +1,11 @@
 #include "coupling/strain_report.h"
 
-
 #include <algorithm>
-#include <cstdlib>
 #include <sstream>
 
 #include "coupling/figure_script.h"
 #include "coupling/report_format.h"
+#include "coupling/run_account.h"
 #include "dem/io/atomic_file.h"
 #include "dem/io/grid_stress_output.h"
 #include "upscale/grid_mesh.h"
@@ -119,7 +118,7 @@ void write_run_report(const std::filesystem::path& folder, const SceneInput& in,
   const dem::SceneConfig& s = in.scene;
   std::ostringstream m;
   m << "# Upgrain run\n\n"
-    << "Scene: `" << in.source
+    << "Scene: `" << scene_source(in, r)
     << "`. Written by `upgrain` (no continuum study: 'Study/compare with continuum' "
     << "is false).\n\n## Parameters\n\n| quantity | value |\n|---|---|\n"
     << "| grains | " << s.particles.count << grain_kind(s.particles.shapes)
@@ -130,10 +129,10 @@ void write_run_report(const std::filesystem::path& folder, const SceneInput& in,
     << "| container | " << s.container.lx << " m x " << s.container.ly << " m |\n"
     << "| collapse | " << collapse_of(in) << " |\n"
     << "| time step, end time | " << s.time_step << " s, " << s.end_time << " s |\n\n"
-    << "## Run\n\n- " << r.steps << " steps, " << fmt(r.simulated_time) << " s simulated in "
-    << fmt(r.wall_seconds, 3) << " s" << (r.stopped_at_rest ? ", stopped at rest" : "")
-    << ".\n- Energy balance error " << fmt(r.energy_balance_error, 3) << ", kinetic / released "
-    << fmt(r.kinetic_to_released, 3) << "; " << r.bed.particles_outside
+    << "## Run\n\n- " << r.steps << " steps, " << fmt(r.simulated_time) << " s simulated"
+    << (r.stopped_at_rest ? ", stopped at rest" : "") << ".\n"
+    << wall_clock_line(r) << "- Energy balance error " << fmt(r.energy_balance_error, 3)
+    << ", kinetic / released " << fmt(r.kinetic_to_released, 3) << "; " << r.bed.particles_outside
     << " grains outside the box's footprint.\n\n";
   if (r.final_strain) m << strain_section(in, *r.final_strain, folder, plots);
   dem::io::write_text_atomically(folder / "report.md", m.str());

@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -272,9 +271,13 @@ int run_study(const SceneInput& scene_input, MPI_Comm comm,
     if (r.side_wall_contacts)
       d.wall_shear = dem_wall_shear(*r.side_wall_contacts, grid_levels(d.grid), box_perimeter(in.scene));
   });
+  // A resumed run's earlier segments count in its stage and in the whole study (rank 0's
+  // figure; run_history.h).
+  const double earlier = r.wall_seconds - r.segment_seconds;
   timings.emplace_back("DEM deposition, relaxation and grid stress (" + std::to_string(ranks) + " rank" +
-                           (ranks > 1 ? "s, " : ", ") + dem::to_string(in.parallel.summation) + " summation)",
-                       since(t0));
+                           (ranks > 1 ? "s, " : ", ") + dem::to_string(in.parallel.summation) + " summation" +
+                           (r.history.resumed_at.empty() ? "" : ", every segment") + ")",
+                       earlier + since(t0));
   broadcast(d, comm);
 
   // 1b. The continua's material measured on this bed (Continuum/material from; docs/study.md).
@@ -371,7 +374,7 @@ int run_study(const SceneInput& scene_input, MPI_Comm comm,
       strain_plots = plot_strain(folder);
     }
     timings.emplace_back("tables and plots", since(t0));
-    timings.emplace_back("whole study", since(t_all));
+    timings.emplace_back("whole study", earlier + since(t_all));
     const StudyRecord record{in, r,       d,     problem,      sol,   frictional, failed,     janssen,
                              c,  timings, plots, strain_plots, ranks, cg,         calibration};
     write_report(folder, record);

@@ -6,6 +6,7 @@
 #include <tuple>
 
 #include "coupling/report_format.h"
+#include "coupling/run_account.h"
 #include "coupling/strain_report.h"
 #include "coupling/wall_shear_profile.h"
 #include "dem/io/atomic_file.h"
@@ -167,7 +168,8 @@ void headline_section(std::ostringstream& m, const StudyRecord& s) {
               ? std::string()
               : "; **not converged**: the step limit (`Study/max relaxation steps`) ended it "
                 "above `Study/relaxation tolerance`");
-  m << ".\n- Weight over the floor area: " << fmt(weight / area)
+  m << ".\n"
+    << wall_clock_line(r) << "- Weight over the floor area: " << fmt(weight / area)
     << " Pa. Floor force over area: " << fmt(-s.dem.floor_force.z() / area) << " Pa.\n";
   m << "- Share of the weight the side walls carry: DEM " << percent(c.dem_wall_share);
   for (const ContinuumResult& cr : c.continua) m << "; " << cr.label << " " << percent(cr.wall_share);
@@ -336,7 +338,7 @@ void wall_shear_section(std::ostringstream& m, const StudyRecord& s) {
 void write_report(const std::filesystem::path& folder, const StudyRecord& s) {
   std::ostringstream m;
   m << "# Upgrain study: DEM bed against the continua\n\n"
-    << "Scene: `" << s.in.source << "`. Written by `upgrain` on " << s.ranks << " MPI rank(s). "
+    << "Scene: `" << scene_source(s.in, s.run) << "`. Written by `upgrain` on " << s.ranks << " MPI rank(s). "
     << "How to read it: docs/study.md.\n\n";
   parameters_section(m, s);
   material_section(m, s);

@@ -1,6 +1,7 @@
 #include "coupling/run/checkpoint.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <optional>
@@ -73,6 +74,31 @@ GridEvaluationState read_grid_state(const hdf5::Reader& in, const std::string& g
   return s;
 }
 
+void write_history(hid_t run, const RunHistory& h) {
+  hdf5::write_attribute(run, "wall_seconds", h.wall_seconds);
+  hdf5::write_attribute(run, "scene_source", h.scene_source);
+  const std::vector<std::int64_t> resumed(h.resumed_at.begin(), h.resumed_at.end());
+  if (!resumed.empty()) hdf5::write_dataset(run, "resumed_at", resumed.data(), resumed.size());
+}
+
+// Absent from the checkpoints of runs before the history was kept: the earlier segments' time
+// is not known (NaN), and the scene's name is the restart's.
+RunHistory read_history(const hdf5::Reader& in, long step) {
+  RunHistory h;
+  h.wall_seconds = std::nan("");
+  if (in.has_attribute("wall_seconds", "/run")) {
+    h.wall_seconds = in.attribute("wall_seconds", "/run");
+    if (!std::isnan(h.wall_seconds) && !(h.wall_seconds >= 0.0 && std::isfinite(h.wall_seconds)))
+      throw Error(in.where() + "attribute wall_seconds of /run is not a time in seconds");
+  }
+  if (in.has_attribute("scene_source", "/run")) h.scene_source = in.text_attribute("scene_source", "/run");
+  for (std::int64_t s : in.read_all<std::int64_t>("/run/resumed_at", 1, true)) {
+    if (s < 0 || s > step) throw Error(in.where() + "/run/resumed_at holds a step outside the run so far");
+    h.resumed_at.push_back(static_cast<long>(s));
+  }
+  return h;
+}
+
 }  // namespace
 
 std::string scene_hash(const std::string& scene) {
@@ -101,7 +127,10 @@ fs::path write_checkpoint(const fs::path& folder, const Checkpoint& c, int keep)
     if (const std::optional<dem::io::OutputManifest> m = dem::io::journal_manifest()) {
       hdf5::write_attribute(file, "run_id", m->run_id);
       std::string listed;
-      for (const std::string& p : dem::io::journal_paths()) listed += p + "\n";
+      // The checkpoints themselves are left out: which older ones are kept depends on where the
+      // run was resumed, and a restart keeps those up to its own by their step.
+      for (const std::string& p : dem::io::journal_paths())
+        if (p.rfind("checkpoints/", 0) != 0) listed += p + "\n";
       const std::vector<std::uint8_t> bytes(listed.begin(), listed.end());
       if (!bytes.empty()) hdf5::write_dataset(file, "outputs", bytes.data(), bytes.size());
     }
@@ -119,6 +148,7 @@ fs::path write_checkpoint(const fs::path& folder, const Checkpoint& c, int keep)
     if (!c.run.files.wall_origins.empty()) hdf5::write_vectors(run, "wall_origins", c.run.files.wall_origins);
     dem::io::write_snapshot_list(run, "snapshots", c.run.files.snapshots);
     if (c.run.grids) write_grid_state(run, c.run.grid_state);
+    write_history(run, c.run.history);
     if (c.run.cg_reference) {
       const upscale::cg::ReferencePositions& ref = *c.run.cg_reference;
       hdf5::Handle g(hdf5::create_group(run, "cg_reference"), H5Gclose, "create group cg_reference");
@@ -213,6 +243,7 @@ Checkpoint read_checkpoint(const fs::path& file) {
                              : dem::StressFormula::bagi;
     r.grid_state = read_grid_state(in, "/run/grids", formula);
   }
+  r.history = read_history(in, c.step);
   if (in.exists("/run/cg_reference")) {
     upscale::cg::ReferencePositions ref;
     ref.time = in.attribute("time", "/run/cg_reference");
@@ -226,8 +257,14 @@ Checkpoint read_checkpoint(const fs::path& file) {
   return c;
 }
 
-Checkpoint newest_checkpoint(const fs::path& folder, std::vector<std::string>& refused) {
-  const std::vector<fs::path> files = checkpoint_files(folder);
+Checkpoint newest_checkpoint(const fs::path& folder, std::vector<std::string>& refused, long before_step) {
+  std::vector<fs::path> files = checkpoint_files(folder);
+  if (before_step >= 0) {
+    std::erase_if(files, [&](const fs::path& f) { return step_of(f) >= before_step; });
+    if (files.empty())
+      throw Error("no checkpoint in " + (folder / "checkpoints").string() + " before step " +
+                  std::to_string(before_step));
+  }
   if (files.empty()) throw Error("no checkpoint in " + (folder / "checkpoints").string());
   for (const fs::path& f : files) {
     try {

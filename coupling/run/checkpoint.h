@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "coupling/run/grid_evaluation.h"
+#include "coupling/run/run_history.h"
 #include "coupling/run/run_schedule.h"
 #include "dem/engine/engine_state.h"
 #include "dem/engine/pour.h"
@@ -31,6 +32,8 @@ struct RunState {
   GridEvaluationState grid_state;
   // The coarse-grained displacement's reference, once taken (docs/coarse-graining.md).
   std::optional<upscale::cg::ReferencePositions> cg_reference;
+  // The segments before this checkpoint: wall time, resumes, the scene's name (run_history.h).
+  RunHistory history;
 };
 
 struct Checkpoint {
@@ -63,9 +66,10 @@ std::vector<std::filesystem::path> checkpoint_files(const std::filesystem::path&
 // not match its checksum, not HDF5, of another version, a part missing or out of range).
 Checkpoint read_checkpoint(const std::filesystem::path& file);
 
-// The newest checkpoint of `folder` that reads whole. Each newer one that does not is named in
-// `refused` ("checkpoint <file>: <reason>"). Throws upgrain::Error with the newest one's reason
-// when none reads.
-Checkpoint newest_checkpoint(const std::filesystem::path& folder, std::vector<std::string>& refused);
+// The newest checkpoint of `folder` that reads whole, of a step before `before_step` when it is
+// given. Each newer one that does not read is named in `refused` ("checkpoint <file>:
+// <reason>"). Throws upgrain::Error with the newest one's reason when none reads.
+Checkpoint newest_checkpoint(const std::filesystem::path& folder, std::vector<std::string>& refused,
+                             long before_step = -1);
 
 }  // namespace upgrain::coupling

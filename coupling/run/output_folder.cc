@@ -133,6 +133,23 @@ Verification verify_output_folder(const fs::path& folder) {
   return v;
 }
 
+dem::io::OutputManifest check_run_identity(const fs::path& folder, const Checkpoint& c) {
+  if (!dem::io::has_manifest(folder))
+    throw Error(folder.string() + " holds no manifest of a run (" + dem::io::manifest_path(folder).string() +
+                "), so a restart cannot tell the run's files from others; it was not written by this version "
+                "of upgrain");
+  dem::io::OutputManifest m = dem::io::read_manifest(folder);
+  const std::string where = (folder / "checkpoints").string();
+  if (c.run_id.empty())
+    throw Error("checkpoint " + c.file.string() + " names no run, so it is not of the run " + m.run_id +
+                " that the folder's manifest names; remove it from " + where);
+  if (c.run_id != m.run_id)
+    throw Error("checkpoint " + c.file.string() + " is of run " + c.run_id + ", but the folder " + folder.string() +
+                " holds run " + m.run_id + " (its manifest): a checkpoint of another run was put there; remove it from " +
+                where);
+  return m;
+}
+
 std::string host_name() {
   char host[256] = "unknown";
   ::gethostname(host, sizeof host - 1);

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "coupling/run/checkpoint.h"
 #include "dem/io/output_manifest.h"
 
 namespace upgrain::coupling {
@@ -39,6 +40,11 @@ struct Verification {
   std::vector<std::string> lines;
 };
 Verification verify_output_folder(const std::filesystem::path& folder);
+
+// The manifest of `folder`, once `checkpoint` is known to be of its run (docs/restart.md): an
+// upgrain::Error naming both runs when it is another run's (a checkpoint copied there), or names
+// none, or the folder has no manifest.
+dem::io::OutputManifest check_run_identity(const std::filesystem::path& folder, const Checkpoint& checkpoint);
 
 // A new run's identity: the UTC time, the host, the process and a random part.
 std::string new_run_id();

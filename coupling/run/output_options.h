@@ -22,6 +22,9 @@ struct CheckpointOptions {
   // The scene's parameters as the driver read them (every entry, one per line), stored with
   // their hash so that a restart continues the same scene.
   std::string scene;
+  // The scene's name as the log gives it (SceneInput::source): a restarted run's report names
+  // the scene it was started with (run_history.h).
+  std::string source;
 };
 
 struct OutputOptions {

@@ -16,6 +16,11 @@ std::string quoted(std::string s) {
   s.push_back('"');
   return s;
 }
+std::string steps_list(const std::vector<long>& steps) {
+  std::string a = "[";
+  for (std::size_t k = 0; k < steps.size(); ++k) a += (k ? ", " : "") + std::to_string(steps[k]);
+  return a + "]";
+}
 }  // namespace
 
 void measure_final_state(dem::Simulation& sim, double wall_seconds, long steps_taken, RunResult& r) {
@@ -65,6 +70,8 @@ std::map<std::string, std::string> summary_entries(const dem::Simulation& sim, c
       {"steps", num(static_cast<double>(r.steps))},
       {"simulated_time_s", num(r.simulated_time)},
       {"wall_time_s", num(r.wall_seconds)},
+      {"segment_wall_time_s", num(r.segment_seconds)},
+      {"resumed_at_steps", steps_list(r.history.resumed_at)},
       {"particle_steps_per_second", num(r.particle_steps_per_second)},
       {"stopped_at_rest", r.stopped_at_rest ? "true" : "false"},
       {"kinetic_energy_J", num(r.energy.kinetic())},

@@ -8,6 +8,7 @@
 
 #include "coupling/run/cg_capture.h"
 #include "coupling/run/output_options.h"
+#include "coupling/run/run_history.h"
 #include "dem/analysis/bed_state.h"
 #include "dem/engine/diagnostics.h"
 #include "dem/engine/energy.h"
@@ -30,8 +31,13 @@ struct SideWallContact {
 struct RunResult {
   long steps = 0;
   double simulated_time = 0.0;
+  // Over every segment of a restarted run (history.wall_seconds at the checkpoint it resumed
+  // from, and this segment's), and this segment's alone.
   double wall_seconds = 0.0;
-  double particle_steps_per_second = 0.0;
+  double segment_seconds = 0.0;
+  double particle_steps_per_second = 0.0;  // the steps of every segment over wall_seconds
+  // The scene the run was started with and where it was resumed (rank 0's).
+  RunHistory history;
   dem::EnergyBalance energy;
   double energy_balance_error = 0.0;
   double kinetic_to_released = 0.0;  // kinetic energy / potential energy released
@@ -61,7 +67,7 @@ struct RunResult {
 
 // The figures of the engine's final state into `r` (collective; the bed and the mass on rank
 // 0): steps, time, energies, diagnostics, load, wall forces, bed. `wall_seconds` is the time the
-// run took for its `steps_taken` steps (a resumed run's, since its checkpoint).
+// run took for its `steps_taken` steps (a resumed run's over every segment: run_history.h).
 void measure_final_state(dem::Simulation& sim, double wall_seconds, long steps_taken, RunResult& r);
 
 // The side-wall contacts of the engine's last step, which must have recorded its contacts

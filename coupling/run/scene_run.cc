@@ -89,6 +89,7 @@ class SceneRun {
         pour_(sim.scene()),
         rest_window_(rest_window_steps(sim.scene(), control.rest_window)) {
     if (resume) {
+      resume_history(resume->history, resume->schedule.step);
       files_.resume(sim, resume->files);
       states_.resume(sim, resume->cg_reference);
       if (schedule_.evaluation_every > 0) grids_.emplace(sim, *output, &resume->grid_state);
@@ -106,6 +107,7 @@ class SceneRun {
       keep_replay_start();
       return;
     }
+    if (output) history_.scene_source = output->checkpoint.source;
     files_.record_series(sim);
     files_.write_snapshot(sim);
     keep_replay_start();
@@ -160,7 +162,9 @@ class SceneRun {
       const CheckpointClock::Decision d = checkpoints_.at(s, series_now, sim_.comm());
       fs::path written;
       if (d.write) written = write_checkpoint_now();
-      if (d.stop != 0) throw RunStopped(d.stop, s, written);
+      // At the last step the run goes on: what is left is its end (the writing, and a relaxation
+      // that checks again), after which the driver exits with the signal's status.
+      if (d.stop != 0 && s < schedule_.total) throw RunStopped(d.stop, s, written);
     }
     if (control_.relax_at_end) {
       if (const long lid = Lid::index(sim_); lid >= 0)
@@ -170,12 +174,18 @@ class SceneRun {
         clock_.relaxation(now.steps, relaxation.max_steps,
                           std::max(now.max_force_residual, now.max_torque_residual),
                           relaxation.force_tolerance, now.converged);
+        if (now.steps % kStopCheckEvery == 0) stop_in_relaxation(now.steps);
       };
       r.relaxation = dem::relax_to_equilibrium(sim_, relaxation);
       // One recorded step of the relaxed state for its stress, snapshot and series row.
       final_step();
     }
-    measure_final_state(sim_, clock_.seconds(), sim_.step_count() - first_step_, r);
+    // A resumed run counts the steps and time of every segment (run_history.h): its steps from
+    // the run's first, which for a run of the driver is step 0.
+    r.segment_seconds = clock_.seconds();
+    r.history = history_;
+    measure_final_state(sim_, history_.wall_seconds + r.segment_seconds,
+                        history_.resumed_at.empty() ? sim_.step_count() - first_step_ : sim_.step_count(), r);
     r.inserted = pour_.state().inserted;
     if (grids_) {
       r.final_stress = grids_->final_stress();
@@ -264,6 +274,40 @@ class SceneRun {
                           ")");
   }
 
+  // A resumed run's history (rank 0's, from its checkpoint), on every rank: the earlier
+  // segments' time, and this resume. Collective.
+  void resume_history(const RunHistory& h, long step) {
+    history_ = h;
+    history_.resumed_at.push_back(step);
+    long count = static_cast<long>(history_.resumed_at.size());
+    MPI_Bcast(&count, 1, MPI_LONG, 0, sim_.comm());
+    history_.resumed_at.resize(static_cast<std::size_t>(count));
+    MPI_Bcast(history_.resumed_at.data(), static_cast<int>(count), MPI_LONG, 0, sim_.comm());
+    MPI_Bcast(&history_.wall_seconds, 1, MPI_DOUBLE, 0, sim_.comm());
+  }
+
+  // A stop request during the relaxation at the end (minutes in the default study) ends it
+  // (every rank at the same FIRE step: one reduction). The relaxation is not checkpointed:
+  // a restart continues from the newest checkpoint and relaxes again, which with the
+  // deterministic summation gives the same bytes (docs/restart.md). Collective.
+  void stop_in_relaxation(long fire_steps) {
+    const int signal = stop_signal_received(sim_.comm());
+    if (signal == 0) return;
+    fs::path newest;
+    if (output_) {
+      sim_.on_root([&] {
+        const std::vector<fs::path> all = checkpoint_files(output_->folder);
+        if (!all.empty()) newest = all.front();
+      });
+    }
+    throw RunStopped(
+        signal, state_.step, newest,
+        output_ ? "no checkpoint yet: run the scene again (Output/overwrite = true, or another folder)" : "",
+        "during the relaxation at the end (FIRE step " + std::to_string(fire_steps) +
+            ", not checkpointed: a restart continues from the newest checkpoint and relaxes "
+            "again)");
+  }
+
   // Collective: the engine's state and the run's, written by rank 0.
   fs::path write_checkpoint_now() {
     Checkpoint c;
@@ -279,6 +323,8 @@ class SceneRun {
       c.run.grids = grids_.has_value();
       if (grids_) c.run.grid_state = grids_->state();
       c.run.cg_reference = states_.reference();
+      c.run.history = history_;
+      c.run.history.wall_seconds += clock_.seconds();
       written = write_checkpoint(output_->folder, c, output_->checkpoint.keep);
     });
     checkpoints_.written();
@@ -305,6 +351,9 @@ class SceneRun {
   dem::PourState replay_pour_;
   long replay_start_step_ = 0;
   long first_step_ = 0;  // the engine's step when this run began (a resumed run's checkpoint)
+  RunHistory history_;   // the segments before this one (a fresh run: none)
+  // FIRE steps between the relaxation's checks for a stop request (a reduction each).
+  static constexpr long kStopCheckEvery = 1000;
 };
 
 }  // namespace

@@ -25,16 +25,20 @@ int stop_signal() { return g_signal; }
 
 void request_stop(int signal) { g_signal = signal; }
 
-void stop_if_requested(MPI_Comm comm, long step) {
+int stop_signal_received(MPI_Comm comm) {
   int signal = stop_signal();
   MPI_Allreduce(MPI_IN_PLACE, &signal, 1, MPI_INT, MPI_MAX, comm);
-  if (signal != 0) throw RunStopped(signal, step, {});
+  return signal;
+}
+
+void stop_if_requested(MPI_Comm comm, long step) {
+  if (const int signal = stop_signal_received(comm); signal != 0) throw RunStopped(signal, step, {});
 }
 
 RunStopped::RunStopped(int signal, long step, std::filesystem::path checkpoint,
-                       const std::string& without_checkpoint)
-    : Error("stopped by signal " + std::to_string(signal) + " (" + strsignal(signal) + ") after step " +
-            std::to_string(step) +
+                       const std::string& without_checkpoint, const std::string& during)
+    : Error("stopped by signal " + std::to_string(signal) + " (" + strsignal(signal) + ") " +
+            (during.empty() ? std::string() : during + " ") + "after step " + std::to_string(step) +
             (!checkpoint.empty()          ? ", checkpoint " + checkpoint.string()
              : without_checkpoint.empty() ? std::string(", no checkpoint (no output)")
                                           : ", " + without_checkpoint)),

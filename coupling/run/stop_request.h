@@ -23,15 +23,20 @@ void request_stop(int signal);
 // For loops outside a scene's run (the calibration's tests), which write no checkpoint.
 void stop_if_requested(MPI_Comm comm, long step);
 
+// Collective: the signal any rank received so far, 0 if none (the same on every rank). The
+// driver asks once its run has written everything (docs/restart.md, "A signal during the end
+// of a run").
+int stop_signal_received(MPI_Comm comm);
+
 // What a stopped run throws once its checkpoint is written. The driver's exit code for it is
 // 128 + the signal (130 for SIGINT, 143 for SIGTERM, 129 for SIGHUP), as a shell reports a
 // process ended by that signal.
 class RunStopped : public Error {
  public:
   // `without_checkpoint`: what to say instead of "no checkpoint (no output)" when there is none
-  // (where the run stopped, what it left).
+  // (where the run stopped, what it left); `during`: the stage it stopped in, when not the steps.
   RunStopped(int signal, long step, std::filesystem::path checkpoint,
-             const std::string& without_checkpoint = {});
+             const std::string& without_checkpoint = {}, const std::string& during = {});
   [[nodiscard]] int signal() const { return signal_; }
   [[nodiscard]] long step() const { return step_; }
   // Empty when the run wrote no output (so no checkpoint).

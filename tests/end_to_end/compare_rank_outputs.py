@@ -1,16 +1,23 @@
 #!/usr/bin/env python3
-"""Checks that runs of one scene on different rank counts wrote the same results.
+"""Checks that runs of one scene on different rank counts, or a run and its restarts, wrote the
+same results.
 
-Usage: compare_rank_outputs.py [--other-blocks | --no-checkpoints] [--meshes] REFERENCE_FOLDER OTHER_FOLDER...
+Usage: compare_rank_outputs.py [--other-blocks | --no-checkpoints] [--meshes] [--report]
+                               REFERENCE_FOLDER OTHER_FOLDER...
 
 - Every HDF5 file (snapshots, grid stress, grid strain), XDMF file and grid CSV table:
-  byte-identical; the checkpoints in every dataset and attribute but the run's identity, which
-  two runs do not share.
+  byte-identical.
 - time_series.csv and summary.json: every number bitwise equal (the cumulative dissipation is
-  an exact sum, docs/parallel.md), but the timings and how the work was shared.
+  an exact sum, docs/parallel.md), but the timings, how the work was shared and where a run was
+  resumed.
+- Checkpoints: every dataset and attribute the same bytes but the run's wall time, the steps it
+  was resumed at (docs/restart.md, "Timings") and the run's identity; their checksum blocks differ
+  with them. The run's bookkeeping (.upgrain/: its manifest and lock) is left out.
 Report, plots and logs are skipped, and so are the deal.II meshes (a piece per rank) unless
 --meshes is given, for runs on one rank count: then they too must be the same bytes (their
-records carry no creation date, dem/io/undated_vtk.h).
+records carry no creation date, dem/io/undated_vtk.h). With --report, report.md is compared
+line by line but its timings (the line "- Wall clock: ..." and the section "## Timings") and
+the name of the scene file it gives.
 With --other-blocks (runs on different rank counts) so are the compute-grid stress and strain,
 whose blocks are those of each rank count, and the checkpoints, which keep the blocks; with
 --no-checkpoints the checkpoints alone (a run continued with another end time, or stopped by a
@@ -33,9 +40,49 @@ SKIP_FOLDERS = ()
 # The run's bookkeeping (docs/output.md, "Manifest", "Lock"): its identity, checksums of the
 # timed report and its processes differ from run to run by design.
 BOOKKEEPING = '.upgrain' + os.sep
-# Timings, and how the work was shared, which depend on the rank count by design.
+# Timings, and how the work was shared, which depend on the rank count by design; where a run was
+# resumed.
 TIMINGS = {'wall_time_s', 'particle_steps_per_second', 'mpi_ranks', 'load_rebalances', 'load_owned_imbalance',
-           'load_compute_imbalance', 'load_communication_share'}
+           'load_compute_imbalance', 'load_communication_share', 'segment_wall_time_s', 'resumed_at_steps'}
+# The same in a checkpoint: attributes and datasets of /run (coupling/run/checkpoint.cc); and the
+# identity of the run it belongs to, which two runs do not share (docs/restart.md).
+CHECKPOINT_HISTORY = {'run/wall_seconds', 'run/resumed_at', 'run_id'}
+COMPARE_REPORT = False
+
+
+def report_lines(text):
+    """report.md without its timings (the wall-clock line and the Timings section) and the name
+    of the scene file (runs of one scene may start from files of other names)."""
+    out, timings = [], False
+    for line in text.splitlines():
+        if line.startswith('## '):
+            timings = line.startswith('## Timings')
+        if line.startswith('Scene: `'):
+            line = 'Scene: `...`' + line.split('`', 2)[2]
+        if not timings and not line.startswith('- Wall clock:'):
+            out.append(line)
+    return out
+
+
+def checkpoint_differences(a, b):
+    """The datasets and attributes of two checkpoints that differ, but the run's history."""
+    import h5py
+    import numpy as np
+
+    def items(path):
+        found = {}
+        with h5py.File(path, 'r') as f:
+            def visit(name, obj):
+                if isinstance(obj, h5py.Dataset):
+                    found[name] = np.asarray(obj[()]).tobytes()
+                for key, value in obj.attrs.items():
+                    found[f'{name}/{key}' if name else key] = np.asarray(value).tobytes()
+            visit('', f)
+            f.visititems(visit)
+        return {k: v for k, v in found.items() if k not in CHECKPOINT_HISTORY}
+
+    ia, ib = items(a), items(b)
+    return sorted(k for k in set(ia) | set(ib) if ia.get(k) != ib.get(k))
 
 
 def files(folder):
@@ -46,36 +93,6 @@ def files(folder):
             if not rel.startswith(SKIP_FOLDERS) and not rel.startswith(BOOKKEEPING):
                 out.append(rel)
     return sorted(out)
-
-
-# A checkpoint names the run it belongs to (docs/restart.md): its identity differs between two
-# runs by design, so checkpoints are compared by content, every dataset and attribute but it.
-CHECKPOINT_IDENTITY = {'run_id'}
-
-
-def checkpoint_differences(a, b):
-    import h5py
-    import numpy as np
-    out = []
-
-    def items(path):
-        found = {}
-        with h5py.File(path, 'r') as h:
-            def visit(name, obj):
-                for k, v in obj.attrs.items():
-                    if k not in CHECKPOINT_IDENTITY:
-                        found[f'{name}@{k}'] = np.asarray(v).tobytes()
-                if isinstance(obj, h5py.Dataset):
-                    found[name] = obj[()].tobytes() if obj.shape != () else np.asarray(obj[()]).tobytes()
-            visit('/', h)
-            h.visititems(visit)
-        return found
-
-    ia, ib = items(a), items(b)
-    for k in sorted(set(ia) | set(ib)):
-        if ia.get(k) != ib.get(k):
-            out.append(k)
-    return out
 
 
 def compare(ref, other):
@@ -103,27 +120,40 @@ def compare(ref, other):
                         problems.append(f'{f} {name} at t = {row_a[0]}: {x} vs {y}')
         elif f == 'summary.json':
             ja, jb = json.loads(a), json.loads(b)
-            for key in ja:
+            for key in sorted(set(ja) | set(jb)):
                 if key in TIMINGS:
                     continue
-                if ja[key] != jb.get(key):
-                    problems.append(f'{f} {key}: {ja[key]} vs {jb.get(key)}')
-        elif f.startswith('checkpoints' + os.sep) and f.endswith('.h5') and a != b:
+                if ja.get(key) != jb.get(key):
+                    problems.append(f'{f} {key}: {ja.get(key)} vs {jb.get(key)}')
+        elif f.startswith('checkpoints' + os.sep) and a != b:
             differ = checkpoint_differences(os.path.join(ref, f), os.path.join(other, f))
             if differ:
-                problems.append(f'{f}: differs in {differ[:5]}')
+                problems.append(f'{f}: differs in {", ".join(differ[:5])}')
             else:
                 identical += 1
         elif a != b:
             problems.append(f'{f}: bytes differ')
         else:
             identical += 1
+    if COMPARE_REPORT:
+        have = [os.path.exists(os.path.join(d, 'report.md')) for d in (ref, other)]
+        if have[0] != have[1]:
+            problems.append(f'report.md written by {"one" if any(have) else "neither"} of the runs')
+        elif have[0]:
+            la = report_lines(open(os.path.join(ref, 'report.md')).read())
+            lb = report_lines(open(os.path.join(other, 'report.md')).read())
+            for k in range(max(len(la), len(lb))):
+                x = la[k] if k < len(la) else '(none)'
+                y = lb[k] if k < len(lb) else '(none)'
+                if x != y:
+                    problems.append(f'report.md line {k + 1} (timings aside): {x!r} vs {y!r}')
+                    break
     return identical, problems
 
 
 def main():
     global SKIP_FILES, SKIP_FOLDERS
-    global SKIP_SUFFIXES
+    global SKIP_SUFFIXES, COMPARE_REPORT
     args = sys.argv[1:]
     while args and args[0].startswith('--'):
         option = args.pop(0)
@@ -131,6 +161,8 @@ def main():
             SKIP_FILES, SKIP_FOLDERS = BLOCK_FILES, BLOCK_FOLDERS
         elif option == '--no-checkpoints':
             SKIP_FOLDERS = ('checkpoints' + os.sep,)
+        elif option == '--report':
+            COMPARE_REPORT = True
         elif option == '--meshes':
             SKIP_SUFFIXES = tuple(s for s in SKIP_SUFFIXES if s not in MESH_SUFFIXES)
         else:

@@ -5,6 +5,7 @@ that the continued run wrote the same files as a run that was not interrupted
 
 Usage: kill_and_restart.py UPGRAIN SCENE WORK [--kills N] [--signal KILL|TERM]
                            [--ranks R] [--restart-ranks R2] [--seed S] [--delays LOW HIGH]
+                           [--kill-while-finishing]
 
 1. The scene runs once without interruption (WORK/whole), on R ranks, and its wall time T is
    measured.
@@ -12,12 +13,17 @@ Usage: kill_and_restart.py UPGRAIN SCENE WORK [--kills N] [--signal KILL|TERM]
    (0.1 to 0.8; a restart's LOW to HIGH, 0.1 to 0.5 by default). Each following start is `upgrain --restart WORK/broken` on R2 ranks (R2 = R
    by default), again killed, N times in all; then one last restart runs to the end. A start
    that ends before its signal counts as done.
+   With --kill-while-finishing the last restart is killed with SIGKILL once it has written
+   its strain on the mesh (strain_mesh/strain.pvd), while it makes its plots and report, and
+   the run is restarted once more: a restart of a run that had reached its last step continues
+   from the checkpoint before it and writes the run's end again (docs/restart.md).
 3. With SIGTERM each stopped run writes a checkpoint and, on one rank, exits with 143 (under
    mpiexec the launcher reports its own code). No temporary file may remain once the last run
    has ended.
-4. compare_rank_outputs.py compares the two folders: every HDF5, XDMF and CSV file
-   byte-identical (the deal.II meshes too when the rank count stays), time_series.csv and
-   summary.json bitwise but the timings (and, on other
+4. compare_rank_outputs.py --report compares the two folders: every HDF5, XDMF and CSV file
+   byte-identical (the deal.II meshes too when the rank count stays), the checkpoints but the
+   run's wall time and resume steps, time_series.csv and summary.json field by field but the
+   timings and resume steps, and report.md line by line but its wall-clock line (and, on other
    rank counts, the compute-grid files and the checkpoints, which follow the blocks).
 """
 import argparse
@@ -96,6 +102,8 @@ def main():
     p.add_argument('--seed', type=int, default=1)
     p.add_argument('--delays', type=float, nargs=2, default=[0.1, 0.5], metavar=('LOW', 'HIGH'),
                    help="a restart's signal after LOW to HIGH of the uninterrupted run's wall time")
+    p.add_argument('--kill-while-finishing', action='store_true',
+                   help='kill the last restart while it writes its plots and report, then restart again')
     a = p.parse_args()
     rng = random.Random(a.seed)
     restart_ranks = a.restart_ranks or a.ranks
@@ -147,6 +155,24 @@ def main():
             # One process: 128 + 15. Under mpiexec the launcher reports its own code.
             if sig == signal.SIGTERM and ranks == 1 and code != 143:
                 sys.exit(f'a run stopped by SIGTERM must exit with 143, not {code}; see {log.name}')
+    if not done and a.kill_while_finishing:
+        log.flush()
+        where = log.tell()
+        # A start killed at random may have reached its end and written strain.pvd: this one's
+        # is the one with another modification time.
+        mesh = os.path.join(broken, 'strain_mesh', 'strain.pvd')
+        stamp = lambda: os.stat(mesh).st_mtime_ns if os.path.exists(mesh) else None  # noqa: E731
+        before = stamp()
+        proc = subprocess.Popen(command(a.upgrain, restart_ranks, ['--restart', broken]), stdout=log, stderr=log,
+                                start_new_session=True)
+        while proc.poll() is None and stamp() == before:
+            time.sleep(0.005)
+        if proc.poll() is not None:
+            sys.exit(f'the restart to be killed while it finished ended first ({proc.returncode}); see {log.name}')
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.wait()
+        kill_leftovers(broken)
+        print(f'start {a.kills + 1}: {resumed(log.name, where)}SIGKILL while it wrote its plots and report')
     if not done:
         r = subprocess.run(command(a.upgrain, restart_ranks, ['--restart', broken]), stdout=log, stderr=log)
         if r.returncode != 0:
@@ -154,7 +180,7 @@ def main():
     leftovers = [os.path.join(d, f) for d, _, files in os.walk(broken) for f in files if '.tmp.' in f]
     if leftovers:
         sys.exit(f'temporary files left behind: {leftovers[:5]}')
-    compare = [sys.executable, os.path.join(HERE, 'compare_rank_outputs.py')]
+    compare = [sys.executable, os.path.join(HERE, 'compare_rank_outputs.py'), '--report']
     compare.append('--other-blocks' if restart_ranks != a.ranks else '--meshes')
     compare += [whole, broken]
     sys.exit(subprocess.run(compare).returncode)

@@ -23,6 +23,25 @@ CASE is one of:
                        SIGINT to a study (tests/end_to_end/tiny_study.prm) while it calibrates
                        its continua on the bed: exit 130, a message that says where it stopped
                        and what it left, the DEM output whole, no report
+  restart_from_final_checkpoint
+                       upgrain --restart on the finished reference run, and on a copy without
+                       its end (report, summary, strain mesh, plots: killed while it wrote them):
+                       each continues from the checkpoint before the last step and writes the
+                       reference's files, report.md and summary.json included
+  end_time_before_checkpoint
+                       upgrain --restart DIR shorter.prm with an end time before the newest
+                       checkpoint: exit 1, one line naming the file, the entry and the
+                       checkpoint's time, the folder unchanged
+  wall_time_of_all_segments
+                       a run to 0.02 s continued to 0.04 s: summary.json and report.md give the
+                       time of both segments and the step it was resumed at
+  sigint_during_final_writing
+                       SIGINT once the run has written summary.json, while it writes its strain
+                       mesh, plots and report: they are finished, exit 130 with a message
+  sigint_during_relaxation
+                       SIGINT to a run that relaxes at its end, during the relaxation: exit 130,
+                       the checkpoint to continue from named; the restart relaxes again and ends
+                       with the bytes of an uninterrupted run
 
 After a write failure the run must stop with exit 1 and an error naming the file, leave no
 file under a final name that does not read (every .h5 opens, checkpoints pass their checksum
@@ -107,11 +126,11 @@ def check_files_whole(folder, temporary_allowed=False):
                 json.load(open(path))
 
 
-def same_as_reference(upgrain, work, folder, log, ranks=1):
+def same_as_reference(upgrain, work, folder, log, ranks=1, reference=None):
     # Checkpoints differ by design (the end time in their scene, a signal's extra one), and on
     # another rank count so do the compute grids (compare_rank_outputs.py).
-    options = ['--other-blocks'] if ranks > 1 else ['--no-checkpoints', '--meshes']
-    r = subprocess.run([sys.executable, COMPARE] + options + [reference_of(work), folder],
+    options = ['--report'] + (['--other-blocks'] if ranks > 1 else ['--no-checkpoints', '--meshes'])
+    r = subprocess.run([sys.executable, COMPARE] + options + [reference or reference_of(work), folder],
                        capture_output=True, text=True)
     if r.returncode != 0:
         fail(f'the continued run differs from the uninterrupted one:\n{r.stdout}{r.stderr}')
@@ -445,6 +464,179 @@ def case_sigint_during_calibration(upgrain, work, log):
             fail(f'{name} written by a study stopped before its continua')
     check_files_whole(folder)
     print('SIGINT during the calibration: exit 130, DEM output whole, no report')
+
+
+def tree(folder):
+    """Every file of `folder` with its size, modification time and bytes' hash."""
+    import hashlib
+    out = {}
+    for root, _, names in os.walk(folder):
+        for n in names:
+            path = os.path.join(root, n)
+            st = os.stat(path)
+            out[os.path.relpath(path, folder)] = (st.st_size, st.st_mtime_ns,
+                                                  hashlib.sha256(open(path, 'rb').read()).hexdigest())
+    return out
+
+
+def log_of(log, command):
+    """Runs `command` appending to `log`, and returns it with its own part of the log."""
+    start = os.path.getsize(log) if os.path.exists(log) else 0
+    r = run(command, log)
+    with open(log) as f:
+        f.seek(start)
+        return r, f.read()
+
+
+def case_restart_from_final_checkpoint(upgrain, work, log):
+    ref = reference_of(work)
+    names = checkpoints(ref)
+    last = int(CHECKPOINT.match(names[-1]).group(1))
+    if last != round(END_TIME / 1e-5):
+        fail(f'the reference run has no checkpoint at its last step: {names}')
+    scene_line = [l for l in open(os.path.join(ref, 'report.md')) if l.startswith('Scene: ')]
+    lost_end = ['report.md', 'summary.json', 'strain_mesh', 'strain_ln_J.png', 'strain_shear.png',
+                'strain_final_map.png', 'strain_plots.log']
+    for name, lost in (('finished', []), ('killed_at_its_end', lost_end)):
+        folder = os.path.join(work, name)
+        shutil.copytree(ref, folder)
+        for f in lost:
+            path = os.path.join(folder, f)
+            shutil.rmtree(path) if os.path.isdir(path) else os.remove(path)
+        r, out = log_of(log, [upgrain, '--restart', folder])
+        if r.returncode != 0:
+            fail(f'{name}: the restart failed ({r.returncode}): {r.stderr.strip()}')
+        if f'resuming from {os.path.join(folder, "checkpoints", names[-2])}' not in out:
+            fail(f'{name}: the restart did not continue from the checkpoint before the last step, {names[-2]}')
+        if not re.search(re.escape(names[-1]) + r' is at the run\'s end step', out):
+            fail(f'{name}: the log does not say why {names[-1]} was passed over')
+        # The restart's report names the scene the run was started with, not the restart.
+        if [l for l in open(os.path.join(folder, 'report.md')) if l.startswith('Scene: ')] != scene_line:
+            fail(f'{name}: report.md names another scene than the uninterrupted run\'s: {scene_line}')
+        check_files_whole(folder)
+        same_as_reference(upgrain, work, folder, log)
+
+
+def case_end_time_before_checkpoint(upgrain, work, log):
+    folder = os.path.join(work, 'run')
+    shutil.copytree(reference_of(work), folder)
+    before = tree(folder)
+    shorter = scene_until(work, 0.025)
+    r = run([upgrain, '--restart', folder, shorter], log)
+    print(f'end time before the checkpoint: exit {r.returncode}: {r.stderr.strip()}')
+    if r.returncode != 1:
+        fail(f'an end time before the checkpoint must be refused with exit 1, not {r.returncode}')
+    if len(r.stderr.strip().splitlines()) != 1:
+        fail('the refusal is not one line')
+    for part in (shorter, 'Simulation/end time = 0.025 s', 't = 0.04 s'):
+        if part not in r.stderr:
+            fail(f'the refusal does not name {part!r}')
+    if tree(folder) != before:
+        fail('the refused restart changed the folder')
+
+
+def case_wall_time_of_all_segments(upgrain, work, log):
+    import h5py
+    import json
+    folder = os.path.join(work, 'run')
+    first_half(upgrain, work, folder, log)
+    with h5py.File(os.path.join(folder, 'checkpoints', 'checkpoint_000002000.h5'), 'r') as f:
+        earlier = float(f['run'].attrs.get('wall_seconds', 0.0))
+    if not earlier > 0.0:
+        fail(f'the checkpoint at the end of the first segment keeps no wall time ({earlier})')
+    restart_to_end(upgrain, work, folder, log)
+    summary = json.load(open(os.path.join(folder, 'summary.json')))
+    if summary['resumed_at_steps'] != [2000]:
+        fail(f'summary.json resumed_at_steps is {summary["resumed_at_steps"]}, not [2000]')
+    wall, segment = summary['wall_time_s'], summary['segment_wall_time_s']
+    # The same two doubles added as the driver adds them: no tolerance.
+    if not segment > 0.0 or wall != earlier + segment:
+        fail(f'wall_time_s {wall} is not the first segment\'s {earlier} s and the second\'s {segment} s')
+    rate = summary['particle_steps_per_second']
+    if abs(rate - summary['steps'] * summary['particles'] / wall) > 1e-12 * rate:
+        fail(f'particle_steps_per_second {rate} is not over every step and the whole wall time')
+    with h5py.File(os.path.join(folder, 'checkpoints', 'checkpoint_000004000.h5'), 'r') as f:
+        if list(f['run/resumed_at'][()]) != [2000] or not float(f['run'].attrs['wall_seconds']) > earlier:
+            fail('the checkpoint of the second segment does not carry the first one\'s time and resume')
+    line = [l for l in open(os.path.join(folder, 'report.md')) if l.startswith('- Wall clock:')]
+    if len(line) != 1 or 'over 2 segments' not in line[0] or 'at step 2000' not in line[0]:
+        fail(f'report.md does not give the time of both segments and where it resumed: {line}')
+    same_as_reference(upgrain, work, folder, log)
+    print(f'two segments: {earlier:.3f} + {segment:.3f} s = {wall:.3f} s, resumed at step 2000')
+
+
+def case_sigint_during_final_writing(upgrain, work, log):
+    folder = os.path.join(work, 'run')
+    with open(log, 'a') as out:
+        proc = subprocess.Popen([upgrain, '--output', folder, SCENE], stdout=out, stderr=subprocess.PIPE,
+                                text=True, start_new_session=True)
+    # summary.json is the first file of the run's end; the strain mesh, plots and report follow.
+    summary = os.path.join(folder, 'summary.json')
+    while not os.path.exists(summary) and proc.poll() is None:
+        time.sleep(0.002)
+    os.kill(proc.pid, signal.SIGINT)
+    try:
+        _, err = proc.communicate(timeout=60)
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)
+        fail('the run did not end within 60 s of the signal')
+    out = open(log).read()
+    open(log, 'a').write(err)
+    print(f'SIGINT while the run wrote its end: exit {proc.returncode}')
+    if proc.returncode != 128 + signal.SIGINT:
+        fail(f'a signal during the end of a run must not be ignored: exit {proc.returncode}, not 130')
+    if 'while the run wrote its results: they were finished first' not in out:
+        fail('the run did not say that it finished its results before it stopped')
+    if err.strip():
+        fail(f'a stop on request is no error: {err.strip()}')
+    check_files_whole(folder)
+    reference_plots = [f for f in os.listdir(reference_of(work)) if f.endswith('.png')]
+    missing = [f for f in reference_plots if not os.path.exists(os.path.join(folder, f))]
+    if missing:
+        fail(f'the plots the signal reached were not finished: {missing}')
+    same_as_reference(upgrain, work, folder, log)
+
+
+def case_sigint_during_relaxation(upgrain, work, log):
+    text = open(SCENE).read().replace('set relax at end = false',
+                                      'set relax at end = true\n  set max relaxation steps = 20000')
+    scene = os.path.join(work, 'relaxing.prm')
+    open(scene, 'w').write(text)
+    reference = os.path.join(work, 'reference')
+    r = run([upgrain, '--output', reference, scene], log)
+    if r.returncode != 0:
+        fail(f'the uninterrupted run failed ({r.returncode}): {r.stderr.strip()}')
+    folder = os.path.join(work, 'run')
+    with open(log, 'a') as out:
+        proc = subprocess.Popen([upgrain, '--output', folder, scene], stdout=out, stderr=subprocess.PIPE,
+                                text=True, start_new_session=True)
+    # The checkpoint of the last step is written just before the relaxation begins.
+    last = os.path.join(folder, 'checkpoints', 'checkpoint_000004000.h5')
+    while not os.path.exists(last) and proc.poll() is None:
+        time.sleep(0.002)
+    os.kill(proc.pid, signal.SIGINT)
+    try:
+        _, err = proc.communicate(timeout=60)
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)
+        fail('the run did not stop within 60 s of the signal')
+    out = open(log).read()
+    open(log, 'a').write(err)
+    print(f'SIGINT during the relaxation: exit {proc.returncode}')
+    if proc.returncode != 128 + signal.SIGINT:
+        fail(f'a run stopped during its relaxation must exit with 130, not {proc.returncode}')
+    if 'during the relaxation at the end' not in out or f'checkpoint {last}' not in out or \
+       'continue with: upgrain --restart' not in out:
+        fail('the run did not say that it stopped in its relaxation, from where and how to continue')
+    if os.path.exists(os.path.join(folder, 'summary.json')):
+        fail('a run stopped in its relaxation wrote its summary')
+    check_files_whole(folder)
+    r, out = log_of(log, [upgrain, '--restart', folder])
+    if r.returncode != 0:
+        fail(f'the restart failed ({r.returncode}): {r.stderr.strip()}')
+    if f'resuming from {last}' not in out:
+        fail('the restart did not continue from the checkpoint the relaxation began at')
+    same_as_reference(upgrain, work, folder, log, reference=reference)
 
 
 def case_reference(upgrain, work, log):
