@@ -274,7 +274,8 @@ Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_roo
   o.box = s.domain.box;
   o.balance_at_start = false;
   set_up(static_cast<long>(s.particles.size()), max_radius, s.particles.has_shapes(), s.domain.box, comm, o);
-  domain_->restore(s.domain);
+  // The grains are placed by where the lists were last built (below): the balance too.
+  domain_->restore(s.domain, s.positions_at_build, s.step);
   // Spheres in a scene that pours ellipsoids (set_up): with their shapes, as in the run.
   if (shapes_) s.particles.ensure_shapes();
 
