@@ -25,6 +25,7 @@
 #include "coupling/strain_report.h"
 #include "coupling/study.h"
 #include "dem/core/error.h"
+#include "dem/io/file_kind.h"
 #include "dem/parallel/exchange.h"
 #include "dem/parallel/mpi_start.h"
 #include "dem/time_step.h"
@@ -171,6 +172,12 @@ upgrain::coupling::SceneInput restart_input(const std::string& dir, const std::s
   std::string scene, error;
   if (rank == 0) {
     try {
+      // Named as what it is: a file, a FIFO or a symbolic link loop is not a folder without
+      // checkpoints.
+      if (const dem::io::PathKind k = dem::io::path_kind(dir); !k.folder())
+        throw Error("--restart " + dir + ": " +
+                    (k.exists ? "is " + k.description + ", not the output folder of a run"
+                              : k.description + "; give the output folder of the run to continue"));
       std::vector<std::string> refused;
       checkpoint = std::make_shared<coupling::Checkpoint>(coupling::newest_checkpoint(dir, refused));
       for (const std::string& r : refused) notes.push_back("refused " + r);

@@ -30,6 +30,10 @@ endif()
 if(NOT err MATCHES "${EXPECT}")
   message(FATAL_ERROR "error message does not match '${EXPECT}':\n${err}")
 endif()
+# No library's diagnostic dump beside the one line (HDF5 prints its error stack unless told not to).
+if(err MATCHES "HDF5-DIAG")
+  message(FATAL_ERROR "the refusal printed HDF5's error stack:\n${err}")
+endif()
 # Said once, also when every rank of an MPI run refused the scene.
 string(REGEX MATCHALL "upgrain: error" said "${err}")
 list(LENGTH said times)
