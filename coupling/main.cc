@@ -164,6 +164,7 @@ void print_deposition(const upgrain::coupling::SceneInput& in, const upgrain::co
 // only what a restart may (coupling::differing_parameters). `notes` receives what the log
 // should say (refused checkpoints, where the run resumes), on rank 0.
 upgrain::coupling::SceneInput restart_input(const std::string& dir, const std::string& file,
+                                            upgrain::coupling::Command command,
                                             std::vector<std::string>& notes) {
   using namespace upgrain;
   int rank = 0;
@@ -196,6 +197,7 @@ upgrain::coupling::SceneInput restart_input(const std::string& dir, const std::s
   scene.resize(static_cast<std::size_t>(length));
   MPI_Bcast(scene.data(), length, MPI_CHAR, 0, MPI_COMM_WORLD);
   coupling::SceneInput in = coupling::parse_scene_text(scene, dir + ": the scene of its checkpoint");
+  in.command = command;
   if (!file.empty()) {
     // The given file's values for what a restart may change, the checkpoint's for the rest.
     coupling::SceneInput given = coupling::parse_scene_text(coupling::read_scene_bytes(file), file);
@@ -268,14 +270,17 @@ int run(int argc, char** argv) {
   std::vector<std::string> restart_notes;
   if (!restart_dir.empty() && !output_override.empty())
     throw CollectiveError("--restart continues in its own folder: leave out --output");
+  const coupling::Command command = study == "accuracy"      ? coupling::Command::accuracy_study
+                                    : study == "calibration" ? coupling::Command::calibration_study
+                                                             : coupling::Command::run;
   // Every rank reads and checks the scene, and they agree on the outcome before rank 0 creates
   // the output folder: a refusal is every rank's, printed once.
   std::string refusal;
   try {
     if (!restart_dir.empty()) {
-      in = restart_input(restart_dir, file, restart_notes);
+      in = restart_input(restart_dir, file, command, restart_notes);
     } else {
-      in = file.empty() ? coupling::default_scene() : coupling::read_scene_file(file);
+      in = file.empty() ? coupling::default_scene(command) : coupling::read_scene_file(file, command);
       if (!output_override.empty()) {
         in.output.folder = output_override;
         coupling::validate_scene(in);
@@ -291,12 +296,11 @@ int run(int argc, char** argv) {
                 in.source.c_str(), in.scene.particles.count,
                 dem::has_ellipsoids(in.scene.particles.shapes) ? "grains (ellipsoids)" : "spheres",
                 in.scene.time_step, ts.safe_step, ts.limiting.c_str(), in.scene.end_time);
-    if (in.study.compare_with_continuum)
+    if (coupling::compares_with_continuum(in))
       std::printf(
           "  study: DEM deposition -> grid stress -> continuum column (Q%u) -> comparison and report\n",
           in.study.continuum.degree);
-    if (const coupling::ContinuumOptions& c = in.study.continuum;
-        in.study.compare_with_continuum && study.empty()) {
+    if (const coupling::ContinuumOptions& c = in.study.continuum; coupling::compares_with_continuum(in)) {
       if (c.calibrate_in_study)
         std::printf(
             "  continuum material: measured on this bed after the DEM run (Continuum/material from = %s): "
@@ -307,7 +311,8 @@ int run(int argc, char** argv) {
         std::printf("  continuum material: the Continuum entries (Continuum/material from = auto): %s\n",
                     c.calibration_skipped.c_str());
     }
-    if (const coupling::ContinuumOptions& c = in.study.continuum; !c.material_file.empty())
+    if (const coupling::ContinuumOptions& c = in.study.continuum;
+        !c.material_file.empty() && coupling::uses_continuum_material(in))
       std::printf(
           "  continuum material: E %.9g Pa (%s), nu %.9g (%s), friction angle %.9g deg (%s), dilatancy angle "
           "%.9g deg (%s)\n",

@@ -541,7 +541,7 @@ std::vector<std::string> differing_parameters(const std::string& run, const std:
 
 void apply_material_file(SceneInput& in, const std::string& scene_file) {
   ContinuumOptions& c = in.study.continuum;
-  if (c.material_file.empty()) return;
+  if (c.material_file.empty() || !uses_continuum_material(in)) return;
   std::filesystem::path file(c.material_file);
   if (file.is_relative() && !scene_file.empty())
     file = std::filesystem::path(scene_file).parent_path() / file;
@@ -573,18 +573,20 @@ void apply_material_file(SceneInput& in, const std::string& scene_file) {
   c.material_file = file.string();
 }
 
-SceneInput read_scene_file(const std::string& filename) {
+SceneInput read_scene_file(const std::string& filename, Command command) {
   SceneInput in = parse_scene_text(read_scene_bytes(filename), filename);
+  in.command = command;
   in.scene_folder = std::filesystem::path(filename).parent_path().string();
   apply_material_file(in, filename);
   validate_scene(in);
   return in;
 }
 
-SceneInput default_scene() {
+SceneInput default_scene(Command command) {
   ParameterHandler prm;
   declare(prm);
   SceneInput in = extract(prm, "built-in default scene");
+  in.command = command;
   validate_scene(in);
   return in;
 }
