@@ -59,7 +59,8 @@ constexpr const char* kUsage =
     "  --restart DIR                 continue the run in DIR from its newest valid checkpoint\n"
     "                                (DIR/checkpoints/, docs/restart.md), with the scene it was\n"
     "                                started with; a scene file given as well may change only\n"
-    "                                Simulation/end time and the Checkpoint and Parallel sections\n"
+    "                                Simulation/end time and maximum steps and the Checkpoint and\n"
+    "                                Parallel sections\n"
     "\n"
     "Exit status: 0 done, 1 an error (named on one line), 128 + N stopped by signal N\n"
     "(130 SIGINT, 143 SIGTERM, 129 SIGHUP) after writing a checkpoint.\n";
@@ -208,10 +209,11 @@ upgrain::coupling::SceneInput restart_input(const std::string& dir, const std::s
       std::string m = file + " is not the scene of the run in " + dir + "; it differs in";
       for (const std::string& d : differ) m += "\n  " + d;
       throw Error(m +
-                  "\n(a restart may change only Simulation/end time and the Checkpoint and Parallel "
-                  "sections but the summation)");
+                  "\n(a restart may change only Simulation/end time and maximum steps and the Checkpoint "
+                  "and Parallel sections but the summation)");
     }
     in.scene.end_time = given.scene.end_time;
+    in.maximum_steps = given.maximum_steps;
     in.output.checkpoint = given.output.checkpoint;  // with the given file's text: its end time
     in.parallel = given.parallel;
   }

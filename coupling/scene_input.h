@@ -41,6 +41,8 @@ struct SceneInput {
   std::string initial_packing;  // Particles/initial packing as written (empty: a fill)
   std::string packing_note;     // what validate_scene read from it, for the log
   dem::SceneConfig scene;
+  // Simulation/maximum steps: a run of more (end time / time step) is refused as a likely mistake.
+  double maximum_steps = 1e10;
   dem::EffectSwitches
       effect_switches;  // the Effects section as written; validate_scene derives scene.effects
   OutputOptions output;
@@ -74,8 +76,9 @@ SceneInput default_scene(Command command = Command::run);
 SceneInput parse_scene_text(const std::string& text, const std::string& source);
 
 // The entries two scenes' parameter texts (CheckpointOptions::scene) give different values,
-// as "Section/entry: 'a' -> 'b'", but those a restart may change: Simulation/end time, the
-// Checkpoint section, the Parallel section but its summation, and Output/folder and overwrite.
+// as "Section/entry: 'a' -> 'b'", but those a restart may change: Simulation/end time and
+// maximum steps, the Checkpoint section, the Parallel section but its summation, and
+// Output/folder and overwrite.
 std::vector<std::string> differing_parameters(const std::string& run, const std::string& given);
 
 // Continuum/material file (docs/calibration.md): E and nu read from the calibrated material file,

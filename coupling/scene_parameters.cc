@@ -159,6 +159,7 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   prm.enter_subsection("Simulation");
   s.time_step = prm.get_double("time step");
   s.end_time = prm.get_double("end time");
+  in.maximum_steps = prm.get_double("maximum steps");
   in.control.rest_ratio = prm.get_double("stop at rest ratio");
   in.control.rest_window = prm.get_double("stop at rest window");
   s.time_step_rule.rayleigh_fraction = prm.get_double("Rayleigh fraction");
@@ -524,7 +525,8 @@ SceneInput parse_scene_text(const std::string& bytes, const std::string& source)
 std::vector<std::string> differing_parameters(const std::string& run, const std::string& given) {
   const std::map<std::string, std::string> a = set_lines_of(run), b = set_lines_of(given);
   auto may_change = [](const std::string& key) {
-    return key == "Simulation/end time" || key.rfind("Checkpoint/", 0) == 0 ||
+    return key == "Simulation/end time" || key == "Simulation/maximum steps" ||
+           key.rfind("Checkpoint/", 0) == 0 ||
            (key.rfind("Parallel/", 0) == 0 && key != "Parallel/summation") || key == "Output/folder" ||
            key == "Output/overwrite";
   };

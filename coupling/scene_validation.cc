@@ -376,6 +376,15 @@ void validate_scene(SceneInput& in) {
     m << where << "Simulation/end time = " << s.end_time << " s is shorter than one time step";
     throw Error(m.str());
   }
+  if (const double steps = s.end_time / s.time_step; steps > in.maximum_steps) {
+    // A step in the wrong unit (1e-12 s for 1e-6 s) asks for a run that would never end.
+    std::ostringstream m;
+    m.precision(3);
+    m << where << "Simulation/end time = " << s.end_time << " s at Simulation/time step = " << s.time_step
+      << " s is " << steps << " steps, more than Simulation/maximum steps = " << in.maximum_steps
+      << "; check the two entries' units, or raise Simulation/maximum steps";
+    throw Error(m.str());
+  }
   // The scene's lid; the calibration study deposits its bed without it (docs/calibration.md).
   if (in.command != Command::calibration_study) {
     try {
