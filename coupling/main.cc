@@ -341,11 +341,19 @@ int run(int argc, char** argv) {
   if (rank == 0) {
     std::printf("  output folder: %s\n", in.output.folder.c_str());
     for (const std::string& note : restart_notes) std::printf("  %s\n", note.c_str());
+    // Only the schedules that are on (Checkpoint/interval, wall interval: 0 = off).
     const coupling::CheckpointOptions& c = in.output.checkpoint;
-    if (c.interval > 0.0 || c.wall_interval > 0.0)
-      std::printf(
-          "  checkpoints: every %g s simulated, every %g s of wall clock (0 = never), the last %d kept\n",
-          c.interval, c.wall_interval, c.keep);
+    std::string every;
+    char part[64];
+    if (c.interval > 0.0) {
+      std::snprintf(part, sizeof part, "every %g s simulated", c.interval);
+      every = part;
+    }
+    if (c.wall_interval > 0.0) {
+      std::snprintf(part, sizeof part, "every %g s of wall clock", c.wall_interval);
+      every += (every.empty() ? "" : ", ") + std::string(part);
+    }
+    if (!every.empty()) std::printf("  checkpoints: %s, the last %d kept\n", every.c_str(), c.keep);
   }
   std::fflush(stdout);  // the preamble reaches a log file before a run that may be killed
   // overwrite: the earlier run's files go before the first new one is written.
