@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <new>
 #include <sstream>
 #include <string>
 
@@ -419,14 +420,19 @@ int main(int argc, char** argv) {
     code = 1;
   } catch (const std::exception& e) {
     // This rank's alone: the others may be waiting for it in a message, so the run is ended
-    // (MPI_Abort) rather than left to hang.
+    // (MPI_Abort) rather than left to hang. An allocation that no stage named
+    // (dem/core/out_of_memory.h names the big ones) is still said as what it is.
+    const std::string what = dynamic_cast<const std::bad_alloc*>(&e) != nullptr
+                                 ? "out of memory (std::bad_alloc): the run needs more memory than this "
+                                   "process may use (its limits: docs/input.md, \"Memory\")"
+                                 : e.what();
     std::fflush(stdout);
     if (ranks > 1) {
-      std::fprintf(stderr, "\nupgrain: error on rank %d of %d: %s\n", rank, ranks, e.what());
+      std::fprintf(stderr, "\nupgrain: error on rank %d of %d: %s\n", rank, ranks, what.c_str());
       std::fflush(stderr);
       MPI_Abort(MPI_COMM_WORLD, 1);
     }
-    std::fprintf(stderr, "\nupgrain: error: %s\n", e.what());
+    std::fprintf(stderr, "\nupgrain: error: %s\n", what.c_str());
     code = 1;
   }
   MPI_Finalize();
