@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <new>
 #include <set>
 #include <sstream>
 #include <string>
@@ -30,6 +31,7 @@
 #include "coupling/strain_report.h"
 #include "coupling/study.h"
 #include "dem/core/error.h"
+#include "dem/io/file_kind.h"
 #include "dem/io/output_journal.h"
 #include "dem/parallel/exchange.h"
 #include "dem/parallel/mpi_start.h"
@@ -66,7 +68,8 @@ constexpr const char* kUsage =
     "  --restart DIR                 continue the run in DIR from its newest valid checkpoint\n"
     "                                (DIR/checkpoints/, docs/restart.md), with the scene it was\n"
     "                                started with; a scene file given as well may change only\n"
-    "                                Simulation/end time and the Checkpoint and Parallel sections\n"
+    "                                Simulation/end time and maximum steps and the Checkpoint and\n"
+    "                                Parallel sections\n"
     "\n"
     "Exit status: 0 done (--verify: the folder is whole), 1 an error (named on one line; --verify:\n"
     "the folder is not as its run left it), 128 + N stopped by signal N\n"
@@ -176,6 +179,7 @@ void print_deposition(const upgrain::coupling::SceneInput& in, const upgrain::co
 // checkpoint (coupling/run/resume_point.h). `notes` receives what the log should say (refused
 // checkpoints, where the run resumes), on rank 0.
 upgrain::coupling::SceneInput restart_input(const std::string& dir, const std::string& file,
+                                            upgrain::coupling::Command command,
                                             std::vector<std::string>& notes) {
   using namespace upgrain;
   int rank = 0;
@@ -186,6 +190,12 @@ upgrain::coupling::SceneInput restart_input(const std::string& dir, const std::s
   double time = 0.0;
   if (rank == 0) {
     try {
+      // Named as what it is: a file, a FIFO or a symbolic link loop is not a folder without
+      // checkpoints.
+      if (const dem::io::PathKind k = dem::io::path_kind(dir); !k.folder())
+        throw Error("--restart " + dir + ": " +
+                    (k.exists ? "is " + k.description + ", not the output folder of a run"
+                              : k.description + "; give the output folder of the run to continue"));
       std::vector<std::string> refused;
       checkpoint = std::make_shared<coupling::Checkpoint>(coupling::newest_checkpoint(dir, refused));
       for (const std::string& r : refused) notes.push_back("refused " + r);
@@ -208,6 +218,7 @@ upgrain::coupling::SceneInput restart_input(const std::string& dir, const std::s
     MPI_Bcast(text->data(), length, MPI_CHAR, 0, MPI_COMM_WORLD);
   }
   coupling::SceneInput in = coupling::parse_scene_text(scene, dir + ": the scene of its checkpoint");
+  in.command = command;
   const long checkpoint_end = coupling::end_step(in.scene);
   if (!file.empty()) {
     // The given file's values for what a restart may change, the checkpoint's for the rest.
@@ -219,10 +230,11 @@ upgrain::coupling::SceneInput restart_input(const std::string& dir, const std::s
       std::string m = file + " is not the scene of the run in " + dir + "; it differs in";
       for (const std::string& d : differ) m += "\n  " + d;
       throw Error(m +
-                  "\n(a restart may change only Simulation/end time and the Checkpoint and Parallel "
-                  "sections but the summation)");
+                  "\n(a restart may change only Simulation/end time and maximum steps and the Checkpoint "
+                  "and Parallel sections but the summation)");
     }
     in.scene.end_time = given.scene.end_time;
+    in.maximum_steps = given.maximum_steps;
     in.output.checkpoint = given.output.checkpoint;  // with the given file's text: its end time
     in.parallel = given.parallel;
   }
@@ -370,14 +382,17 @@ int run(int argc, char** argv) {
   std::vector<std::string> restart_notes;
   if (!restart_dir.empty() && !output_override.empty())
     throw CollectiveError("--restart continues in its own folder: leave out --output");
+  const coupling::Command command = study == "accuracy"      ? coupling::Command::accuracy_study
+                                    : study == "calibration" ? coupling::Command::calibration_study
+                                                             : coupling::Command::run;
   // Every rank reads and checks the scene, and they agree on the outcome before rank 0 creates
   // the output folder: a refusal is every rank's, printed once.
   std::string refusal;
   try {
     if (!restart_dir.empty()) {
-      in = restart_input(restart_dir, file, restart_notes);
+      in = restart_input(restart_dir, file, command, restart_notes);
     } else {
-      in = file.empty() ? coupling::default_scene() : coupling::read_scene_file(file);
+      in = file.empty() ? coupling::default_scene(command) : coupling::read_scene_file(file, command);
       if (!output_override.empty()) in.output.folder = output_override;
       in.output.checkpoint.source = in.source;  // a restarted run's report names it
     }
@@ -400,12 +415,11 @@ int run(int argc, char** argv) {
                 in.source.c_str(), in.scene.particles.count,
                 dem::has_ellipsoids(in.scene.particles.shapes) ? "grains (ellipsoids)" : "spheres",
                 in.scene.time_step, ts.safe_step, ts.limiting.c_str(), in.scene.end_time);
-    if (in.study.compare_with_continuum)
+    if (coupling::compares_with_continuum(in))
       std::printf(
           "  study: DEM deposition -> grid stress -> continuum column (Q%u) -> comparison and report\n",
           in.study.continuum.degree);
-    if (const coupling::ContinuumOptions& c = in.study.continuum;
-        in.study.compare_with_continuum && study.empty()) {
+    if (const coupling::ContinuumOptions& c = in.study.continuum; coupling::compares_with_continuum(in)) {
       if (c.calibrate_in_study)
         std::printf(
             "  continuum material: measured on this bed after the DEM run (Continuum/material from = %s): "
@@ -416,7 +430,8 @@ int run(int argc, char** argv) {
         std::printf("  continuum material: the Continuum entries (Continuum/material from = auto): %s\n",
                     c.calibration_skipped.c_str());
     }
-    if (const coupling::ContinuumOptions& c = in.study.continuum; !c.material_file.empty())
+    if (const coupling::ContinuumOptions& c = in.study.continuum;
+        !c.material_file.empty() && coupling::uses_continuum_material(in))
       std::printf(
           "  continuum material: E %.9g Pa (%s), nu %.9g (%s), friction angle %.9g deg (%s), dilatancy angle "
           "%.9g deg (%s)\n",
@@ -447,11 +462,19 @@ int run(int argc, char** argv) {
   if (rank == 0) {
     std::printf("  output folder: %s\n", in.output.folder.c_str());
     for (const std::string& note : restart_notes) std::printf("  %s\n", note.c_str());
+    // Only the schedules that are on (Checkpoint/interval, wall interval: 0 = off).
     const coupling::CheckpointOptions& c = in.output.checkpoint;
-    if (c.interval > 0.0 || c.wall_interval > 0.0)
-      std::printf(
-          "  checkpoints: every %g s simulated, every %g s of wall clock (0 = never), the last %d kept\n",
-          c.interval, c.wall_interval, c.keep);
+    std::string every;
+    char part[64];
+    if (c.interval > 0.0) {
+      std::snprintf(part, sizeof part, "every %g s simulated", c.interval);
+      every = part;
+    }
+    if (c.wall_interval > 0.0) {
+      std::snprintf(part, sizeof part, "every %g s of wall clock", c.wall_interval);
+      every += (every.empty() ? "" : ", ") + std::string(part);
+    }
+    if (!every.empty()) std::printf("  checkpoints: %s, the last %d kept\n", every.c_str(), c.keep);
   }
   std::fflush(stdout);  // the preamble reaches a log file before a run that may be killed
   // The folder is this run's while it lives (docs/output.md, "Lock"); with overwrite the earlier
@@ -551,14 +574,19 @@ int main(int argc, char** argv) {
     code = 1;
   } catch (const std::exception& e) {
     // This rank's alone: the others may be waiting for it in a message, so the run is ended
-    // (MPI_Abort) rather than left to hang.
+    // (MPI_Abort) rather than left to hang. An allocation that no stage named
+    // (dem/core/out_of_memory.h names the big ones) is still said as what it is.
+    const std::string what = dynamic_cast<const std::bad_alloc*>(&e) != nullptr
+                                 ? "out of memory (std::bad_alloc): the run needs more memory than this "
+                                   "process may use (its limits: docs/input.md, \"Memory\")"
+                                 : e.what();
     std::fflush(stdout);
     if (ranks > 1) {
-      std::fprintf(stderr, "\nupgrain: error on rank %d of %d: %s\n", rank, ranks, e.what());
+      std::fprintf(stderr, "\nupgrain: error on rank %d of %d: %s\n", rank, ranks, what.c_str());
       std::fflush(stderr);
       MPI_Abort(MPI_COMM_WORLD, 1);
     }
-    std::fprintf(stderr, "\nupgrain: error: %s\n", e.what());
+    std::fprintf(stderr, "\nupgrain: error: %s\n", what.c_str());
     code = 1;
   }
   MPI_Finalize();

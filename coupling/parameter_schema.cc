@@ -45,6 +45,10 @@ const std::vector<ParameterSpec>& parameter_schema() {
        "Fixed time step of the velocity Verlet integrator. Refused when above the safe step "
        "(see Rayleigh fraction, Hertz fraction) unless 'allow unsafe time step' is true."},
       {"Simulation", "end time", "0.4", K::real, 0.0, 1e6, "", "s", "Simulated time at which the run ends."},
+      {"Simulation", "maximum steps", "1e10", K::real, 1.0, 1e18, "", "steps",
+       "The most time steps (end time / time step) a scene may ask for; more is refused as a likely "
+       "mistake in a unit (1e10 steps take a day at the fastest step rates measured). Raise it for a "
+       "longer run."},
       {"Simulation", "stop at rest ratio", "1e-6", K::real, 0.0, 1.0, "", "-",
        "End the run early once the kinetic energy is below this fraction of the potential energy "
        "released at every time-series row for the rest window (checked after the first tenth of "

@@ -27,14 +27,22 @@ struct ParallelInput {
   bool balance_by_pairs = false;       // cost: pair slots instead of particles
 };
 
+// What the command line runs on the scene (upgrain --study; docs/input.md, "Checks across
+// parameters"): the scene's own run, with its study when Study/compare with continuum is true,
+// or the study of one of its sections. A section's checks run only when the section is used.
+enum class Command { run, accuracy_study, calibration_study };
+
 struct SceneInput {
   std::string source;  // file name, or "built-in default scene"
+  Command command = Command::run;
   // The folder of the scene file, where a relative Particles/initial packing path starts (empty:
   // the working folder).
   std::string scene_folder;
   std::string initial_packing;  // Particles/initial packing as written (empty: a fill)
   std::string packing_note;     // what validate_scene read from it, for the log
   dem::SceneConfig scene;
+  // Simulation/maximum steps: a run of more (end time / time step) is refused as a likely mistake.
+  double maximum_steps = 1e10;
   dem::EffectSwitches
       effect_switches;  // the Effects section as written; validate_scene derives scene.effects
   OutputOptions output;
@@ -57,10 +65,10 @@ struct SceneInput {
 // Reads a .prm file: syntax and entry names first (prm_syntax.h), values by deal.II's
 // ParameterHandler, then the checks across parameters (validate_scene). Throws
 // upgrain::Error naming the file, line or parameter.
-SceneInput read_scene_file(const std::string& filename);
+SceneInput read_scene_file(const std::string& filename, Command command = Command::run);
 
 // The built-in default scene: every parameter at its default.
-SceneInput default_scene();
+SceneInput default_scene(Command command = Command::run);
 
 // A scene from the bytes of a parameter file (a checkpoint's scene, a file read by
 // read_scene_bytes), decoded (scene_text.h) and checked (prm_syntax.h), with `source` naming it
@@ -68,14 +76,16 @@ SceneInput default_scene();
 SceneInput parse_scene_text(const std::string& text, const std::string& source);
 
 // The entries two scenes' parameter texts (CheckpointOptions::scene) give different values,
-// as "Section/entry: 'a' -> 'b'", but those a restart may change: Simulation/end time, the
-// Checkpoint section, the Parallel section but its summation, and Output/folder and overwrite.
+// as "Section/entry: 'a' -> 'b'", but those a restart may change: Simulation/end time and
+// maximum steps, the Checkpoint section, the Parallel section but its summation, and
+// Output/folder and overwrite.
 std::vector<std::string> differing_parameters(const std::string& run, const std::string& given);
 
 // Continuum/material file (docs/calibration.md): E and nu read from the calibrated material file,
 // a scene-file fragment read as a scene (its other entries are ignored), replacing the Continuum
 // entries; a relative path is taken from the folder of `scene_file` (the current folder when it
-// is empty). Throws upgrain::Error naming the file. read_scene_file applies it.
+// is empty). Throws upgrain::Error naming the file. read_scene_file applies it, when the command
+// uses the Continuum's material (uses_continuum_material).
 void apply_material_file(SceneInput& in, const std::string& scene_file);
 
 // Why the calibration's tests (docs/calibration.md) cannot load this scene's bed: a contact law
@@ -84,10 +94,22 @@ void apply_material_file(SceneInput& in, const std::string& scene_file);
 // so its own calibration is refused there too: Continuum/material from.)
 std::string calibration_refusal(const SceneInput& in);
 
+// Which sections the command uses (docs/input.md, "Checks across parameters"); their checks
+// run only then. The scene's own run compares with the continuum (Study, Continuum,
+// CoarseGraining) when Study/compare with continuum is true; the accuracy study takes the
+// Continuum's material for its continuum knob. The Calibration section is used by the
+// calibration study, and by a comparison that calibrates its continua (Continuum/material
+// from, resolved by validate_scene).
+bool compares_with_continuum(const SceneInput& in);
+bool uses_continuum_material(const SceneInput& in);
+bool calibrates(const SceneInput& in);
+
 // Checks that involve several parameters or the file system: gradation curve, the fill
-// fits the container, the time step is safe, the stress grid's box. Fills in what depends on
-// several entries. Nothing is written. (The output folder is checked for a run by the driver:
-// scene_limits.h, check_output_folder.)
+// fits the container, the time step is safe, the stress grid's box; a section's own checks only
+// when `input.command` uses it (the Calibration section's when the study calibrates, the
+// Accuracy section's for the accuracy study, ...). Fills in what depends on several entries.
+// Nothing is written. (The output folder is checked for a run by the driver: scene_limits.h,
+// check_output_folder.)
 void validate_scene(SceneInput& input);
 
 // The annotated default parameter file, and its Markdown form for docs/parameters.md.

@@ -42,19 +42,34 @@ void check_gradation_sampling(const SceneInput& in, const std::string& where) {
 
 void check_memory(const SceneInput& in, const std::string& where) {
   const MemoryEstimate need = estimate_memory(in);
-  const double have = machine_memory();
-  if (need.total <= have) return;
+  // Against every limit that applies; the one with the least room left names the refusal.
+  const MemoryLimit* tightest = nullptr;
+  double need_there = 0.0, room = 0.0;
+  const std::vector<MemoryLimit> limits = memory_limits();
+  for (const MemoryLimit& l : limits) {
+    // What the process holds already, where the limit counts it, instead of the estimate's figure.
+    const double n = l.in_use > 0.0 ? l.in_use + need.grains + need.cells : need.total;
+    if (tightest == nullptr || l.bytes - n < room) {
+      tightest = &l;
+      need_there = n;
+      room = l.bytes - n;
+    }
+  }
+  if (tightest == nullptr || room >= 0.0) return;
   const dem::io::GridStressOptions& gs = in.output.grid_stress;
   std::ostringstream m;
-  m << where << "the scene needs at least " << format_bytes(need.total) << " of memory, this machine has "
-    << format_bytes(have) << " (Particles/count = " << in.scene.particles.count
+  m << where << "the scene needs at least " << format_bytes(need_there)
+    << " of memory (Particles/count = " << in.scene.particles.count
     << (in.scene.insertion.enabled() ? " + Insertion/count = " + std::to_string(in.scene.insertion.count)
                                      : "")
     << ": " << format_bytes(need.grains);
   if (need.cells > 0.0)
     m << "; Stress/grid cells = " << gs.cells[0] << ", " << gs.cells[1] << ", " << gs.cells[2] << ": "
       << format_bytes(need.cells);
-  m << "); use fewer grains or cells";
+  if (tightest->in_use > 0.0) m << "; the process itself: " << format_bytes(tightest->in_use);
+  m << "), more than the " << format_bytes(tightest->bytes) << " this process may use by " << tightest->name
+    << "; use fewer grains or cells";
+  if (tightest != &limits.front()) m << ", or raise that limit";
   throw Error(m.str());
 }
 

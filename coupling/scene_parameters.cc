@@ -159,6 +159,7 @@ SceneInput extract(ParameterHandler& prm, const std::string& source) {
   prm.enter_subsection("Simulation");
   s.time_step = prm.get_double("time step");
   s.end_time = prm.get_double("end time");
+  in.maximum_steps = prm.get_double("maximum steps");
   in.control.rest_ratio = prm.get_double("stop at rest ratio");
   in.control.rest_window = prm.get_double("stop at rest window");
   s.time_step_rule.rayleigh_fraction = prm.get_double("Rayleigh fraction");
@@ -524,7 +525,8 @@ SceneInput parse_scene_text(const std::string& bytes, const std::string& source)
 std::vector<std::string> differing_parameters(const std::string& run, const std::string& given) {
   const std::map<std::string, std::string> a = set_lines_of(run), b = set_lines_of(given);
   auto may_change = [](const std::string& key) {
-    return key == "Simulation/end time" || key.rfind("Checkpoint/", 0) == 0 ||
+    return key == "Simulation/end time" || key == "Simulation/maximum steps" ||
+           key.rfind("Checkpoint/", 0) == 0 ||
            (key.rfind("Parallel/", 0) == 0 && key != "Parallel/summation") || key == "Output/folder" ||
            key == "Output/overwrite";
   };
@@ -541,7 +543,7 @@ std::vector<std::string> differing_parameters(const std::string& run, const std:
 
 void apply_material_file(SceneInput& in, const std::string& scene_file) {
   ContinuumOptions& c = in.study.continuum;
-  if (c.material_file.empty()) return;
+  if (c.material_file.empty() || !uses_continuum_material(in)) return;
   std::filesystem::path file(c.material_file);
   if (file.is_relative() && !scene_file.empty())
     file = std::filesystem::path(scene_file).parent_path() / file;
@@ -573,18 +575,20 @@ void apply_material_file(SceneInput& in, const std::string& scene_file) {
   c.material_file = file.string();
 }
 
-SceneInput read_scene_file(const std::string& filename) {
+SceneInput read_scene_file(const std::string& filename, Command command) {
   SceneInput in = parse_scene_text(read_scene_bytes(filename), filename);
+  in.command = command;
   in.scene_folder = std::filesystem::path(filename).parent_path().string();
   apply_material_file(in, filename);
   validate_scene(in);
   return in;
 }
 
-SceneInput default_scene() {
+SceneInput default_scene(Command command) {
   ParameterHandler prm;
   declare(prm);
   SceneInput in = extract(prm, "built-in default scene");
+  in.command = command;
   validate_scene(in);
   return in;
 }

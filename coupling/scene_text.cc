@@ -9,19 +9,11 @@
 #include <cstring>
 
 #include "dem/core/error.h"
+#include "dem/io/file_kind.h"
 
 namespace upgrain::coupling {
 
 namespace {
-
-std::string kind_of(mode_t mode) {
-  if (S_ISDIR(mode)) return "a folder";
-  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISSOCK(mode)) return "a socket";
-  return "not a regular file";
-}
 
 // Length of the UTF-8 sequence starting at s[i] (RFC 3629: no overlong forms, no surrogates,
 // at most U+10FFFF), or 0 when it is not one.
@@ -84,7 +76,8 @@ std::string read_scene_bytes(const std::string& path) {
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0)
     throw Error(path + ": cannot open the parameter file: " + std::strerror(errno));
-  if (!S_ISREG(st.st_mode)) throw Error(path + ": is " + kind_of(st.st_mode) + ", not a parameter file");
+  if (!S_ISREG(st.st_mode))
+    throw Error(path + ": is " + dem::io::kind_of(st.st_mode) + ", not a parameter file");
   if (st.st_size > kMaxSceneBytes)
     throw Error(path + ": " + std::to_string(st.st_size) + " bytes, more than a scene file holds (at most " +
                 std::to_string(kMaxSceneBytes) + ")");
@@ -93,7 +86,7 @@ std::string read_scene_bytes(const std::string& path) {
   // The name may have been given to another file since stat(): the one opened counts.
   if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
     ::close(fd);
-    throw Error(path + ": is " + kind_of(st.st_mode) + ", not a parameter file");
+    throw Error(path + ": is " + dem::io::kind_of(st.st_mode) + ", not a parameter file");
   }
   std::string bytes;
   char buffer[65536];

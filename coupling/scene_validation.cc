@@ -90,7 +90,7 @@ void validate_collapse(const SceneInput& in, const std::string& where) {
       << " s) for Container/collapse = unconstrained";
     throw Error(m.str());
   }
-  if (in.study.compare_with_continuum)
+  if (compares_with_continuum(in))
     throw Error(where +
                 "Container/collapse = unconstrained removes the side walls that the continuum column "
                 "needs; set 'Study/compare with continuum = false'");
@@ -206,7 +206,66 @@ void resolve_material_source(SceneInput& in, const std::string& where) {
   c.calibration_skipped = why;
 }
 
+// The Calibration section's entries against each other and the time step; only when the
+// calibration runs (calibrates()).
+void validate_calibration(const SceneInput& in, const std::string& where) {
+  const dem::SceneConfig& s = in.scene;
+  if (in.command == Command::calibration_study)
+    if (const std::string why = calibration_refusal(in); !why.empty())
+      throw Error(where + "--study calibration: " + why + " (docs/calibration.md)");
+  // Each oedometric loading has its own entries (Calibration/oedometer loading).
+  if (!in.calibration.oedometer_by_lid) {
+    const std::vector<double>& f = in.calibration.gravity_factors;
+    if (f.empty())
+      throw Error(where +
+                  "Calibration/gravity factors: give at least one factor (a modulus needs two states)");
+    if (const std::string why = gravity_factors_error(f); !why.empty())
+      throw Error(where + "Calibration/gravity factors: " + why);
+  }
+  if (in.calibration.oedometer_by_lid) {
+    const std::vector<double>& f = in.calibration.lid_stress_factors;
+    if (f.size() < 2)
+      throw Error(where +
+                  "Calibration/lid stresses: give at least two targets (a modulus needs two loaded states)");
+    for (std::size_t k = 0; k < f.size(); ++k)
+      if (!(f[k] > 0.0) || (k > 0 && !(f[k] > f[k - 1])))
+        throw Error(where + "Calibration/lid stresses: the targets must be > 0 and ascending");
+  }
+  {
+    // The friction-angle test's shearing records 100 states: it needs at least one step each.
+    const CalibrationOptions& c = in.calibration;
+    const double shearing = c.final_axial_strain / c.axial_strain_rate;
+    if (shearing < 100.0 * s.time_step) {
+      std::ostringstream m;
+      m << where << "Calibration/final axial strain / axial strain rate = " << shearing
+        << " s of shearing is shorter than 100 time steps (" << 100.0 * s.time_step
+        << " s): the friction-angle test records 100 states; lower Calibration/axial strain rate";
+      throw Error(m.str());
+    }
+    if (c.consolidation_time < 10.0 * static_cast<double>(c.update_every) * s.time_step) {
+      std::ostringstream m;
+      m << where << "Calibration/consolidation time = " << c.consolidation_time
+        << " s gives the servo walls fewer than 10 updates (Calibration/update interval = " << c.update_every
+        << " steps of " << s.time_step << " s)";
+      throw Error(m.str());
+    }
+  }
+}
+
 }  // namespace
+
+bool compares_with_continuum(const SceneInput& in) {
+  return in.command == Command::run && in.study.compare_with_continuum;
+}
+
+bool uses_continuum_material(const SceneInput& in) {
+  return compares_with_continuum(in) || in.command == Command::accuracy_study;
+}
+
+bool calibrates(const SceneInput& in) {
+  return in.command == Command::calibration_study ||
+         (compares_with_continuum(in) && in.study.continuum.calibrate_in_study);
+}
 
 std::string calibration_refusal(const SceneInput& in) {
   if (in.scene.contact_law != "hertz-mindlin")
@@ -317,50 +376,26 @@ void validate_scene(SceneInput& in) {
     m << where << "Simulation/end time = " << s.end_time << " s is shorter than one time step";
     throw Error(m.str());
   }
-  try {
-    validate_lid(in.control.lid, s);
-  } catch (const Error& e) {
-    throw Error(where + e.what());
+  if (const double steps = s.end_time / s.time_step; steps > in.maximum_steps) {
+    // A step in the wrong unit (1e-12 s for 1e-6 s) asks for a run that would never end.
+    std::ostringstream m;
+    m.precision(3);
+    m << where << "Simulation/end time = " << s.end_time << " s at Simulation/time step = " << s.time_step
+      << " s is " << steps << " steps, more than Simulation/maximum steps = " << in.maximum_steps
+      << "; check the two entries' units, or raise Simulation/maximum steps";
+    throw Error(m.str());
   }
-  if (in.control.lid.enabled() && in.control.lid.friction > 0.0 && !in.scene.effects.wall_friction)
-    throw Error(where +
-                "Lid/friction > 0, but Effects/wall friction is off: the lid would be frictionless; set "
-                "'Lid/friction = 0' or turn wall friction on");
-  {
-    const std::vector<double>& f = in.calibration.gravity_factors;
-    if (f.empty())
-      throw Error(where +
-                  "Calibration/gravity factors: give at least one factor (a modulus needs two states)");
-    if (const std::string why = gravity_factors_error(f); !why.empty())
-      throw Error(where + "Calibration/gravity factors: " + why);
-  }
-  {
-    const std::vector<double>& f = in.calibration.lid_stress_factors;
-    if (f.size() < 2)
-      throw Error(where +
-                  "Calibration/lid stresses: give at least two targets (a modulus needs two loaded states)");
-    for (std::size_t k = 0; k < f.size(); ++k)
-      if (!(f[k] > 0.0) || (k > 0 && !(f[k] > f[k - 1])))
-        throw Error(where + "Calibration/lid stresses: the targets must be > 0 and ascending");
-  }
-  {
-    // The friction-angle test's shearing records 100 states: it needs at least one step each.
-    const CalibrationOptions& c = in.calibration;
-    const double shearing = c.final_axial_strain / c.axial_strain_rate;
-    if (shearing < 100.0 * s.time_step) {
-      std::ostringstream m;
-      m << where << "Calibration/final axial strain / axial strain rate = " << shearing
-        << " s of shearing is shorter than 100 time steps (" << 100.0 * s.time_step
-        << " s): the friction-angle test records 100 states; lower Calibration/axial strain rate";
-      throw Error(m.str());
+  // The scene's lid; the calibration study deposits its bed without it (docs/calibration.md).
+  if (in.command != Command::calibration_study) {
+    try {
+      validate_lid(in.control.lid, s);
+    } catch (const Error& e) {
+      throw Error(where + e.what());
     }
-    if (c.consolidation_time < 10.0 * static_cast<double>(c.update_every) * s.time_step) {
-      std::ostringstream m;
-      m << where << "Calibration/consolidation time = " << c.consolidation_time
-        << " s gives the servo walls fewer than 10 updates (Calibration/update interval = " << c.update_every
-        << " steps of " << s.time_step << " s)";
-      throw Error(m.str());
-    }
+    if (in.control.lid.enabled() && in.control.lid.friction > 0.0 && !in.scene.effects.wall_friction)
+      throw Error(where +
+                  "Lid/friction > 0, but Effects/wall friction is off: the lid would be frictionless; set "
+                  "'Lid/friction = 0' or turn wall friction on");
   }
   if (const upscale::GridStrainOutputOptions& st = in.output.grid_strain; st.enabled) {
     if (!in.output.grid_stress.enabled())
@@ -382,7 +417,7 @@ void validate_scene(SceneInput& in) {
       throw Error(m.str());
     }
   }
-  if (in.study.compare_with_continuum) {
+  if (compares_with_continuum(in)) {
     validate_continuum(in.study.continuum, where);
     resolve_material_source(in, where);
     if (in.study.formulas.empty())
@@ -396,8 +431,18 @@ void validate_scene(SceneInput& in) {
                     "', which is not in Stress/formulas; add it there");
     }
   }
+  if (calibrates(in)) validate_calibration(in, where);
   {
-    // The coarse-grained fields live on the study's mesh; what the run keeps for them.
+    // The coarse-grained fields live on the study's mesh; what the run keeps for them, and
+    // the section's checks only when the study captures them.
+    const CoarseGrainingOptions& cg = in.study.coarse_graining;
+    CoarseGrainingCapture& capture = in.output.coarse_graining;
+    capture.enabled = compares_with_continuum(in) && cg.any();
+    capture.displacement = cg.displacement;
+    capture.reference_time = cg.reference_time;
+    capture.later_steps = 0;
+  }
+  if (const CoarseGrainingCapture& capture = in.output.coarse_graining; capture.enabled) {
     const CoarseGrainingOptions& cg = in.study.coarse_graining;
     if (cg.reference_time > s.end_time) {
       std::ostringstream m;
@@ -412,9 +457,7 @@ void validate_scene(SceneInput& in) {
         << " s is shorter than half a time step (" << s.time_step << " s); give at least one time step, or 0";
       throw Error(m.str());
     }
-    CoarseGrainingCapture& capture = in.output.coarse_graining;
-    capture.enabled = in.study.compare_with_continuum && cg.any();
-    if (capture.enabled && cg.displacement && s.insertion.enabled()) {
+    if (cg.displacement && s.insertion.enabled()) {
       // The displacement is measured from each grain's position at the reference time: a grain
       // poured after it has none (docs/insertion.md).
       const double last = dem::last_batch_time(s, dem::plan_pour(s));
@@ -429,9 +472,7 @@ void validate_scene(SceneInput& in) {
         throw Error(m.str());
       }
     }
-    capture.displacement = cg.displacement;
-    capture.reference_time = cg.reference_time;
-    capture.later_steps =
+    in.output.coarse_graining.later_steps =
         cg.by_differences ? std::max(1L, std::lround(cg.sampling_interval / s.time_step)) : 0L;
   }
   {
@@ -448,11 +489,13 @@ void validate_scene(SceneInput& in) {
   // line has chosen it (check_output_folder).
   // Last, once the scene itself is known sound: the Accuracy section's knobs and values (upgrain --study
   // accuracy), refused here with the entry named, before any run.
-  try {
-    std::vector<std::string> skipped;
-    (void)knob_settings(in, in.accuracy, 1, skipped);
-  } catch (const Error& e) {
-    throw Error(where + e.what());
+  if (in.command == Command::accuracy_study) {
+    try {
+      std::vector<std::string> skipped;
+      (void)knob_settings(in, in.accuracy, 1, skipped);
+    } catch (const Error& e) {
+      throw Error(where + e.what());
+    }
   }
 }
 

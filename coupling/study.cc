@@ -21,6 +21,7 @@
 #include "coupling/study_report.h"
 #include "coupling/wall_shear_profile.h"
 #include "dem/core/error.h"
+#include "dem/core/out_of_memory.h"
 #include "dem/io/atomic_file.h"
 #include "dem/io/grid_stress_output.h"
 #include "dem/stress/asymmetry.h"
@@ -306,7 +307,9 @@ int run_study(const SceneInput& scene_input, MPI_Comm comm,
   problem.refinements = in.study.continuum.refinements;
   problem.degree = in.study.continuum.degree;
   problem.keep_quadrature_stress = in.output.coarse_graining.enabled;
-  const fem::ColumnSolution sol = fem::solve_column(problem, comm, (folder / "fem").string());
+  const fem::ColumnSolution sol = allocating("the elastic continuum's mesh and system (FEM)", [&] {
+    return fem::solve_column(problem, comm, (folder / "fem").string());
+  });
   timings.emplace_back("continuum: elastic on rollers (FEM, output included)", since(t0));
   std::vector<ContinuumResult> continua = {
       continuum_result("fem", "elastic on rollers", sol.cell_average_stress, 0.0)};
@@ -316,7 +319,9 @@ int run_study(const SceneInput& scene_input, MPI_Comm comm,
     t0 = Clock::now();
     FrictionalRun run = frictional_run(in, problem, variant);
     try {
-      run.solution = fem::solve_frictional_column(run.problem, comm, (folder / run.key).string());
+      run.solution = allocating("a frictional continuum's mesh and system (FEM)", [&] {
+        return fem::solve_frictional_column(run.problem, comm, (folder / run.key).string());
+      });
     } catch (const fem::NewtonFailure& e) {
       // Every rank throws alike (the decision rests on reduced residuals). The DEM run and
       // the other continua are kept; the report says what failed.
@@ -355,7 +360,8 @@ int run_study(const SceneInput& scene_input, MPI_Comm comm,
   CoarseGrainingOutcome cg;
   if (in.output.coarse_graining.enabled) {
     t0 = Clock::now();
-    cg = coarse_grain_on_mesh(in, r, problem, sol, comm, folder);
+    cg = allocating("the coarse-grained fields on the mesh",
+                    [&] { return coarse_grain_on_mesh(in, r, problem, sol, comm, folder); });
     timings.emplace_back("coarse-grained fields on the mesh", since(t0));
   }
 

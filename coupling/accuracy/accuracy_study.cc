@@ -123,6 +123,7 @@ class Study {
     in.output.checkpoint.interval = in.output.checkpoint.wall_interval = 0.0;
     in.overwrite = true;
     in.study.compare_with_continuum = false;  // the DEM alone: the continuum has its own knob
+    in.command = Command::run;                // a run of the scene, its knobs checked already
     in.restarting = false;
     in.resume.reset();
     validate_scene(in);

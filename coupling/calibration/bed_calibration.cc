@@ -11,6 +11,7 @@
 
 #include "dem/boundary/container.h"
 #include "dem/core/error.h"
+#include "dem/core/out_of_memory.h"
 #include "dem/io/atomic_file.h"
 #include "dem/io/json_number.h"
 
@@ -223,7 +224,7 @@ BedCalibration calibrate_bed(const dem::SceneConfig& scene, const dem::EngineSta
     dem::Simulation sim(ring,
                         c.lubricate_side_walls ? with_wall_friction(bed, c.side_wall_friction, false) : bed,
                         comm, engine);
-    b.path = run_oedometer(sim, o);
+    b.path = allocating("the oedometric test's path", [&] { return run_oedometer(sim, o); });
   }
   b.oedometer_seconds = seconds_since(t1);
   // The friction-angle test on the same bed, with frictionless walls (lubricated platens and
@@ -233,7 +234,7 @@ BedCalibration calibrate_bed(const dem::SceneConfig& scene, const dem::EngineSta
     dem::SceneConfig smooth = scene;
     for (double& f : smooth.container.friction) f = 0.0;
     dem::Simulation tx(smooth, with_wall_friction(bed, 0.0, true), comm, engine);
-    b.shear = run_triaxial(tx, x);
+    b.shear = allocating("the friction-angle test's path", [&] { return run_triaxial(tx, x); });
   }
   b.triaxial_seconds = seconds_since(t2);
   o.after_step = x.after_step = nullptr;  // `clock` and `done` end here

@@ -17,9 +17,8 @@ namespace fs = std::filesystem;
 
 int run_calibration_study(const SceneInput& in, MPI_Comm comm,
                           const std::function<void(const Progress&)>& on_progress) {
+  // The scene was checked for the calibration's tests (calibration_refusal) by validate_scene.
   const CalibrationOptions& c = in.calibration;
-  if (const std::string why = calibration_refusal(in); !why.empty())
-    throw Error(why + " (docs/calibration.md)");
   // The bed is deposited in the oedometer's ring: the side walls get the calibration's friction
   // (a lubricated ring by default), the floor keeps the scene's.
   dem::SceneConfig scene = in.scene;

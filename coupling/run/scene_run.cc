@@ -11,6 +11,7 @@
 #include "coupling/run/run_files.h"
 #include "coupling/run/run_schedule.h"
 #include "coupling/run/stop_request.h"
+#include "dem/core/out_of_memory.h"
 #include "dem/parallel/exchange.h"
 #include "dem/scene/fill.h"
 
@@ -92,7 +93,8 @@ class SceneRun {
       resume_history(resume->history, resume->schedule.step);
       files_.resume(sim, resume->files);
       states_.resume(sim, resume->cg_reference);
-      if (schedule_.evaluation_every > 0) grids_.emplace(sim, *output, &resume->grid_state);
+      if (schedule_.evaluation_every > 0)
+        allocating("the stress and strain grids", [&] { grids_.emplace(sim, *output, &resume->grid_state); });
       // The schedule's state is rank 0's (the checkpoint is read there).
       long where[6] = {resume->schedule.step,
                        static_cast<long>(resume->schedule.next_release),
@@ -109,11 +111,12 @@ class SceneRun {
     }
     if (output) history_.scene_source = output->checkpoint.source;
     files_.record_series(sim);
-    files_.write_snapshot(sim);
+    allocating("a snapshot (every grain's state, gathered on rank 0)", [&] { files_.write_snapshot(sim); });
     keep_replay_start();
     // Grid stress needs the contacts of a force evaluation, which are recorded on request
     // before the step that computes them (Simulation::request_contacts()).
-    if (schedule_.evaluation_every > 0) grids_.emplace(sim, *output);
+    if (schedule_.evaluation_every > 0)
+      allocating("the stress and strain grids", [&] { grids_.emplace(sim, *output); });
     state_.rest_check_from = schedule_.total / 10;
     states_.at_step(sim);
   }
@@ -132,11 +135,11 @@ class SceneRun {
       const bool record = evaluate || (files_.wants_contacts() && schedule_.snapshot_due(s));
       if (record) sim_.request_contacts();
       try {
-        sim_.step();
+        allocating("a time step's contacts and forces", [&] { sim_.step(); });
       } catch (const CollectiveError& e) {
         stop_with_last_good_state(e);
       }
-      if (evaluate) grids_->evaluate(sim_);
+      if (evaluate) allocating("the grid stress and strain", [&] { grids_->evaluate(sim_); });
       const bool series_now = schedule_.series_due(s);
       if (series_now) {
         files_.record_series(sim_);
@@ -149,7 +152,8 @@ class SceneRun {
       }
       if (files_.enabled() && (schedule_.snapshot_due(s) || r.stopped_at_rest)) {
         if (!series_now) files_.record_series(sim_);
-        files_.write_snapshot(sim_);
+        allocating("a snapshot (every grain's state, gathered on rank 0)",
+                   [&] { files_.write_snapshot(sim_); });
         if (!r.stopped_at_rest) keep_replay_start();
       }
       clock_.dynamics(s, schedule_.total, control_.rest_ratio > 0.0, r.stopped_at_rest);
@@ -161,7 +165,9 @@ class SceneRun {
       }
       const CheckpointClock::Decision d = checkpoints_.at(s, series_now, sim_.comm());
       fs::path written;
-      if (d.write) written = write_checkpoint_now();
+      if (d.write)
+        written = allocating("a checkpoint (the engine's state, gathered on rank 0)",
+                             [&] { return write_checkpoint_now(); });
       // At the last step the run goes on: what is left is its end (the writing, and a relaxation
       // that checks again), after which the driver exits with the signal's status.
       if (d.stop != 0 && s < schedule_.total) throw RunStopped(d.stop, s, written);
@@ -176,7 +182,8 @@ class SceneRun {
                           relaxation.force_tolerance, now.converged);
         if (now.steps % kStopCheckEvery == 0) stop_in_relaxation(now.steps);
       };
-      r.relaxation = dem::relax_to_equilibrium(sim_, relaxation);
+      r.relaxation =
+          allocating("the relaxation (FIRE)", [&] { return dem::relax_to_equilibrium(sim_, relaxation); });
       // One recorded step of the relaxed state for its stress, snapshot and series row.
       final_step();
     }
@@ -365,7 +372,7 @@ dem::ParticleStore fill_on_root(const dem::SceneConfig& scene, MPI_Comm comm) {
   std::string error;
   if (rank == 0) {
     try {
-      fill = dem::fill_container(scene);
+      fill = allocating("the fill's grains", [&] { return dem::fill_container(scene); });
     } catch (const std::exception& e) {
       error = e.what();
     }

@@ -9,6 +9,7 @@
 #include "dem/boundary/container.h"
 #include "dem/contact/contact_laws.h"
 #include "dem/core/error.h"
+#include "dem/core/out_of_memory.h"
 #include "dem/engine/guards.h"
 #include "dem/motion/grain_rotation.h"
 #include "dem/parallel/exchange.h"
@@ -85,8 +86,10 @@ Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, MPI_Co
                        const EngineOptions& options)
     : Simulation(scene, std::move(particles), make_open_box(scene.container), comm, options) {}
 
+// A std::bad_alloc anywhere in the construction (the broadcast scene, each rank's store, the
+// ghosts and lists) is named (dem/core/out_of_memory.h).
 Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, std::vector<PlaneWall> walls,
-                       MPI_Comm comm, const EngineOptions& options)
+                       MPI_Comm comm, const EngineOptions& options) try
     : scene_(scene),
       walls_(std::move(walls)),
       summation_(options.summation),
@@ -158,6 +161,8 @@ Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, std::v
   }
   e0_ = energy();
   timings_ = {};  // step() only
+} catch (const std::bad_alloc&) {
+  throw_out_of_memory("the engine's particle store, ghosts and neighbour lists");
 }
 
 void Simulation::set_up(long count, double max_radius, bool shapes, const Box& box, MPI_Comm comm,
@@ -298,7 +303,7 @@ void Simulation::run(long steps) {
   for (long s = 0; s < steps; ++s) step();
 }
 
-void Simulation::rebuild() {
+void Simulation::rebuild() try {
   const double messages_before = domain_->message_seconds();
   std::chrono::steady_clock::time_point t = std::chrono::steady_clock::now();
   check_finite();
@@ -340,6 +345,8 @@ void Simulation::rebuild() {
   ++rebuilds_;
   domain_->measure_balance(n_owned_, lists_->slots_per_owned());
   timings_.rebuild_messages += domain_->message_seconds() - messages_before;
+} catch (const std::bad_alloc&) {
+  throw_out_of_memory("the neighbour lists and ghosts at a rebuild");
 }
 
 void Simulation::evaluate_forces() {

@@ -4,6 +4,7 @@
 
 #include "dem/contact/contact_laws.h"
 #include "dem/core/error.h"
+#include "dem/core/out_of_memory.h"
 #include "dem/engine/simulation.h"
 #include "dem/parallel/byte_stream.h"
 #include "dem/parallel/exchange.h"
@@ -240,7 +241,7 @@ EngineState Simulation::capture_state() const {
 }
 
 Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_root, MPI_Comm comm,
-                       const EngineOptions& options)
+                       const EngineOptions& options) try
     : scene_(scene),
       summation_(options.summation),
       dt_(scene.time_step),
@@ -274,7 +275,8 @@ Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_roo
   o.box = s.domain.box;
   o.balance_at_start = false;
   set_up(static_cast<long>(s.particles.size()), max_radius, s.particles.has_shapes(), s.domain.box, comm, o);
-  domain_->restore(s.domain);
+  // The grains are placed by where the lists were last built (below): the balance too.
+  domain_->restore(s.domain, s.positions_at_build, s.step);
   // Spheres in a scene that pours ellipsoids (set_up): with their shapes, as in the run.
   if (shapes_) s.particles.ensure_shapes();
 
@@ -343,6 +345,9 @@ Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_roo
     reference_mass_ = s.reference_mass;
   }
   timings_ = {};
+} catch (const std::bad_alloc&) {
+  throw_out_of_memory(
+      "the engine restored from the checkpoint (its state on every rank, the store, ghosts and lists)");
 }
 
 }  // namespace upgrain::dem

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "dem/core/error.h"
+#include "dem/io/file_kind.h"
 #include "dem/io/hdf5_util.h"
 
 namespace upgrain::dem::io::hdf5 {
@@ -208,9 +209,13 @@ class Reader {
                   std::string("open attribute ") + name + where(true));
   }
   static hid_t open(const std::filesystem::path& path, const std::string& kind) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec))
-      throw Error(kind + " " + path.string() + ": no such file");
+    if (const PathKind k = path_kind(path.string()); !k.regular())
+      throw Error(kind + " " + path.string() + ": " +
+                  (!k.exists ? (k.description == "does not exist" ? "no such file" : k.description)
+                             : "is " + k.description + ", not a file"));
+    // The probe of a file that is not HDF5 fails inside the library, which prints its error
+    // stack unless told not to; the message below says what happened.
+    QuietHdf5 quiet;
     if (H5Fis_hdf5(path.c_str()) <= 0) throw Error(kind + " " + path.string() + ": not an HDF5 file");
     return H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   }

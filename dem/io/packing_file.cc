@@ -1,12 +1,18 @@
 #include "dem/io/packing_file.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <numeric>
 #include <sstream>
 
 #include "dem/core/error.h"
+#include "dem/io/file_kind.h"
 #include "dem/io/hdf5_reader.h"
 
 namespace upgrain::dem::io {
@@ -43,6 +49,28 @@ std::vector<PackedGrain> read_snapshot(const std::filesystem::path& path) {
       g.orientation = Eigen::Quaterniond(quat[4 * k], quat[4 * k + 1], quat[4 * k + 2], quat[4 * k + 3]);
   }
   return out;
+}
+
+// The path names a regular file that reads: anything else is refused with what it is, before
+// a reader opens it (a FIFO's open() waits for a writer, /dev/zero never ends; /proc/self/mem is
+// a regular file whose first read fails).
+void check_readable(const std::filesystem::path& path) {
+  const std::string name = "packing " + path.string() + ": ";
+  const PathKind kind = path_kind(path.string());
+  if (!kind.exists)
+    throw Error(name + (kind.description == "does not exist" ? "no such file" : kind.description) +
+                " (Particles/initial packing)");
+  if (!kind.regular()) throw Error(name + "is " + kind.description + ", not a packing file");
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) throw Error(name + "cannot open the file: " + std::strerror(errno));
+  char byte = 0;
+  ssize_t got = -1;
+  do {
+    got = ::read(fd, &byte, 1);
+  } while (got < 0 && errno == EINTR);
+  const int e = errno;
+  ::close(fd);
+  if (got < 0) throw Error(name + "cannot read the file: " + std::strerror(e));
 }
 
 }  // namespace
@@ -97,12 +125,17 @@ Packing number_grains(std::vector<PackedGrain> grains, double density, const std
 }
 
 Packing read_packing(const std::filesystem::path& path, double density) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw Error("packing " + path.string() + ": no such file (Particles/initial packing)");
+  check_readable(path);
   Packing p;
   std::vector<std::string> notes;
-  if (H5Fis_hdf5(path.c_str()) > 0) {
+  bool hdf5 = false;
+  {
+    // The probe of a file that is not HDF5 fails inside the library, which would print its
+    // error stack.
+    hdf5::QuietHdf5 quiet;
+    hdf5 = H5Fis_hdf5(path.c_str()) > 0;
+  }
+  if (hdf5) {
     p = number_grains(read_snapshot(path), density, path.string(), "row");
     p.format = "Upgrain snapshot";
   } else if (looks_like_lammps_data(path)) {

@@ -70,6 +70,9 @@ std::vector<Line> read_lines(const std::filesystem::path& path) {
     if (number == 1 && s.rfind("\xEF\xBB\xBF", 0) == 0) s.erase(0, 3);  // a UTF-8 byte-order mark
     lines.push_back({number, split(s), s});
   }
+  // A read that fails (an I/O error) is not the file's end: its grains would be missing.
+  if (in.bad())
+    throw Error("packing " + path.string() + ": cannot read the file after line " + std::to_string(number));
   return lines;
 }
 

@@ -59,15 +59,56 @@ DomainState Domain::state() const {
   return s;
 }
 
-void Domain::restore(const DomainState& s) {
+void Domain::restore(const DomainState& s, const std::vector<Vec3>& positions, long step) {
   balance_state_.next_step = s.next_balance_step;
   Decomposition& dec = *decomp_;
-  if (s.blocks != dec.blocks()) return;
-  for (int d = 0; d < 3; ++d) {
-    if (s.planes[d].size() != static_cast<std::size_t>(s.blocks[d] + 1)) continue;
-    dec.set_cuts(d, std::vector<double>(s.planes[d].begin() + 1, s.planes[d].end() - 1));
+  if (s.blocks == dec.blocks()) {
+    for (int d = 0; d < 3; ++d) {
+      if (s.planes[d].size() != static_cast<std::size_t>(s.blocks[d] + 1)) continue;
+      dec.set_cuts(d, std::vector<double>(s.planes[d].begin() + 1, s.planes[d].end() - 1));
+    }
+    balance_ = s.balance;
+    return;
   }
+  // Other blocks (another rank count): the checkpoint's planes do not apply, and the default
+  // ones can leave the grains on a few ranks for good, since a bed at rest is never rebuilt and
+  // so never rebalanced. With the load balance on, the planes go where a fresh run's first
+  // rebuild puts them: to the quantiles of the grains (one each; the pair slots are not known
+  // before the lists), from `positions`, which every rank holds whole, so no reduction is
+  // needed and every rank places the same planes.
+  if (balance_state_.interval <= 0 || dec.size() < 2) return;
   balance_ = s.balance;
+  const std::array<int, 3>& blocks = dec.blocks();
+  const Box& box = dec.box();
+  std::vector<long>& h = balance_state_.reduced;
+  h.assign(3 * static_cast<std::size_t>(kBalanceBins) + 1, 0);
+  for (const Vec3& x : positions)
+    for (int d = 0; d < 3; ++d)
+      if (blocks[d] > 1) ++h[d * kBalanceBins + balance_bin(x[d], box.lo[d], box.hi[d], kBalanceBins)];
+  auto imbalance = [&] {
+    std::vector<long> owned(static_cast<std::size_t>(dec.size()), 0);
+    for (const Vec3& x : positions) ++owned[static_cast<std::size_t>(dec.owner_of(x))];
+    return imbalance_ratio(*std::max_element(owned.begin(), owned.end()), static_cast<long>(positions.size()),
+                           dec.size());
+  };
+  balance_.before = imbalance();
+  place_planes(h.data());
+  balance_.after = imbalance();
+  ++balance_.count;
+  balance_.last_step = step;
+}
+
+void Domain::place_planes(const long* histogram) {
+  Decomposition& dec = *decomp_;
+  const std::array<int, 3>& blocks = dec.blocks();
+  const Box& box = dec.box();
+  for (int d = 0; d < 3; ++d) {
+    if (blocks[d] < 2) continue;
+    std::vector<double> cuts =
+        quantile_cuts(histogram + d * kBalanceBins, kBalanceBins, box.lo[d], box.hi[d], blocks[d]);
+    clamp_cuts(cuts, box.lo[d], box.hi[d], dec.min_block());
+    dec.set_cuts(d, cuts);
+  }
 }
 
 template <class Exchange>
@@ -326,13 +367,7 @@ bool Domain::rebalance_if_due(const ParticleStore& p, const std::vector<int>& sl
     MPI_Allreduce(&mine, &max_cost, 1, MPI_LONG, MPI_MAX, comm());
   });
   balance_.before = imbalance_ratio(max_cost, balance_state_.reduced[n - 1], dec.size());
-  for (int d = 0; d < 3; ++d) {
-    if (blocks[d] < 2) continue;
-    std::vector<double> cuts = quantile_cuts(balance_state_.reduced.data() + d * kBalanceBins, kBalanceBins,
-                                             box.lo[d], box.hi[d], blocks[d]);
-    clamp_cuts(cuts, box.lo[d], box.hi[d], dec.min_block());
-    dec.set_cuts(d, cuts);
-  }
+  place_planes(balance_state_.reduced.data());
   ++balance_.count;
   balance_.last_step = step;
   balance_state_.measure_after = true;

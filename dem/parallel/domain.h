@@ -49,8 +49,8 @@ struct BalanceRecord {
 };
 
 // What a checkpoint keeps of a domain: the block planes and where the load balance stands
-// (docs/restart.md). Reused on a restart with the same blocks; another rank count starts from
-// the default planes.
+// (docs/restart.md). Reused on a restart with the same blocks; on another rank count the planes
+// are balanced over the grains at once (Domain::restore).
 struct DomainState {
   Box box;
   std::array<int, 3> blocks{1, 1, 1};
@@ -94,16 +94,20 @@ class Domain {
   [[nodiscard]] int ghost_owner(std::size_t i) const { return ghost_owner_[i - n_owned_]; }
 
   [[nodiscard]] const BalanceRecord& balance() const { return balance_; }
-  // The planes and the load balance's progress; and back, when the blocks are the same
-  // (otherwise only the balance's next step is taken). Between steps.
+  // The planes and the load balance's progress; and back (between steps): the planes when the
+  // blocks are the same; on other blocks (another rank count), with the load balance on, planes
+  // balanced over `positions` (every grain's, the same on every rank; a rebalance at `step`),
+  // and otherwise the default planes. The balance's next step is taken in every case.
   [[nodiscard]] DomainState state() const;
-  void restore(const DomainState& s);
+  void restore(const DomainState& s, const std::vector<Vec3>& positions, long step);
   [[nodiscard]] long migrated_out() const { return migrated_out_; }
   // Wall-clock seconds spent in messages and reductions by migrate() and build_ghosts().
   [[nodiscard]] double message_seconds() const { return message_seconds_; }
 
  private:
   bool rebalance_if_due(const ParticleStore& p, const std::vector<int>& slots_per_owned, long step);
+  // Every cut axis's planes at the quantiles of `histogram` (3 axes x kBalanceBins).
+  void place_planes(const long* histogram);
   void migration_pass(ParticleStore& p, std::vector<ContactHistoryRecord>& records);
   [[nodiscard]] long owned_cost(const std::vector<int>& slots_per_owned, int n_owned, int i) const;
   template <class Exchange>

@@ -19,10 +19,20 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const Error&) {
   }
   try {
-    coupling::SceneInput in = coupling::parse_scene_text(text, "fuzz.prm");
-    // A folder that does not exist: validation looks at it, and nothing creates it.
-    in.output.folder = "/nonexistent/upgrain-fuzz-output";
-    coupling::validate_scene(in);
+    const coupling::SceneInput read = coupling::parse_scene_text(text, "fuzz.prm");
+    // Under each command: a section's checks run only when it is used (the Accuracy section's
+    // for the accuracy study, the Calibration section's when the bed is calibrated).
+    for (const coupling::Command command :
+         {coupling::Command::run, coupling::Command::accuracy_study, coupling::Command::calibration_study}) {
+      coupling::SceneInput in = read;
+      in.command = command;
+      // A folder that does not exist: validation looks at it, and nothing creates it.
+      in.output.folder = "/nonexistent/upgrain-fuzz-output";
+      try {
+        coupling::validate_scene(in);
+      } catch (const Error&) {
+      }
+    }
   } catch (const Error&) {
   }
   return 0;

@@ -190,4 +190,58 @@ TEST(Restart, ContinuesAcrossAndAfterAGateOpening) {
   }
 }
 
+// A bed captured on one rank and continued on all (docs/restart.md, docs/parallel.md "Load
+// balance"): the restored engine balances its planes over the grains at once, as a fresh run
+// does at its first rebuild. With the default planes of the box, the grains lie in its lower
+// blocks, and a bed at rest is never rebuilt, so it was never rebalanced (owned max/mean 2 on 2
+// ranks, 99.8 % of the step time in communication). The continuation stays bitwise equal to the
+// run balanced on all ranks from the start.
+TEST(Restart, OnMoreRanksTheBedIsBalancedAtOnce) {
+  // The slabs of each cut axis are balanced to the grain; the blocks of several cut axes (8
+  // ranks: 2 x 2 x 2) only as well as the grains' positions are uncorrelated across the axes.
+  const double bound = 1.1;
+  if (test::world_size() == 1) GTEST_SKIP() << "one rank: nothing to balance";
+  // A narrow column thrown down: its box (floor to the fill's top, 7.5 cm) is cut along z, and
+  // by the capture the grains have settled into its lower half.
+  SceneConfig s = test::deposition_scene(200);
+  s.container.lx = s.container.ly = 0.012;
+  s.fill.velocity = Vec3(0, 0, -1.0);
+  EngineOptions balanced;
+  balanced.balance_interval = 200;
+  const long first = 10000, then = 1500;
+  const ParticleStore fill = fill_container(s);
+  Simulation world(s, fill, MPI_COMM_WORLD, balanced);
+  world.run(first + then);
+  const Outcome reference = outcome(world);
+  EngineState captured;
+  if (test::world_rank() == 0) {
+    Simulation alone(s, fill, MPI_COMM_SELF, balanced);
+    alone.run(first);
+    captured = alone.capture_state();
+  }
+  double with_default_planes = 0.0;
+  {
+    EngineOptions fixed = balanced;
+    fixed.balance_interval = 0;
+    Simulation unbalanced(s, captured, MPI_COMM_WORLD, fixed);
+    with_default_planes = unbalanced.load_imbalance().owned_ratio;
+  }
+  Simulation resumed(s, captured, MPI_COMM_WORLD, balanced);
+  const LoadImbalance at_restart = resumed.load_imbalance();
+  const RankDiagnostics d = resumed.rank_diagnostics();
+  if (test::world_rank() == 0)
+    std::printf(
+        "captured on 1 rank at step %ld, restored on %d: owned max/mean %.3f with the default planes, "
+        "%.3f balanced (rebalance %ld at step %ld: %.3f -> %.3f)\n",
+        first, test::world_size(), with_default_planes, at_restart.owned_ratio, d.rebalances,
+        d.rebalance_step, d.imbalance_before, d.imbalance_after);
+  EXPECT_GT(with_default_planes, 1.5) << "the case: the default planes leave ranks idle";
+  EXPECT_LT(at_restart.owned_ratio, bound);
+  EXPECT_EQ(d.rebalance_step, first);
+  EXPECT_NEAR(d.imbalance_after, at_restart.owned_ratio, 1e-12);
+  resumed.run(then);
+  expect_same(outcome(resumed), reference,
+              "1 rank then " + std::to_string(test::world_size()) + ", balanced");
+}
+
 }  // namespace
