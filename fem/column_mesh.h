@@ -126,8 +126,7 @@ inline void write_pieces_and_record(const dealii::DataOut<dim>& data_out, const 
   const std::filesystem::path dir(folder);
   std::vector<std::filesystem::path> piece_paths;
   for (unsigned int r = 0; r < n_ranks; ++r) piece_paths.push_back(dir / piece_name(r));
-  if (rank == 0) dem::io::create_folder(dir);
-  dem::io::note_pieces_writing(comm, piece_paths);  // docs/output.md, "Manifest"
+  dem::io::note_pieces_writing(comm, dir, piece_paths);  // docs/output.md, "Manifest"
   std::string error;
   try {
     if (!std::filesystem::is_directory(dir)) throw std::runtime_error("cannot create folder " + folder);

@@ -262,8 +262,7 @@ class PointFieldsOnMesh {
                                              DataOutBase::VtkFlags::best_speed));
     std::vector<fs::path> piece_paths;
     for (unsigned r = 0; r < ranks; ++r) piece_paths.push_back(folder / piece(r));
-    if (rank == 0) dem::io::create_folder(folder);
-    dem::io::note_pieces_writing(comm_, piece_paths);  // docs/output.md, "Manifest"
+    dem::io::note_pieces_writing(comm_, folder, piece_paths);  // docs/output.md, "Manifest"
     std::string error;
     try {
       std::ostringstream vtu;

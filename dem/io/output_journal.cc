@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "dem/core/error.h"
+#include "dem/io/atomic_file.h"
 #include "dem/io/fnv1a.h"
 
 namespace upgrain::dem::io {
@@ -155,12 +156,13 @@ void note_removed(const fs::path& path) {
   if (journal()->manifest.entries.erase(rel) > 0) save();
 }
 
-void note_pieces_writing(MPI_Comm comm, const std::vector<fs::path>& pieces) {
+void note_pieces_writing(MPI_Comm comm, const fs::path& folder, const std::vector<fs::path>& pieces) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   std::string error;
   if (rank == 0) {
     try {
+      create_folder(folder);
       for (const fs::path& p : pieces) note_writing(p);
     } catch (const std::exception& e) {
       error = e.what();
@@ -168,7 +170,7 @@ void note_pieces_writing(MPI_Comm comm, const std::vector<fs::path>& pieces) {
   }
   int failed = error.empty() ? 0 : 1;
   MPI_Bcast(&failed, 1, MPI_INT, 0, comm);
-  if (failed) throw Error(rank == 0 ? error : "rank 0 could not enter the pieces in the output manifest");
+  if (failed) throw Error(rank == 0 ? error : "rank 0 could not make " + folder.string() + " for the pieces");
 }
 
 void note_pieces_written(MPI_Comm comm, const std::vector<fs::path>& pieces) {

@@ -44,9 +44,11 @@ void note_folder(const std::filesystem::path& folder);
 // `path` was removed by the run.
 void note_removed(const std::filesystem::path& path);
 
-// Files that every rank of `comm` writes its own of (a parallel mesh's pieces). Collective:
-// rank 0 enters them all as being written, and no rank returns before it has.
-void note_pieces_writing(MPI_Comm comm, const std::vector<std::filesystem::path>& pieces);
+// Files that every rank of `comm` writes its own of (a parallel mesh's pieces) into `folder`.
+// Collective: rank 0 makes the folder and enters them all as being written, and no rank returns
+// before it has; when it cannot, every rank throws upgrain::Error (rank 0's with the reason).
+void note_pieces_writing(MPI_Comm comm, const std::filesystem::path& folder,
+                         const std::vector<std::filesystem::path>& pieces);
 // Once the collective write has succeeded on every rank: rank 0 reads their sizes and checksums.
 void note_pieces_written(MPI_Comm comm, const std::vector<std::filesystem::path>& pieces);
 
