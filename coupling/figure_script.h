@@ -12,14 +12,14 @@
 namespace upgrain::coupling {
 
 struct FigureRun {
-  bool ran = false;        // python3 and the script were there
-  bool succeeded = false;  // and it exited with 0
+  bool ran = false;               // python3 and the script were there
+  bool succeeded = false;         // and it exited with 0
   std::vector<std::string> made;  // of `figures`, those that exist after it
 };
 
 // Runs `script` (a file name in the driver's script folder) on `folder`, its output into
 // folder/`log`. `figures`: the files it is known to write into the folder.
-FigureRun run_figure_script(const std::string& script, const std::filesystem::path& folder, const std::string& log,
-                            const std::vector<std::string>& figures);
+FigureRun run_figure_script(const std::string& script, const std::filesystem::path& folder,
+                            const std::string& log, const std::vector<std::string>& figures);
 
 }  // namespace upgrain::coupling

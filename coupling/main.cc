@@ -489,7 +489,8 @@ int run(int argc, char** argv) {
     // A restart removes what the run wrote after its checkpoint, and nothing else (docs/restart.md).
     if (in.restarting) {
       const std::set<std::string> listed(in.resume->outputs.begin(), in.resume->outputs.end());
-      for (const std::string& note : coupling::remove_outputs_after(in.output.folder, listed, in.resume->step))
+      for (const std::string& note :
+           coupling::remove_outputs_after(in.output.folder, listed, in.resume->step))
         std::printf("  %s\n", note.c_str());
     }
   });

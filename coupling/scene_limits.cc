@@ -13,8 +13,8 @@
 #include "coupling/run/output_folder.h"
 #include "dem/contact/weight_overlap.h"
 #include "dem/core/error.h"
-#include "dem/io/output_manifest.h"
 #include "dem/engine/simulation.h"
+#include "dem/io/output_manifest.h"
 #include "dem/scene/gradation.h"
 
 namespace upgrain::coupling {
@@ -82,7 +82,8 @@ void check_output_folder(const SceneInput& in, const std::string& where) {
   if (fs::exists(folder, ec)) {
     if (!fs::is_directory(folder, ec)) throw Error(entry + " exists and is not a folder");
     if (const std::string who = lock_holder(folder); !who.empty())
-      throw Error(entry + " is in use by another run of upgrain (" + who + "); wait for it to end, or stop it");
+      throw Error(entry + " is in use by another run of upgrain (" + who +
+                  "); wait for it to end, or stop it");
     if (in.restarting && !dem::io::has_manifest(folder))
       throw Error(entry + " holds no manifest of a run (" + dem::io::manifest_path(folder).string() +
                   "), so a restart cannot tell the run's files from others; it was not written by this "
@@ -90,7 +91,8 @@ void check_output_folder(const SceneInput& in, const std::string& where) {
     if (!holds_no_results(folder) && !in.restarting) {
       if (!in.overwrite) {
         // A run that did not finish is continued, not replaced by accident.
-        const bool interrupted = dem::io::has_manifest(folder) && fs::is_directory(folder / "checkpoints", ec) &&
+        const bool interrupted = dem::io::has_manifest(folder) &&
+                                 fs::is_directory(folder / "checkpoints", ec) &&
                                  dem::io::read_manifest(folder).status != "finished";
         if (interrupted)
           throw Error(entry + " holds a run that did not finish; continue it with 'upgrain --restart " +

@@ -370,9 +370,9 @@ int run_study(const SceneInput& scene_input, MPI_Comm comm,
     t0 = Clock::now();
     write_comparison_tables(folder, c, d.stress);
     const std::vector<std::string> plots =
-        run_figure_script("plot_study.py", folder, "plots.log",
-                          {"profiles_szz.png", "lateral_ratio.png", "wall_share.png", "wall_shear.png",
-                           "level_spread.png"})
+        run_figure_script(
+            "plot_study.py", folder, "plots.log",
+            {"profiles_szz.png", "lateral_ratio.png", "wall_share.png", "wall_shear.png", "level_spread.png"})
             .made;
     std::vector<std::string> strain_plots;
     if (r.final_strain) {

@@ -1,6 +1,5 @@
 #include "coupling/accuracy/accuracy_study.h"
 
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -403,7 +402,8 @@ class Study {
       for (const std::string& s : skipped_) md << "- " << s << "\n";
     }
     dem::io::write_text_atomically(folder_ / "accuracy.md", md.str());
-    if (const FigureRun f = run_figure_script("plot_accuracy.py", folder_, "plots.log", {}); f.ran && !f.succeeded)
+    if (const FigureRun f = run_figure_script("plot_accuracy.py", folder_, "plots.log", {});
+        f.ran && !f.succeeded)
       std::printf("  accuracy: plots not made (see %s)\n", (folder_ / "plots.log").c_str());
     std::printf("  accuracy: %s, %s\n", (folder_ / "accuracy.md").c_str(),
                 (folder_ / "accuracy.csv").c_str());

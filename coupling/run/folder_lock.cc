@@ -43,7 +43,8 @@ std::string holder_from_text(int fd, off_t rank) {
     // "rank <r> of <n>: PID <p> on host <h>"
     const std::size_t colon = line.find(": ");
     if (line.rfind("rank " + std::to_string(rank) + " ", 0) == 0 && colon != std::string::npos)
-      return line.substr(colon + 2) + ", " + line.substr(0, colon) + (since.empty() ? "" : ", since " + since);
+      return line.substr(colon + 2) + ", " + line.substr(0, colon) +
+             (since.empty() ? "" : ", since " + since);
   }
   return "rank " + std::to_string(rank) + " of a run whose lock file names no process";
 }
@@ -106,7 +107,8 @@ FolderLock::FolderLock(const fs::path& folder, MPI_Comm comm) {
   }
   // Each rank's process and host, into the file's text for whoever finds it locked.
   std::array<char, 320> mine{};
-  std::snprintf(mine.data(), mine.size(), "PID %d on host %s", static_cast<int>(::getpid()), host_name().c_str());
+  std::snprintf(mine.data(), mine.size(), "PID %d on host %s", static_cast<int>(::getpid()),
+                host_name().c_str());
   std::vector<char> all(rank == 0 ? mine.size() * static_cast<std::size_t>(ranks) : 0);
   MPI_Gather(mine.data(), static_cast<int>(mine.size()), MPI_CHAR, all.data(), static_cast<int>(mine.size()),
              MPI_CHAR, 0, comm);
@@ -115,8 +117,8 @@ FolderLock::FolderLock(const fs::path& folder, MPI_Comm comm) {
     text << "# upgrain: this folder is locked by the run below while it lives (docs/output.md, \"Lock\")\n"
          << "since " << utc_now("%Y-%m-%d %H:%M:%S UTC") << "\n";
     for (int r = 0; r < ranks; ++r)
-      text << "rank " << r << " of " << ranks << ": " << all.data() + static_cast<std::size_t>(r) * mine.size()
-           << "\n";
+      text << "rank " << r << " of " << ranks << ": "
+           << all.data() + static_cast<std::size_t>(r) * mine.size() << "\n";
     const std::string t = text.str();
     if (::ftruncate(fd_, 0) != 0 || ::pwrite(fd_, t.data(), t.size(), 0) != static_cast<ssize_t>(t.size()))
       error = entry + ": cannot write its lock file " + file.string() + ": " + std::strerror(errno);

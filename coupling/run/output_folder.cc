@@ -56,8 +56,7 @@ std::string why_not_replaceable(const fs::path& folder) {
            "): Output/overwrite removes only files a run listed there; choose an empty or new folder";
   const dem::io::FolderAudit a = audit_folder(folder, dem::io::read_manifest(folder));
   std::string why;
-  if (!a.foreign.empty())
-    why += "holds what the run there did not write (" + list_paths(a.foreign) + ")";
+  if (!a.foreign.empty()) why += "holds what the run there did not write (" + list_paths(a.foreign) + ")";
   if (!a.changed.empty())
     why += std::string(why.empty() ? "" : ", and ") + "holds files of the run there that changed since (" +
            list_paths(a.changed) + ")";
@@ -82,8 +81,8 @@ void replace_earlier_run(const fs::path& folder) {
   if (ec) throw Error("cannot remove " + dem::io::manifest_path(folder).string() + ": " + ec.message());
 }
 
-std::vector<std::string> remove_outputs_after(const fs::path& folder, const std::set<std::string>& at_checkpoint,
-                                              long step) {
+std::vector<std::string> remove_outputs_after(const fs::path& folder,
+                                              const std::set<std::string>& at_checkpoint, long step) {
   const std::optional<dem::io::OutputManifest> m = dem::io::journal_manifest();
   if (!m) return {};
   const dem::io::FolderAudit a = audit_folder(folder, *m);
@@ -100,8 +99,7 @@ std::vector<std::string> remove_outputs_after(const fs::path& folder, const std:
   for (const std::string& rel : a.folders)
     if (at_checkpoint.count(rel) == 0) remove_folder_if_empty(folder, rel);
   std::vector<std::string> notes;
-  if (!a.foreign.empty())
-    notes.push_back("left alone, not written by the run: " + list_paths(a.foreign));
+  if (!a.foreign.empty()) notes.push_back("left alone, not written by the run: " + list_paths(a.foreign));
   if (!a.changed.empty())
     notes.push_back("left alone, changed since the run wrote them: " + list_paths(a.changed));
   return notes;
@@ -144,9 +142,9 @@ dem::io::OutputManifest check_run_identity(const fs::path& folder, const Checkpo
     throw Error("checkpoint " + c.file.string() + " names no run, so it is not of the run " + m.run_id +
                 " that the folder's manifest names; remove it from " + where);
   if (c.run_id != m.run_id)
-    throw Error("checkpoint " + c.file.string() + " is of run " + c.run_id + ", but the folder " + folder.string() +
-                " holds run " + m.run_id + " (its manifest): a checkpoint of another run was put there; remove it from " +
-                where);
+    throw Error("checkpoint " + c.file.string() + " is of run " + c.run_id + ", but the folder " +
+                folder.string() + " holds run " + m.run_id +
+                " (its manifest): a checkpoint of another run was put there; remove it from " + where);
   return m;
 }
 

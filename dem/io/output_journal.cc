@@ -143,7 +143,8 @@ void note_folder(const fs::path& folder) {
   if (!journal()) return;
   const std::string rel = in_folder(folder);
   if (rel.empty()) return;
-  auto [it, added] = journal()->manifest.entries.try_emplace(rel, ManifestEntry{ManifestEntry::Kind::folder, 0, 0});
+  auto [it, added] =
+      journal()->manifest.entries.try_emplace(rel, ManifestEntry{ManifestEntry::Kind::folder, 0, 0});
   if (!added && it->second.kind == ManifestEntry::Kind::folder) return;
   it->second = ManifestEntry{ManifestEntry::Kind::folder, 0, 0};
   save();

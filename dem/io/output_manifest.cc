@@ -19,7 +19,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kHeader = "# Upgrain output manifest: the files this run wrote (docs/output.md, \"Manifest\")";
+constexpr const char* kHeader =
+    "# Upgrain output manifest: the files this run wrote (docs/output.md, \"Manifest\")";
 
 std::string hex(std::uint64_t v) {
   char text[17];

@@ -565,14 +565,13 @@ def case_wall_time_of_all_segments(upgrain, work, log):
     print(f'two segments: {earlier:.3f} + {segment:.3f} s = {wall:.3f} s, resumed at step 2000')
 
 
-def case_sigint_during_final_writing(upgrain, work, log):
-    folder = os.path.join(work, 'run')
+def sigint_when_written(upgrain, scene, folder, path, log):
+    """Runs `scene` into `folder` and sends SIGINT once `path` exists: the process, its log and
+    its standard error."""
     with open(log, 'a') as out:
-        proc = subprocess.Popen([upgrain, '--output', folder, SCENE], stdout=out, stderr=subprocess.PIPE,
+        proc = subprocess.Popen([upgrain, '--output', folder, scene], stdout=out, stderr=subprocess.PIPE,
                                 text=True, start_new_session=True)
-    # summary.json is the first file of the run's end; the strain mesh, plots and report follow.
-    summary = os.path.join(folder, 'summary.json')
-    while not os.path.exists(summary) and proc.poll() is None:
+    while not os.path.exists(path) and proc.poll() is None:
         time.sleep(0.002)
     os.kill(proc.pid, signal.SIGINT)
     try:
@@ -582,6 +581,13 @@ def case_sigint_during_final_writing(upgrain, work, log):
         fail('the run did not end within 60 s of the signal')
     out = open(log).read()
     open(log, 'a').write(err)
+    return proc, out, err
+
+
+def case_sigint_during_final_writing(upgrain, work, log):
+    folder = os.path.join(work, 'run')
+    # summary.json is the first file of the run's end; the strain mesh, plots and report follow.
+    proc, out, err = sigint_when_written(upgrain, SCENE, folder, os.path.join(folder, 'summary.json'), log)
     print(f'SIGINT while the run wrote its end: exit {proc.returncode}')
     if proc.returncode != 128 + signal.SIGINT:
         fail(f'a signal during the end of a run must not be ignored: exit {proc.returncode}, not 130')
@@ -607,21 +613,9 @@ def case_sigint_during_relaxation(upgrain, work, log):
     if r.returncode != 0:
         fail(f'the uninterrupted run failed ({r.returncode}): {r.stderr.strip()}')
     folder = os.path.join(work, 'run')
-    with open(log, 'a') as out:
-        proc = subprocess.Popen([upgrain, '--output', folder, scene], stdout=out, stderr=subprocess.PIPE,
-                                text=True, start_new_session=True)
     # The checkpoint of the last step is written just before the relaxation begins.
     last = os.path.join(folder, 'checkpoints', 'checkpoint_000004000.h5')
-    while not os.path.exists(last) and proc.poll() is None:
-        time.sleep(0.002)
-    os.kill(proc.pid, signal.SIGINT)
-    try:
-        _, err = proc.communicate(timeout=60)
-    except subprocess.TimeoutExpired:
-        os.killpg(proc.pid, signal.SIGKILL)
-        fail('the run did not stop within 60 s of the signal')
-    out = open(log).read()
-    open(log, 'a').write(err)
+    proc, out, err = sigint_when_written(upgrain, scene, folder, last, log)
     print(f'SIGINT during the relaxation: exit {proc.returncode}')
     if proc.returncode != 128 + signal.SIGINT:
         fail(f'a run stopped during its relaxation must exit with 130, not {proc.returncode}')

@@ -21,7 +21,8 @@ using namespace upgrain::dem::io;
 namespace {
 
 fs::path fresh_folder(const std::string& name) {
-  const fs::path f = fs::temp_directory_path() / ("upgrain_manifest_" + name + "_" + std::to_string(::getpid()));
+  const fs::path f =
+      fs::temp_directory_path() / ("upgrain_manifest_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(f);
   fs::create_directories(f);
   return f;
@@ -91,8 +92,8 @@ TEST(OutputJournal, ListsWhatTheLibraryWritesWithSizeAndChecksum) {
     series.append("1,2\n3,4\n");  // continued checksum, not a re-read
     write_text_atomically(folder / "outside_of_nothing.txt", "x");
     // Outside the folder: not listed.
-    write_text_atomically(fs::temp_directory_path() / ("upgrain_manifest_outside_" + std::to_string(::getpid())),
-                          "y");
+    write_text_atomically(
+        fs::temp_directory_path() / ("upgrain_manifest_outside_" + std::to_string(::getpid())), "y");
     const OutputManifest m = *journal_manifest();
     for (const char* f : {"tables/deep/a.txt", "series.csv", "outside_of_nothing.txt"}) {
       ASSERT_EQ(m.entries.count(f), 1u) << f;
@@ -116,7 +117,7 @@ TEST(OutputJournal, ListsWhatTheLibraryWritesWithSizeAndChecksum) {
   EXPECT_TRUE(a.changed.empty());
   EXPECT_TRUE(a.missing.empty());
   EXPECT_TRUE(a.leftovers.empty());
-  EXPECT_EQ(a.ours.size(), 4u);  // three files and the bookkeeping folder
+  EXPECT_EQ(a.ours.size(), 4u);                 // three files and the bookkeeping folder
   EXPECT_EQ(a.folders.front(), "tables/deep");  // deepest first
   fs::remove_all(folder);
 }
@@ -135,13 +136,13 @@ TEST(OutputJournal, AuditTellsForeignChangedMissingAndHalfWritten) {
     note_writing(folder / "being.csv");  // killed while writing it
     put(folder / "being.csv", "half");
   }
-  put(folder / "summary.json", "{\"edited\": 1}");   // changed
-  fs::remove(folder / "gone.csv");                     // missing
-  put(folder / "report.md.tmp.4242", "half a report"); // a temporary file of a listed name
+  put(folder / "summary.json", "{\"edited\": 1}");      // changed
+  fs::remove(folder / "gone.csv");                      // missing
+  put(folder / "report.md.tmp.4242", "half a report");  // a temporary file of a listed name
   fs::create_directories(folder / "thesis");
-  put(folder / "thesis" / "a.tex", "x");               // foreign folder
-  put(folder / "snapshots" / "mine.txt", "x");         // foreign file in a listed folder
-  put(folder / "premade" / "notes.txt", "x");          // and in a folder the run did not make
+  put(folder / "thesis" / "a.tex", "x");        // foreign folder
+  put(folder / "snapshots" / "mine.txt", "x");  // foreign file in a listed folder
+  put(folder / "premade" / "notes.txt", "x");   // and in a folder the run did not make
   const FolderAudit a = audit_folder(folder, read_manifest(folder));
   ASSERT_EQ(a.changed.size(), 1u);
   EXPECT_EQ(a.changed[0].rfind("summary.json", 0), 0u);
