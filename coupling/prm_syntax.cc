@@ -5,7 +5,7 @@
 #include <sstream>
 #include <vector>
 
-#include "coupling/parameter_schema.h"
+#include "coupling/input/scene_sections.h"
 #include "dem/core/error.h"
 
 namespace upgrain::coupling {
@@ -79,7 +79,7 @@ void check_prm_syntax(const std::string& text, const std::string& filename) {
         fail(filename, start_line,
              "subsection '" + name + "' inside '" + stack.back() +
                  "': Upgrain's parameter files have one level of subsections");
-      const auto known = sections();
+      const auto known = input::section_names();
       if (std::find(known.begin(), known.end(), name) == known.end())
         fail(filename, start_line, "unknown subsection '" + name + "'; the subsections are " + join(known));
       if (const auto [first, fresh] = opened.emplace(name, start_line); !fresh)
@@ -99,8 +99,9 @@ void check_prm_syntax(const std::string& text, const std::string& filename) {
       if (name.empty()) fail(filename, start_line, "malformed line '" + l + "': the entry has no name");
       if (stack.empty())
         fail(filename, start_line,
-             "entry '" + name + "' outside any subsection; the subsections are " + join(sections()));
-      const auto known = entries_of(stack.back());
+             "entry '" + name + "' outside any subsection; the subsections are " +
+                 join(input::section_names()));
+      const auto known = input::entry_names(stack.back());
       if (std::find(known.begin(), known.end(), name) == known.end())
         fail(filename, start_line,
              "unknown entry '" + name + "' in subsection '" + stack.back() + "'; its entries are " +

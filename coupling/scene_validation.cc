@@ -2,17 +2,16 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
-#include <optional>
 #include <sstream>
 
 #include "coupling/accuracy/accuracy_knobs.h"
 #include "coupling/calibration/calibration_options.h"
+#include "coupling/input/scene_sections.h"
 #include "coupling/scene_input.h"
 #include "coupling/scene_limits.h"
 #include "dem/core/error.h"
 #include "dem/io/packing_file.h"
 #include "dem/scene/fill.h"
-#include "dem/scene/gradation.h"
 #include "dem/scene/grain_shape.h"
 #include "dem/scene/insertion.h"
 #include "dem/time_step.h"
@@ -94,36 +93,6 @@ void validate_collapse(const SceneInput& in, const std::string& where) {
     throw Error(where +
                 "Container/collapse = unconstrained removes the side walls that the continuum column "
                 "needs; set 'Study/compare with continuum = false'");
-}
-
-// Continuum/wall friction and floor friction: "auto" (empty optional) or a Coulomb
-// coefficient in [0, 10], the range of the Container's.
-std::optional<double> friction_entry(const std::string& entry, const std::string& name,
-                                     const std::string& where) {
-  std::string text = entry;
-  text.erase(0, text.find_first_not_of(" \t"));
-  text.erase(text.find_last_not_of(" \t") + 1);
-  if (text == "auto") return std::nullopt;
-  std::istringstream in(text);
-  double mu = 0.0;
-  std::string rest;
-  if (!(in >> mu) || (in >> rest) || !std::isfinite(mu) || mu < 0.0 || mu > 10.0)
-    throw Error(where + "Continuum/" + name + " = '" + entry +
-                "': give auto (the Container's coefficients) or a Coulomb coefficient in [0, 10]");
-  return mu;
-}
-
-// The frictional continua's entries, against each other.
-void validate_continuum(ContinuumOptions& c, const std::string& where) {
-  c.wall_friction = friction_entry(c.wall_friction_entry, "wall friction", where);
-  c.floor_friction = friction_entry(c.floor_friction_entry, "floor friction", where);
-  if (c.dilatancy_angle_deg > c.friction_angle_deg) {
-    std::ostringstream m;
-    m << where << "Continuum/dilatancy angle = " << c.dilatancy_angle_deg
-      << " degrees exceeds Continuum/friction angle = " << c.friction_angle_deg
-      << " degrees; a Drucker–Prager flow that dilates more than its friction allows is not admissible";
-    throw Error(m.str());
-  }
 }
 
 // The shapes of a packing's grains that set the safe time step (dem/time_step.cc): the thinnest
@@ -294,16 +263,8 @@ void validate_scene(SceneInput& in) {
     throw Error(where + e.what());
   }
   apply_stress_box(in, where);
-  try {
-    if (!s.particles.gradation.empty()) dem::validate_gradation(s.particles.gradation);
-  } catch (const Error& e) {
-    throw Error(where + "Particles/gradation: " + e.what());
-  }
-  try {
-    dem::validate_shapes(s.particles.shapes);
-  } catch (const Error& e) {
-    throw Error(where + "Particles/shapes: " + e.what());
-  }
+  // Each section's own checks (its file in input/sections/), then those across sections.
+  input::check_sections(in, where);
   const double r_max = s.particles.largest_radius();
   if (2.0 * r_max >= std::min(s.container.lx, s.container.ly)) {
     std::ostringstream m;
@@ -403,8 +364,6 @@ void validate_scene(SceneInput& in) {
                   "Strain/enabled = true needs the stress grid, but Stress/formulas is empty; name at least "
                   "one formula there (strain is evaluated with the grid stress, on its grid), or set "
                   "'Strain/enabled = false'");
-    if (!st.kernel.definitions[0] && !st.kernel.definitions[1])
-      throw Error(where + "Strain/definitions is empty; name 'best fit', 'tessellation' or both");
     if (const auto& written = in.output.grid_stress.formulas;
         std::find(written.begin(), written.end(), st.rate_formula) == written.end())
       throw Error(where + "Strain/rate formula = '" + std::string(dem::name_of(st.rate_formula)) +
@@ -418,7 +377,6 @@ void validate_scene(SceneInput& in) {
     }
   }
   if (compares_with_continuum(in)) {
-    validate_continuum(in.study.continuum, where);
     resolve_material_source(in, where);
     if (in.study.formulas.empty())
       throw Error(where +
@@ -474,16 +432,6 @@ void validate_scene(SceneInput& in) {
     }
     in.output.coarse_graining.later_steps =
         cg.by_differences ? std::max(1L, std::lround(cg.sampling_interval / s.time_step)) : 0L;
-  }
-  {
-    const auto& b = in.parallel.blocks;
-    const bool chosen = b[0] == 0 && b[1] == 0 && b[2] == 0;
-    if (!chosen && (b[0] == 0 || b[1] == 0 || b[2] == 0)) {
-      std::ostringstream m;
-      m << where << "Parallel/blocks = " << b[0] << ", " << b[1] << ", " << b[2]
-        << ": give every count (their product is the rank count), or 0, 0, 0 to have them chosen";
-      throw Error(m.str());
-    }
   }
   // The output folder is not part of the scene: the driver checks it for a run, after the command
   // line has chosen it (check_output_folder).

@@ -88,7 +88,9 @@ struct CoarseGrainingOptions {
 
 struct StudyOptions {
   bool compare_with_continuum = true;
-  std::vector<dem::StressFormula> formulas;  // DEM formulas set beside the continuum
+  // DEM formulas set beside the continuum
+  std::vector<dem::StressFormula> formulas = {dem::StressFormula::bagi, dem::StressFormula::modified_nicot,
+                                              dem::StressFormula::weber};
   ContinuumOptions continuum;
   CoarseGrainingOptions coarse_graining;
 };

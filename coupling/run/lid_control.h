@@ -17,7 +17,7 @@ struct LidControl {
   double place_time = 0.0;  // s of simulated time
   double gap = 0.0;         // m between the highest grain's top and the lid when it is placed
   double friction = 0.0;    // Coulomb coefficient particle-lid
-  double speed = 0.0;       // m/s downwards (velocity mode)
+  double speed = 0.01;      // m/s downwards (velocity mode)
   // Servo mode: the targets (Pa, compression positive), each held for step_duration after the
   // placement, the last one to the end; the gain factor alpha and the maximum speed.
   std::vector<double> target_stresses;

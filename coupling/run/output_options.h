@@ -17,7 +17,7 @@ namespace upgrain::coupling {
 // time, of wall-clock time, and when the run is asked to stop (SIGINT, SIGTERM, SIGHUP).
 struct CheckpointOptions {
   double interval = 0.0;       // s of simulated time; 0: none on a schedule
-  double wall_interval = 0.0;  // s of wall-clock time; 0: none
+  double wall_interval = 600.0;  // s of wall-clock time; 0: none
   int keep = 2;                // the newest kept; older ones are removed
   // The scene's parameters as the driver read them (every entry, one per line), stored with
   // their hash so that a restart continues the same scene.
@@ -30,7 +30,7 @@ struct CheckpointOptions {
 struct OutputOptions {
   std::filesystem::path folder = "upgrain-output";
   double snapshot_interval = 0.05;  // s of simulated time; 0 = only first and last
-  double series_interval = 0.005;   // s of simulated time between time-series rows
+  double series_interval = 0.002;   // s of simulated time between time-series rows
   dem::io::GridStressOptions grid_stress;
   upscale::GridStrainOutputOptions grid_strain;
   // Output/energy balance: elastic energy and dissipation in the time series and summary

@@ -51,9 +51,9 @@ enum class FillMethod { lattice, random };
 
 struct FillSpec {
   FillMethod method = FillMethod::lattice;
-  double bottom_gap = 0.02;      // m, floor to the lowest particle surface
+  double bottom_gap = 0.01;      // m, floor to the lowest particle surface
   double lattice_spacing = 1.1;  // lattice pitch in max diameters (lattice fill)
-  double position_jitter = 0.1;  // random offset as a fraction of the free gap (lattice)
+  double position_jitter = 0.5;  // random offset as a fraction of the free gap (lattice)
   double solid_fraction = 0.3;   // target solid fraction of the random fill region
   Vec3 velocity = Vec3::Zero();  // initial velocity of every particle (m/s)
   double velocity_jitter = 0.0;  // uniform random component of each velocity (m/s)
@@ -102,8 +102,8 @@ struct SceneConfig {
   double friction = 0.5;       // particle-particle Coulomb coefficient
   double damping_ratio = 0.5;  // zeta, paper eq. (21)
   double gravity = 9.81;       // m/s^2 along -z, when effects.gravity
-  double time_step = 5e-6;     // s
-  double end_time = 0.5;       // s
+  double time_step = 1e-6;     // s
+  double end_time = 0.4;       // s
   double neighbor_skin = 0.2;  // Verlet skin in units of the largest diameter
   // Rolling resistance, when effects.rolling_resistance (docs/contact-law.md).
   double rolling_friction = 0.05;      // mu_r: plastic limit |M_r| <= mu_r R* F_n
