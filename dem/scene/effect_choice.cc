@@ -1,5 +1,5 @@
 #include "dem/scene/effect_choice.h"
-#include "dem/io/json_number.h"
+#include "dem/files/json_number.h"
 
 #include <algorithm>
 #include <sstream>

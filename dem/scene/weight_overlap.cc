@@ -1,4 +1,4 @@
-#include "dem/contact/weight_overlap.h"
+#include "dem/scene/weight_overlap.h"
 
 #include <numbers>
 
@@ -14,7 +14,7 @@ double weight_overlap_ratio(const SceneConfig& s) {
   const double weight = mass * s.gravity;
   ContactMaterial m = ContactMaterial::from(s.particles.material, s.friction, s.damping_ratio);
   return with_contact_law(s.contact_law, [&]<class Law>() {
-    Law::Normal::constants(s, m);
+    Law::Normal::constants(s.law_parameters, m);
     // A grain on the floor: R* = R, m* = m (the wall does not move).
     const ContactParameters p{m.e_star_pw,     m.g_star_pw, r,     mass, s.friction,
                               s.damping_ratio, s.time_step, m.k_n, m.k_t};
@@ -37,7 +37,7 @@ double impact_overlap_ratio(const SceneConfig& s, double speed) {
   if (!(kinetic > 0.0)) return 0.0;
   ContactMaterial m = ContactMaterial::from(s.particles.material, s.friction, s.damping_ratio);
   return with_contact_law(s.contact_law, [&]<class Law>() {
-    Law::Normal::constants(s, m);
+    Law::Normal::constants(s.law_parameters, m);
     const ContactParameters p{m.e_star_pw,     m.g_star_pw, r,     mass, s.friction,
                               s.damping_ratio, s.time_step, m.k_n, m.k_t};
     const auto energy = [&](double delta) {
