@@ -235,8 +235,8 @@ void ElasticColumn::solve() {
   LA::MPI::PreconditionAMG preconditioner;
   initialize_column_amg(preconditioner, system_matrix_, dof_handler_, fe_.degree);
 
-  // The paper.s tolerance: relative residual 1e-12. Q2 reproduces the quadratic exact
-  // solution, so the solver tolerance is the only error left in that case.
+  // The solver's tolerance (docs/fem.md, "Solver"): relative residual 1e-12. Q2 reproduces the quadratic
+  // exact solution, so the solver tolerance is the only error left in that case.
   SolverControl control(dof_handler_.n_dofs(), 1e-12 * system_rhs_.l2_norm());
   SolverCG<LA::MPI::Vector> cg(control);
   LA::MPI::Vector distributed_solution(locally_owned_dofs_, comm_);

@@ -1,5 +1,5 @@
 #pragma once
-// The Hertz-Mindlin contact law (the paper's law; docs/contact-law.md): Hertz's normal
+// The Hertz-Mindlin contact law (Yan and Regueiro's law; docs/contact-law.md, docs/stress.md): Hertz's normal
 // force of two elastic spheres and Mindlin's no-slip tangential stiffness, with the normal
 // dashpot, the Coulomb-capped incremental tangential spring and the rolling spring-dashpot
 // of contact_law.h. Its time-step rule: the Rayleigh time and the Hertz contact duration.
