@@ -4,8 +4,8 @@
 //
 //   bench_cg_fields [grains=20000] [all|dynamic|cost|widths]
 //
-// The bed: monodisperse spheres of the paper's size (r = 1.5 mm, 2,650 kg/m^3), friction 0.5
-// between grains and at the walls, damping ratio 0.5, deposited into a 9 cm square box (30
+// The bed: monodisperse spheres of Yan and Regueiro's size (docs/stress.md) (r = 1.5 mm, 2,650 kg/m^3),
+// friction 0.5 between grains and at the walls, damping ratio 0.5, deposited into a 9 cm square box (30
 // diameters, so that the widest kernel still has an interior; 20,000 grains make a bed about
 // 19 diameters high), soft (E = 5e7 Pa, dt = 1e-5 s)
 // to keep the run short. "Dynamic" is the bed 0.06 s after the fill starts falling (grains

@@ -5,9 +5,9 @@
 #include <sstream>
 
 #include "coupling/wall_shear_profile.h"
-#include "dem/io/atomic_file.h"
+#include "dem/files/atomic_file.h"
+#include "dem/files/json_number.h"
 #include "dem/io/grid_stress_output.h"
-#include "dem/io/json_number.h"
 
 namespace upgrain::coupling {
 

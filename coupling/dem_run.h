@@ -13,7 +13,7 @@ namespace upgrain::coupling {
 // The summation, blocks and load balance of the Parallel section.
 dem::EngineOptions engine_options(const SceneInput& in);
 
-// Collective over `comm`. The result is complete on rank 0 (dem/deposition.h). An error on
+// Collective over `comm`. The result is complete on rank 0 (coupling/run/scene_run.h). An error on
 // any rank is thrown on every rank.
 RunResult run_dem(const SceneInput& in, MPI_Comm comm,
                   const std::function<void(const Progress&)>& on_progress);

@@ -4,7 +4,7 @@
 #include <system_error>
 
 #include "coupling/plot_script.h"
-#include "dem/io/output_journal.h"
+#include "dem/files/output_journal.h"
 
 namespace upgrain::coupling {
 

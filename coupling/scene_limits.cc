@@ -11,11 +11,11 @@
 #include "coupling/memory_estimate.h"
 #include "coupling/run/folder_lock.h"
 #include "coupling/run/output_folder.h"
-#include "dem/contact/weight_overlap.h"
 #include "dem/core/error.h"
 #include "dem/engine/simulation.h"
-#include "dem/io/output_manifest.h"
+#include "dem/files/output_manifest.h"
 #include "dem/scene/gradation.h"
+#include "dem/scene/weight_overlap.h"
 
 namespace upgrain::coupling {
 

@@ -23,7 +23,7 @@ void check_output_intervals(const SceneInput& in, const std::string& where);
 // `fill_top`: the height of the highest grain of the fill (dem::plan_fill).
 void check_fill_height(SceneInput& in, double fill_top, const std::string& where);
 // Grains whose weight alone overlaps them by more than DEM's static bound: a warning, and a
-// refusal beyond the runaway-overlap guard's limit (dem/contact/weight_overlap.h).
+// refusal beyond the runaway-overlap guard's limit (dem/scene/weight_overlap.h).
 void check_stiffness(SceneInput& in, const std::string& where);
 void check_stress_box(const SceneInput& in, double fill_top, const std::string& where);
 

@@ -6,7 +6,7 @@
 #include "coupling/figure_script.h"
 #include "coupling/report_format.h"
 #include "coupling/run_account.h"
-#include "dem/io/atomic_file.h"
+#include "dem/files/atomic_file.h"
 #include "dem/io/grid_stress_output.h"
 #include "upscale/grid_mesh.h"
 #include "upscale/strain_fields.h"

@@ -22,7 +22,7 @@
 #include "coupling/wall_shear_profile.h"
 #include "dem/core/error.h"
 #include "dem/core/out_of_memory.h"
-#include "dem/io/atomic_file.h"
+#include "dem/files/atomic_file.h"
 #include "dem/io/grid_stress_output.h"
 #include "dem/stress/asymmetry.h"
 #include "fem/elastic_column.h"

@@ -9,9 +9,9 @@
 #include "coupling/run_account.h"
 #include "coupling/strain_report.h"
 #include "coupling/wall_shear_profile.h"
-#include "dem/io/atomic_file.h"
+#include "dem/files/atomic_file.h"
+#include "dem/files/json_number.h"
 #include "dem/io/grid_stress_output.h"
-#include "dem/io/json_number.h"
 
 namespace upgrain::coupling {
 

@@ -25,9 +25,9 @@
 #include <string>
 #include <vector>
 
-#include "dem/io/atomic_file.h"
-#include "dem/io/output_journal.h"
-#include "dem/io/undated_vtk.h"
+#include "dem/files/atomic_file.h"
+#include "dem/files/output_journal.h"
+#include "dem/files/undated_vtk.h"
 #include "fem/elastic_column.h"
 
 namespace upgrain::fem::column_mesh {
@@ -108,7 +108,7 @@ inline const std::array<const char*, 6> stress_names = {"sigma_xx", "sigma_yy", 
                                                         "sigma_xy", "sigma_xz", "sigma_yz"};
 
 // One .vtu piece per rank and a .pvtu record, each written under a temporary name and
-// renamed (dem/io/atomic_file.h). The record is written last, after every rank reported
+// renamed (dem/files/atomic_file.h). The record is written last, after every rank reported
 // its piece complete, so a reader never finds a record that points at a missing piece.
 // Every rank reports failure through an all-reduce instead of throwing alone, which would
 // leave the other ranks waiting in the next collective call. `data_out` has its patches

@@ -37,6 +37,7 @@
 #include <cmath>
 #include <map>
 
+#include "fem/column_amg.h"
 #include "fem/column_mesh.h"
 #include "fem/elastic_column.h"
 
@@ -229,26 +230,13 @@ void ElasticColumn::assemble_system() {
 }
 
 // CG (the matrix is symmetric positive definite once the rollers remove the rigid modes)
-// preconditioned by smoothed-aggregation AMG (Trilinos ML), as in step-40 and step-42.
+// preconditioned by smoothed-aggregation AMG (Trilinos ML, column_amg.h), as in step-40 and step-42.
 void ElasticColumn::solve() {
-  LA::MPI::PreconditionAMG::AdditionalData amg_data;
-  amg_data.elliptic = true;
-  amg_data.higher_order_elements = fe_.degree > 1;
-  // Aggregation threshold and smoother sweeps stay at deal.II's defaults (1e-4, 2):
-  // 0.02 (step-31's value) cut CG iterations for Q2 but made the solve slower
-  // (docs/fem.md, "Solver settings: what was tried").
-  //
-  // The near-null space of elasticity: AMG needs the modes the operator barely sees to
-  // build coarse spaces that represent them. extract_constant_modes gives one
-  // translation per displacement component. deal.II 9.4 has no rotation modes here;
-  // adding them through ML's "null space: vectors" saved 10-20% of the iterations but
-  // doubled the solve time of this compression-dominated problem (docs/fem.md).
-  DoFTools::extract_constant_modes(dof_handler_, ComponentMask(dim, true), amg_data.constant_modes);
   LA::MPI::PreconditionAMG preconditioner;
-  preconditioner.initialize(system_matrix_, amg_data);
+  initialize_column_amg(preconditioner, system_matrix_, dof_handler_, fe_.degree);
 
-  // The paper.s tolerance: relative residual 1e-12. Q2 reproduces the quadratic exact
-  // solution, so the solver tolerance is the only error left in that case.
+  // The solver's tolerance (docs/fem.md, "Solver"): relative residual 1e-12. Q2 reproduces the quadratic
+  // exact solution, so the solver tolerance is the only error left in that case.
   SolverControl control(dof_handler_.n_dofs(), 1e-12 * system_rhs_.l2_norm());
   SolverCG<LA::MPI::Vector> cg(control);
   LA::MPI::Vector distributed_solution(locally_owned_dofs_, comm_);

@@ -40,6 +40,7 @@
 #include <map>
 #include <sstream>
 
+#include "fem/column_amg.h"
 #include "fem/column_mesh.h"
 #include "fem/contact/coulomb_friction.h"
 #include "fem/material_point.h"
@@ -386,7 +387,7 @@ void FrictionalColumn::assemble_system(const double load_factor,
 }
 
 // GMRES (the tangent is not symmetric where walls slip or the flow is non-associated)
-// preconditioned by smoothed-aggregation AMG as in elastic_column.cc. Inexact Newton: the
+// preconditioned by smoothed-aggregation AMG as in elastic_column.cc (column_amg.h). Inexact Newton: the
 // linear residual is reduced by min(1e-2, |r|/|f|) (Eisenstat & Walker 1996, SIAM J. Sci.
 // Comput. 17:16; Kelley 1995, Iterative Methods for Linear and Nonlinear Equations, ch. 6),
 // which keeps Newton's quadratic convergence while sparing GMRES iterations far from the
@@ -395,12 +396,8 @@ unsigned int FrictionalColumn::solve_linear_system(const AffineConstraints<doubl
                                                    const double relative_residual,
                                                    LA::MPI::Vector& newton_update) {
   TimerOutput::Scope timer_section(timer_, "solve");
-  LA::MPI::PreconditionAMG::AdditionalData amg_data;
-  amg_data.elliptic = true;
-  amg_data.higher_order_elements = fe_.degree > 1;
-  DoFTools::extract_constant_modes(dof_handler_, ComponentMask(dim, true), amg_data.constant_modes);
   LA::MPI::PreconditionAMG preconditioner;
-  preconditioner.initialize(system_matrix_, amg_data);
+  initialize_column_amg(preconditioner, system_matrix_, dof_handler_, fe_.degree);
 
   const double rhs_norm = system_rhs_.l2_norm();
   const double target =

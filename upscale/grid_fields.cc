@@ -84,23 +84,26 @@ GridFields grid_fields_from_stress(const dem::RegularGrid& grid, const dem::Grid
   return g;
 }
 
-GridFields read_grid_fields(const std::filesystem::path& h5_file) {
-  QuietHdf5 quiet;
-  Reader in(h5_file, "grid-stress file");
+GridFields read_grid_header(const Reader& in) {
   GridFields g;
   const auto n = in.read<int>("/grid/n", H5T_NATIVE_INT, 3);
   const auto lo = in.read<double>("/grid/lo", H5T_NATIVE_DOUBLE, 3);
   const auto hi = in.read<double>("/grid/hi", H5T_NATIVE_DOUBLE, 3);
   for (int d = 0; d < 3; ++d) {
-    if (n[d] < 1)
-      throw Error("grid-stress file " + h5_file.string() + ": /grid/n has " + std::to_string(n[d]) +
-                  " cells");
+    if (n[d] < 1) throw Error(in.where() + "/grid/n has " + std::to_string(n[d]) + " cells");
     g.n[d] = n[d];
     g.lo[d] = lo[d];
     g.hi[d] = hi[d];
   }
   g.time = in.attribute("time");
   g.step = static_cast<long>(in.attribute("step"));
+  return g;
+}
+
+GridFields read_grid_fields(const std::filesystem::path& h5_file) {
+  QuietHdf5 quiet;
+  Reader in(h5_file, "grid-stress file");
+  GridFields g = read_grid_header(in);
   const auto cells = static_cast<hsize_t>(g.num_cells());
 
   std::vector<std::string> groups = in.members("/stress");

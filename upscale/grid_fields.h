@@ -11,6 +11,10 @@
 #include "dem/stress/grid_stress.h"
 #include "dem/stress/stress_formula.h"
 
+namespace upgrain::dem::io::hdf5 {
+class Reader;
+}
+
 namespace upgrain::upscale {
 
 struct GridFields {
@@ -41,5 +45,10 @@ GridFields grid_fields_from_stress(const dem::RegularGrid& grid, const dem::Grid
 // formula present in /stress (the seven known ones in the order of dem::StressFormula, any
 // other group after them by name). Errors name the file and the missing dataset.
 GridFields read_grid_fields(const std::filesystem::path& h5_file);
+
+// The grid and the time of a grid file, as the grid-stress and grid-strain files both hold
+// them (/grid/n, /grid/lo, /grid/hi; the attributes time and step), without fields. Errors
+// name the file (`in`'s kind and path) and what is missing or not a cell count.
+GridFields read_grid_header(const dem::io::hdf5::Reader& in);
 
 }  // namespace upgrain::upscale

@@ -39,9 +39,9 @@
 #include <system_error>
 
 #include "dem/core/error.h"
-#include "dem/io/atomic_file.h"
-#include "dem/io/output_journal.h"
-#include "dem/io/undated_vtk.h"
+#include "dem/files/atomic_file.h"
+#include "dem/files/output_journal.h"
+#include "dem/files/undated_vtk.h"
 
 namespace upgrain::upscale {
 

@@ -56,18 +56,7 @@ GridFields grid_fields_from_strain(const upscale::GridStrain& strain) {
 GridFields read_strain_fields(const std::filesystem::path& h5_file) {
   dem::io::hdf5::QuietHdf5 quiet;
   dem::io::hdf5::Reader in(h5_file, "grid-strain file");
-  GridFields g;
-  const auto n = in.read<int>("/grid/n", H5T_NATIVE_INT, 3);
-  const auto lo = in.read<double>("/grid/lo", H5T_NATIVE_DOUBLE, 3);
-  const auto hi = in.read<double>("/grid/hi", H5T_NATIVE_DOUBLE, 3);
-  for (int d = 0; d < 3; ++d) {
-    if (n[d] < 1) throw upgrain::Error(in.where() + "/grid/n has " + std::to_string(n[d]) + " cells");
-    g.n[d] = n[d];
-    g.lo[d] = lo[d];
-    g.hi[d] = hi[d];
-  }
-  g.time = in.attribute("time");
-  g.step = static_cast<long>(in.attribute("step"));
+  GridFields g = read_grid_header(in);
   const auto cells = static_cast<hsize_t>(g.num_cells());
   for (int d = 0; d < upscale::kStrainDefinitionCount; ++d) {
     const std::string base = field_name(static_cast<StrainDefinition>(d));

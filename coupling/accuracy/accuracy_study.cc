@@ -17,7 +17,7 @@
 #include "coupling/dem_run.h"
 #include "coupling/figure_script.h"
 #include "dem/core/error.h"
-#include "dem/io/atomic_file.h"
+#include "dem/files/atomic_file.h"
 #include "dem/parallel/exchange.h"
 #include "dem/time_step.h"
 #include "fem/elastic_column.h"

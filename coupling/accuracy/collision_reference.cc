@@ -27,7 +27,7 @@ CollisionError collision_error(const dem::SceneConfig& scene, double radius, dou
                dem::Vec3::Zero());
   const double m_star = 0.5 * p.mass(0), r_star = 0.5 * radius;
   dem::ContactMaterial law;
-  dem::find_contact_law(s.contact_law).constants(s, law);
+  dem::find_contact_law(s.contact_law).constants(s.law_parameters, law);
   const dem::ContactMaterial moduli = dem::ContactMaterial::from(s.particles.material, 0.0, 0.0);
   const double exact = s.contact_law == "hooke"
                            ? std::numbers::pi * std::sqrt(m_star / law.k_n)

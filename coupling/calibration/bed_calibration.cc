@@ -12,8 +12,8 @@
 #include "dem/boundary/container.h"
 #include "dem/core/error.h"
 #include "dem/core/out_of_memory.h"
-#include "dem/io/atomic_file.h"
-#include "dem/io/json_number.h"
+#include "dem/files/atomic_file.h"
+#include "dem/files/json_number.h"
 
 namespace upgrain::coupling {
 

@@ -8,8 +8,8 @@
 #include "coupling/dem_run.h"
 #include "coupling/run/scene_run.h"
 #include "dem/core/error.h"
-#include "dem/io/atomic_file.h"
-#include "dem/io/json_number.h"
+#include "dem/files/atomic_file.h"
+#include "dem/files/json_number.h"
 
 namespace upgrain::coupling {
 

@@ -8,13 +8,13 @@
 #include <regex>
 
 #include "dem/core/error.h"
-#include "dem/io/atomic_file.h"
+#include "dem/files/atomic_file.h"
+#include "dem/files/fnv1a.h"
+#include "dem/files/output_journal.h"
 #include "dem/io/checksum_block.h"
 #include "dem/io/engine_state_file.h"
-#include "dem/io/fnv1a.h"
 #include "dem/io/hdf5_reader.h"
 #include "dem/io/hdf5_util.h"
-#include "dem/io/output_journal.h"
 #include "dem/io/output_state_file.h"
 #include "upscale/strain/strain_state_file.h"
 

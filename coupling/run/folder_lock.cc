@@ -11,7 +11,7 @@
 
 #include "coupling/run/output_folder.h"
 #include "dem/core/error.h"
-#include "dem/io/output_manifest.h"
+#include "dem/files/output_manifest.h"
 #include "dem/parallel/exchange.h"
 
 namespace upgrain::coupling {

@@ -7,7 +7,7 @@
 #include <regex>
 
 #include "dem/core/error.h"
-#include "dem/io/output_journal.h"
+#include "dem/files/output_journal.h"
 
 namespace upgrain::coupling {
 

@@ -1,14 +1,14 @@
 #pragma once
 // A run's output folder and what may be done to it (docs/output.md, "Manifest", "Overwrite";
 // docs/restart.md): every decision to remove a file rests on the folder's manifest
-// (dem/io/output_manifest.h), so nothing the run did not write is ever removed.
+// (dem/files/output_manifest.h), so nothing the run did not write is ever removed.
 #include <filesystem>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "coupling/run/checkpoint.h"
-#include "dem/io/output_manifest.h"
+#include "dem/files/output_manifest.h"
 
 namespace upgrain::coupling {
 

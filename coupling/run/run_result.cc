@@ -4,7 +4,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "dem/io/json_number.h"
+#include "dem/files/json_number.h"
 
 namespace upgrain::coupling {
 

@@ -1,7 +1,7 @@
 #pragma once
 // The final grid stress of one formula in two figures for the driver's log: the largest
-// relative asymmetry index (paper eq. 20, dem/stress/asymmetry.h) and the mean sigma_zz of the
-// bottom layer of cells. A cell with a grain in it but next to no stress (a grain resting in
+// relative asymmetry index (Yan and Regueiro eq. 20, dem/stress/asymmetry.h, docs/stress.md) and the mean
+// sigma_zz of the bottom layer of cells. A cell with a grain in it but next to no stress (a grain resting in
 // it alone, 1e-89 Pa of round-off) has an RAI of round-off over round-off, up to infinity:
 // such cells are counted apart instead of ruling the largest RAI.
 #include "dem/stress/grid_stress.h"

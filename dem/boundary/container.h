@@ -1,7 +1,7 @@
 #pragma once
 // Containers made of rigid planar walls (dem/core/plane_wall.h). An open-top box is a
 // floor and four side planes, each with its own Coulomb coefficient (friction on or off at
-// walls, as in the paper's scenes; docs/scenes.md).
+// walls, as in Yan and Regueiro's scenes; docs/scenes.md, docs/stress.md).
 #include <string>
 #include <vector>
 
@@ -15,12 +15,12 @@ struct BoxContainer {
   double height = 0.1;  // nominal wall height (m); the planes themselves are unbounded
   // floor, x-, x+, y-, y+
   double friction[5] = {0.5, 0.5, 0.5, 0.5, 0.5};
-  // The paper's constrained collapse: a gate at x = gate_x (0 = none) holds the grains in
+  // Yan and Regueiro's constrained collapse: a gate at x = gate_x (0 = none) holds the grains in
   // [0, gate_x] while they are deposited; at gate_open_time it is removed and the bed
   // collapses into the rest of the box. The gate has the x+ wall's friction.
   double gate_x = 0.0;
   double gate_open_time = 0.0;
-  // The paper's unconstrained collapse: at side_walls_open_time (0 = never) all four side
+  // Yan and Regueiro's unconstrained collapse: at side_walls_open_time (0 = never) all four side
   // walls are removed and the bed spreads freely on the floor. The floor is an unbounded
   // plane, so a spreading pile never runs off it.
   double side_walls_open_time = 0.0;

@@ -20,12 +20,13 @@ struct LawList {};
 using ContactLaws = LawList<HertzMindlin, Hooke>;
 
 // What the rest of the program needs of a law outside the force loop: its name and
-// parameters (the scene file's schema), its constants from a scene, its time-step rule.
+// parameters (the scene file's schema), its constants from a scene's values of them
+// (SceneConfig::law_parameters), its time-step rule.
 struct LawInfo {
   const char* name;
   const char* description;  // one sentence, for the scene file's documentation
   std::span<const LawParameter> parameters;
-  void (*constants)(const SceneConfig&, ContactMaterial&);
+  void (*constants)(std::span<const NamedValue>, ContactMaterial&);
   LawTimeLimit (*time_limit)(const SceneTimeScales&, double rayleigh_fraction, double duration_fraction);
 };
 

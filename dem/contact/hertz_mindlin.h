@@ -35,7 +35,7 @@ inline double tangential_stiffness(double g_star, double r_star, double delta) {
   return tangential_stiffness_at(g_star, contact_radius(r_star, delta));
 }
 
-// Normal viscous damping coefficient c_n = 2 zeta sqrt(m* k_n) (paper eq. 21-22),
+// Normal viscous damping coefficient c_n = 2 zeta sqrt(m* k_n) (Yan and Regueiro eq. 21-22, docs/stress.md),
 // with m* = m1 m2 / (m1 + m2) and k_n the tangent Hertz stiffness above.
 inline double damping_coefficient(double zeta, double m_star, double k_n) {
   return 2.0 * zeta * std::sqrt(m_star * k_n);

@@ -6,7 +6,7 @@
 //  - the rolling spring (dem/contact/rolling_resistance.h);
 //  - for pairs with an ellipsoid, the contact memory: the last normal (the contact solver's
 //    warm start), the Hertz radius held from first touch and the proven separation budget
-//    (dem/contact/shaped_contact.h).
+//    (dem/contact/geometry/support_function_pair.h).
 // Between neighbour-list rebuilds the store holds one history per pair slot and per wall
 // entry of the current lists (dem/core/pair_list.h), addressed by index, so the force loop
 // does no look-up per contact. At a rebuild the histories of active contacts leave the store

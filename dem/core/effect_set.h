@@ -8,12 +8,12 @@ namespace upgrain::dem {
 struct EffectSet {
   bool gravity = true;
   bool friction = true;         // tangential Mindlin spring + Coulomb between particles
-  bool damping = true;          // normal viscous damping, paper eq. (21)
+  bool damping = true;          // normal viscous damping, Yan and Regueiro eq. (21)
   bool wall_friction = true;    // tangential Mindlin spring + Coulomb at walls
   bool rotation = true;         // integrate angular velocity from contact torques
   bool energy_tracking = true;  // accumulate dissipation and elastic energy per contact
   // Rolling resistance (elastic-plastic spring-dashpot, contact/rolling_resistance.h) at
-  // every contact. Off by default: not part of the paper's law. Needs rotation.
+  // every contact. Off by default: not part of Yan and Regueiro's law (docs/stress.md). Needs rotation.
   bool rolling_resistance = false;
   // Twisting resistance (Hertz–Mindlin torsion, contact/rolling_resistance.h): a part of the
   // rolling resistance's springs, so only with it. Off by default.

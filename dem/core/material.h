@@ -34,7 +34,7 @@ struct ContactMaterial {
   double e_star_pw = 0.0;  // particle-wall
   double g_star_pw = 0.0;
   double friction_pp = 0.5;    // Coulomb coefficient between particles
-  double damping_ratio = 0.5;  // zeta in c_n = 2 zeta sqrt(m* k_n), paper eq. (21)
+  double damping_ratio = 0.5;  // zeta in c_n = 2 zeta sqrt(m* k_n), Yan and Regueiro eq. (21), docs/stress.md
   // Linear laws (dem/contact/law/hooke.h): spring constants (N/m), particle-particle and
   // particle-wall alike; set by the law from the scene.
   double k_n = 0.0;

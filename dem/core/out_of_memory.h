@@ -5,7 +5,7 @@
 // with a bare std::bad_alloc. The run's big allocations (the fill, the engine's particle store
 // and lists, the grids, snapshots, checkpoints, the continuum's system) are made inside
 // `allocating`, which turns std::bad_alloc into upgrain::Error naming them. Files are written
-// whole or not at all (dem/io/atomic_file.h), so nothing is left half-written.
+// whole or not at all (dem/files/atomic_file.h), so nothing is left half-written.
 #include <new>
 #include <string>
 #include <utility>

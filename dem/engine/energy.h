@@ -25,7 +25,7 @@ struct EnergyBalance {
   double elastic_rolling = 0.0;
   double dissipated_rolling = 0.0;
   double rolling_stiffness_change = 0.0;
-  // Kinetic energy taken out by a relaxation to equilibrium (dem/relaxation.h).
+  // Kinetic energy taken out by a relaxation to equilibrium (dem/engine/relaxation.h).
   double removed_by_relaxation = 0.0;
   // Cumulative work of moving walls on the grains (sum of F . v_wall dt): energy put in, with a
   // minus sign in the balance.

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
-#include "dem/contact/weight_overlap.h"
+#include "dem/scene/weight_overlap.h"
 #include "dem/time_step.h"
 
 namespace upgrain::dem {

@@ -28,7 +28,7 @@ struct OverlapSite {
 
 // An overlap above `limit` of the smallest semi-axis at the evaluation of `step`, naming its
 // contact, with its cause: a grain passing through a wall (an overlap of a whole semi-axis at
-// a wall), grains too soft for their weight (dem/contact/weight_overlap.h), or a time step too
+// a wall), grains too soft for their weight (dem/scene/weight_overlap.h), or a time step too
 // large for the impacts.
 std::string runaway_overlap(double ratio, double limit, long step, double time, const SceneConfig& scene,
                             const OverlapSite& site = {});

@@ -3,7 +3,7 @@
 // relaxation engine (Bitzek et al., Phys. Rev. Lett. 97, 170201, 2006): the dynamics of the
 // run itself (same contact law, same time step) with velocities steered along the force and
 // zeroed whenever the power turns negative. Used to bring beds to the rest state in which
-// the paper's symmetry results hold (docs/stress.md, "Relaxed beds").
+// Yan and Regueiro's symmetry results hold (docs/stress.md, "Relaxed beds").
 //
 // Collective: its global sums (the power of the resultant forces and torques, the norms of
 // the velocity mixing, the kinetic energy removed) follow the engine's summation

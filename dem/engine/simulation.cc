@@ -108,7 +108,7 @@ Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, std::v
         "twisting resistance needs rolling resistance: set Effects/rolling resistance = true or "
         "Effects/twisting "
         "resistance = false");
-  find_contact_law(scene.contact_law).constants(scene, material_);
+  find_contact_law(scene.contact_law).constants(scene.law_parameters, material_);
   if (!scene.effects.wall_friction) {
     for (auto& w : walls_) w.friction = 0.0;
   }

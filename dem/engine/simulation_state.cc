@@ -6,6 +6,7 @@
 #include "dem/core/error.h"
 #include "dem/core/out_of_memory.h"
 #include "dem/engine/simulation.h"
+#include "dem/engine/wall_columns.h"
 #include "dem/parallel/byte_stream.h"
 #include "dem/parallel/exchange.h"
 
@@ -60,18 +61,13 @@ std::vector<char> to_bytes(const EngineState& s) {
   }
   w.put(records);
   w.put(s.history);
-  w.put(static_cast<std::uint64_t>(s.walls.size()));
-  for (const PlaneWall& wall : s.walls) {
-    w.put(wall.name);
-    w.put(wall.point);
-    w.put(wall.normal);
-    w.put(wall.friction);
-    w.put(wall.velocity);
-  }
+  const WallColumns walls = wall_columns(s);
+  WallColumns::each(walls, [&](const char*, const auto& column) {
+    w.put(static_cast<std::uint64_t>(column.size()));
+    for (const auto& x : column) w.put(x);
+  });
   w.put(s.pair_contacts);
   w.put(s.wall_contacts);
-  w.put(static_cast<std::uint64_t>(s.wall_points_at_build.size()));
-  for (const Vec3& x : s.wall_points_at_build) w.put(x);
   w.put(static_cast<std::uint64_t>(s.wall_forces.size()));
   for (const Vec3& f : s.wall_forces) w.put(f);
   for (const Vec3& f : s.wall_damping_forces) w.put(f);
@@ -118,22 +114,16 @@ EngineState from_bytes(const std::vector<char>& bytes) {
   s.particles.reserve(records.size());
   for (const ParticleRecord& p : records) append_record(s, parts, p);
   r.get(s.history);
-  std::uint64_t walls = 0;
-  r.get(walls);
-  s.walls.resize(walls);
-  for (PlaneWall& wall : s.walls) {
-    r.get(wall.name);
-    r.get(wall.point);
-    r.get(wall.normal);
-    r.get(wall.friction);
-    r.get(wall.velocity);
-  }
+  WallColumns walls;
+  WallColumns::each(walls, [&](const char*, auto& column) {
+    std::uint64_t n = 0;
+    r.get(n);
+    column.resize(n);
+    for (auto& x : column) r.get(x);
+  });
+  set_walls(s, std::move(walls), "restore: ");
   r.get(s.pair_contacts);
   r.get(s.wall_contacts);
-  std::uint64_t points = 0;
-  r.get(points);
-  s.wall_points_at_build.resize(points);
-  for (Vec3& x : s.wall_points_at_build) r.get(x);
   std::uint64_t forces = 0;
   r.get(forces);
   s.wall_forces.resize(forces);
@@ -249,7 +239,7 @@ Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_roo
       rolling_(rolling_parameters(scene.rolling_friction, scene.rolling_damping_ratio,
                                   scene.effects.twisting_resistance, scene.particles.material.youngs_modulus,
                                   scene.particles.material.poisson_ratio)) {
-  find_contact_law(scene.contact_law).constants(scene, material_);
+  find_contact_law(scene.contact_law).constants(scene.law_parameters, material_);
   // Rank 0's state on every rank for a moment, as the scene's particles in the first
   // constructor; each rank then keeps its block's part.
   int rank = 0;

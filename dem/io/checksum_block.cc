@@ -9,7 +9,7 @@
 #include <cstring>
 
 #include "dem/core/error.h"
-#include "dem/io/fnv1a.h"
+#include "dem/files/fnv1a.h"
 
 namespace upgrain::dem::io {
 

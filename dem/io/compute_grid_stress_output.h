@@ -1,9 +1,9 @@
 #pragma once
 // Stress per compute grid of an MPI run (the blocks of the decomposition, one per rank,
-// as the paper computes it; dem/parallel/parallel_stress.h): compute_grid_stress.csv, a
-// row per evaluation, block and formula, with the block's box (the outer blocks clipped to
-// the decomposition box) and its volume V. The blocks depend on the rank count and move
-// with the load balance, so, unlike the fixed grid, this table is not rank-independent.
+// as Yan and Regueiro compute it (docs/stress.md); dem/parallel/parallel_stress.h): compute_grid_stress.csv,
+// a row per evaluation, block and formula, with the block's box (the outer blocks clipped to the
+// decomposition box) and its volume V. The blocks depend on the rank count and move with the load balance,
+// so, unlike the fixed grid, this table is not rank-independent.
 #include <filesystem>
 #include <string>
 #include <vector>

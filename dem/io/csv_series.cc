@@ -13,8 +13,8 @@
 #include <sstream>
 
 #include "dem/core/error.h"
-#include "dem/io/atomic_file.h"
-#include "dem/io/output_journal.h"
+#include "dem/files/atomic_file.h"
+#include "dem/files/output_journal.h"
 
 namespace upgrain::dem::io {
 

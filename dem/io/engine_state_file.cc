@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <string>
+#include <vector>
+
+#include "dem/engine/wall_columns.h"
 
 namespace upgrain::dem::io {
 
@@ -112,24 +116,33 @@ void write_history(hid_t parent, const std::vector<ContactHistoryRecord>& record
   write_dataset(g, "values", v.data(), n, kHistoryValues);
 }
 
+// A column of the walls group (wall_columns.h): the names as a text-list attribute, the rest as
+// datasets.
+void write_column(hid_t g, const char* name, const std::vector<std::string>& c) {
+  write_attribute(g, name, c);
+}
+void write_column(hid_t g, const char* name, const std::vector<Vec3>& c) { write_vectors(g, name, c); }
+void write_column(hid_t g, const char* name, const std::vector<double>& c) {
+  write_dataset(g, name, c.data(), c.size());
+}
+
+void read_column(const hdf5::Reader& in, const std::string& group, const char* name, std::size_t,
+                 std::vector<std::string>& c) {
+  c = in.text_list_attribute(name, group);
+}
+void read_column(const hdf5::Reader& in, const std::string& group, const char* name, std::size_t,
+                 std::vector<Vec3>& c) {
+  c = in.read_vectors(group + "/" + name);
+}
+void read_column(const hdf5::Reader& in, const std::string& group, const char* name, std::size_t walls,
+                 std::vector<double>& c) {
+  c = in.read<double>(group + "/" + name, H5T_NATIVE_DOUBLE, walls);
+}
+
 void write_walls(hid_t parent, const EngineState& s) {
   Handle g(hdf5::create_group(parent, "walls"), H5Gclose, "create group walls");
-  std::vector<std::string> names;
-  std::vector<Vec3> point, normal, velocity;
-  std::vector<double> friction;
-  for (const PlaneWall& w : s.walls) {
-    names.push_back(w.name);
-    point.push_back(w.point);
-    normal.push_back(w.normal);
-    friction.push_back(w.friction);
-    velocity.push_back(w.velocity);
-  }
-  write_attribute(g, "names", names);
-  write_vectors(g, "point", point);
-  write_vectors(g, "normal", normal);
-  write_dataset(g, "friction", friction.data(), friction.size());
-  write_vectors(g, "velocity", velocity);
-  write_vectors(g, "point_at_build", s.wall_points_at_build);
+  const WallColumns walls = wall_columns(s);
+  WallColumns::each(walls, [&](const char* name, const auto& column) { write_column(g, name, column); });
 }
 
 void write_domain(hid_t parent, const DomainState& d) {
@@ -285,17 +298,11 @@ EngineState read_engine_state(const hdf5::Reader& in, const std::string& group) 
     throw Error(in.where() + "contact histories are not sorted by key");
 
   // Walls.
-  const std::string wg = group + "/walls";
-  const std::vector<std::string> names = in.text_list_attribute("names", wg);
-  const std::vector<Vec3> point = in.read_vectors(wg + "/point"), normal = in.read_vectors(wg + "/normal");
-  const std::vector<double> friction = in.read<double>(wg + "/friction", H5T_NATIVE_DOUBLE, names.size());
-  const std::vector<Vec3> velocity = in.read_vectors(wg + "/velocity");
-  s.wall_points_at_build = in.read_vectors(wg + "/point_at_build");
-  if (point.size() != names.size() || normal.size() != names.size() || velocity.size() != names.size() ||
-      s.wall_points_at_build.size() != names.size())
-    throw Error(in.where() + "walls differ in count");
-  for (std::size_t w = 0; w < names.size(); ++w)
-    s.walls.push_back({names[w], point[w], normal[w], friction[w], velocity[w]});
+  WallColumns walls;
+  WallColumns::each(walls, [&](const char* name, auto& column) {
+    read_column(in, group + "/walls", name, walls.names.size(), column);
+  });
+  set_walls(s, std::move(walls), in.where());
 
   // Domain.
   const std::string dg = group + "/domain/";

@@ -8,7 +8,7 @@
 
 #include "dem/contact/ellipsoid_geometry.h"
 #include "dem/core/error.h"
-#include "dem/io/atomic_file.h"
+#include "dem/files/atomic_file.h"
 #include "dem/io/hdf5_reader.h"
 #include "dem/io/hdf5_util.h"
 

@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "dem/core/error.h"
-#include "dem/io/atomic_file.h"
+#include "dem/files/atomic_file.h"
 #include "dem/io/grid_xdmf.h"
 #include "dem/io/hdf5_util.h"
 #include "dem/stress/asymmetry.h"

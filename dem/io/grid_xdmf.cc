@@ -2,7 +2,7 @@
 
 #include <sstream>
 
-#include "dem/io/atomic_file.h"
+#include "dem/files/atomic_file.h"
 
 namespace upgrain::dem::io {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "dem/core/error.h"
-#include "dem/io/atomic_file.h"
+#include "dem/files/atomic_file.h"
 
 namespace upgrain::dem::io::hdf5 {
 

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "dem/core/error.h"
-#include "dem/io/atomic_file.h"
+#include "dem/files/atomic_file.h"
 
 namespace upgrain::dem::io {
 

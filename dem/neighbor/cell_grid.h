@@ -1,7 +1,7 @@
 #pragma once
 // Link cells: a uniform grid of cubic cells no smaller than the interaction range, so
 // every contact partner of a particle lies in its own or one of the 26 adjacent cells
-// (paper section 5). Built by a counting sort; positions outside the grid are
+// (Yan and Regueiro, section 5; docs/stress.md). Built by a counting sort; positions outside the grid are
 // clamped into the border cells, which keeps adjacent particles in adjacent cells.
 #include <array>
 #include <vector>

@@ -1,5 +1,5 @@
 #include "dem/scene/effect_choice.h"
-#include "dem/io/json_number.h"
+#include "dem/files/json_number.h"
 
 #include <algorithm>
 #include <sstream>
@@ -87,7 +87,7 @@ ChosenEffects choose_effects(const SceneConfig& s, const EffectSwitches& sw, con
                  : "every container wall is frictionless: no wall history",
            walls});
 
-  // Rolling resistance is not part of the paper's law: only on when asked for.
+  // Rolling resistance is not part of Yan and Regueiro's law (docs/stress.md): only on when asked for.
   const bool rolling_on = sw.rolling_resistance == EffectSwitch::on;
   const bool shapes = has_ellipsoids(s.particles.shapes);
   const bool torques = set.friction || set.wall_friction || rolling_on || shapes;

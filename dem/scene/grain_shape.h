@@ -1,7 +1,7 @@
 #pragma once
 // The shapes of a granular mix: three-axis ellipsoids given by their aspect ratios
 // and number fractions. The grain's size (Particles/radius or the gradation) is its major
-// semi-axis a, as the paper's radii 1.0-2.5 mm (docs/ellipsoids.md).
+// semi-axis a, as Yan and Regueiro's radii 1.0-2.5 mm (docs/ellipsoids.md, docs/stress.md).
 #include <Eigen/Geometry>
 #include <random>
 #include <vector>

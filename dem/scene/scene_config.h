@@ -8,6 +8,7 @@
 
 #include "dem/boundary/container.h"
 #include "dem/contact/contact_solver_settings.h"
+#include "dem/contact/law/law_parameter.h"  // NamedValue
 #include "dem/core/effect_set.h"
 #include "dem/core/material.h"
 #include "dem/core/particle_store.h"
@@ -81,12 +82,6 @@ struct TimeStepRule {
   double hertz_fraction = 0.1;     // dt <= hertz_fraction * t_Hertz(v_impact)
   double impact_speed = 0.0;       // m/s; 0 = estimate from the drop height and velocities
   bool allow_unsafe = false;       // explicit override of the refusal
-};
-
-// A parameter of the scene's contact law, by the name the law declares (law/law_parameter.h).
-struct NamedValue {
-  std::string name;
-  double value;
 };
 
 struct SceneConfig {

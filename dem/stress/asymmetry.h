@@ -1,7 +1,7 @@
 #pragma once
-// Relative asymmetry index of a stress tensor (paper eq. 20; docs/stress.md):
+// Relative asymmetry index of a stress tensor (Yan and Regueiro eq. 20; docs/stress.md):
 // RAI = ||skew(s)|| / ||sym(s) with its diagonal set to 0||, with the induced 2-norm
-// (largest singular value). This reading reproduces the paper's printed values (e.g.
+// (largest singular value). This reading reproduces Yan and Regueiro's printed values (e.g.
 // Weber, 68 spheres: 15.1 %).
 #include "dem/core/types.h"
 

@@ -1,10 +1,10 @@
 #pragma once
-// Average Cauchy stress over the cells of a fixed grid, by all seven formulas of the paper
+// Average Cauchy stress over the cells of a fixed grid, by all seven formulas of Yan and Regueiro's paper
 // paper (section 2), from the contacts recorded in one force evaluation and the particles'
 // state at that instant. Convention: sigma_ij = (1/V) sum f_i l_j (force index first, so
 // that t_i = sigma_ij n_j), compression negative, V the cell volume. docs/stress.md.
 //
-// Classification (the paper): a particle belongs to the cell holding its centroid;
+// Classification (Yan and Regueiro): a particle belongs to the cell holding its centroid;
 // a contact is internal to a cell when both centroids are in it, and external to each cell
 // that holds exactly one of them (force on that particle, branch from its centroid to the
 // contact point); wall contacts are external. So a contact is counted once per cell and

@@ -1,5 +1,5 @@
 #pragma once
-// The inertial term of a rigid grain in the dynamic stress formulas (paper eqs. 5-7;
+// The inertial term of a rigid grain in the dynamic stress formulas (Yan and Regueiro eqs. 5-7;
 // derivation in docs/stress.md, "Dynamic terms").
 //
 // For a material point at y from the centroid of a rigid grain, the acceleration is

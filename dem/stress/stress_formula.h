@@ -1,5 +1,5 @@
 #pragma once
-// The seven average-stress formulas of the paper (eqs. 1-7), by
+// The seven average-stress formulas of Yan and Regueiro's paper (eqs. 1-7, docs/stress.md), by
 // name, so outputs can ask for any subset.
 #include <array>
 #include <optional>

@@ -1,8 +1,8 @@
-// The paper's stress tables on beds of monodisperse spheres (r = 1.5 mm) relaxed to static
-// equilibrium (docs/stress.md):
+// Yan and Regueiro's stress tables (docs/stress.md) on beds of monodisperse spheres (r = 1.5 mm) relaxed to
+// static equilibrium (docs/stress.md):
 //   stress_examples symmetry OUT N...        Tables 2 and 4: symmetry against particle
 //                                            count, every formula on each bed;
-//   stress_examples ellipsoids OUT N...      Table 3: the same on the paper's polydisperse
+//   stress_examples ellipsoids OUT N...      Table 3: the same on their polydisperse
 //                                            ellipsoid beds (four shapes, a = 1.0-2.5 mm);
 //   stress_examples grids OUT N nx,ny,nz...  Tables 6 and 7: per-grid stress on one bed
 //                                            for several grid sizes.
@@ -90,7 +90,7 @@ int symmetry(const std::filesystem::path& out, const std::vector<long>& counts, 
 int grids(const std::filesystem::path& out, long n, const std::vector<std::array<int, 3>>& specs) {
   const auto t0 = std::chrono::steady_clock::now();
   SceneConfig s = test::paper_bed_scene(n);
-  // The paper's 7,200-sphere bed stands in a box about 1.5 times as high as wide.
+  // Their 7,200-sphere bed stands in a box about 1.5 times as high as wide.
   const double grain = 4.0 / 3.0 * std::numbers::pi * std::pow(1.5e-3, 3);
   s.container.lx = s.container.ly = std::cbrt(n * grain / 0.6 / 1.5);
   test::RelaxedBed bed = test::relaxed_bed(s);

@@ -1,7 +1,7 @@
 #pragma once
-// A bed of monodisperse spheres of the paper's size (r = 1.5 mm) deposited into a square
-// box about as wide as the bed is high, then relaxed to static equilibrium by FIRE
-// (dem/relaxation.h). The soft grains (E = 5e7 Pa) keep the run short; the stress
+// A bed of monodisperse spheres of Yan and Regueiro's size (docs/stress.md) (r = 1.5 mm) deposited into a
+// square box about as wide as the bed is high, then relaxed to static equilibrium by FIRE
+// (dem/engine/relaxation.h). The soft grains (E = 5e7 Pa) keep the run short; the stress
 // symmetry at rest does not depend on the stiffness.
 #include <algorithm>
 #include <cmath>
@@ -30,7 +30,7 @@ inline dem::SceneConfig paper_bed_scene(long count) {
   return s;
 }
 
-// The paper's ellipsoid beds (Table 3): the four shapes 1:1:1, 1:0.8:0.6, 1:0.8:0.4,
+// Yan and Regueiro's ellipsoid beds (Table 3): the four shapes 1:1:1, 1:0.8:0.6, 1:0.8:0.4,
 // 1:0.6:0.4 in equal numbers, major semi-axes 1.0-2.5 mm, random orientations, the soft
 // material of paper_bed_scene, in a square box at least 2 cm wide and about as wide as the
 // bed is high, at 0.9 of the safe time step.

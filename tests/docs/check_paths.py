@@ -7,7 +7,9 @@ examples/, scripts/, docs/, cmake/), expands the brace and star forms the pages 
 (`dem/io/run_recorder.{h,cc}`, `dem/io/run_recorder.*`, `upscale/strain/`), and fails,
 listing each page and path, when one names nothing in the tree. Paths of files that a run
 writes (`snapshots/...`, `fem/column.pvtu`, `bench/results/bed_N.data`) are told apart by
-their extension and are not checked.
+their extension and are not checked. The same for the paths that the comments of the C++
+sources name (`// ... (dem/engine/relaxation.h)`), which may also be relative to the file's
+folder or to its top folder (`contact/warm_newton.h` in dem/).
 """
 import glob
 import os
@@ -53,9 +55,25 @@ def main():
                 for path in expand(token):
                     if not exists(path):
                         missing.append((os.path.relpath(page, ROOT), path))
+    sources = [f for top in FOLDERS for ext in ("h", "cc")
+               for f in glob.glob(os.path.join(ROOT, top, "**", "*." + ext), recursive=True)]
+    for source in sorted(sources):
+        rel = os.path.relpath(source, ROOT)
+        for number, line in enumerate(open(source, encoding="utf-8", errors="replace"), 1):
+            k = line.find("//")
+            if k < 0 or "#include" in line:
+                continue
+            for token in re.findall(r"(?<![\w/.])((?:%s)[\w./{},*-]*[\w}*])" % "|".join(FOLDERS), line[k:]):
+                token = re.sub(r"[:#].*$", "", token)
+                if "<" in token or token.endswith(OUTPUTS):
+                    continue
+                for path in expand(token):
+                    if not any(exists(p) for p in (path, os.path.join(os.path.dirname(rel), path),
+                                                   os.path.join(rel.split("/")[0], path))):
+                        missing.append((f"{rel}:{number}", path))
     for page, path in missing:
         print(f"{page}: names {path}, which does not exist")
-    print(f"checked {len(pages)} pages: {len(missing)} missing paths")
+    print(f"checked {len(pages)} pages and {len(sources)} sources' comments: {len(missing)} missing paths")
     return 1 if missing else 0
 
 

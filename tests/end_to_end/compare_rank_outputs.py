@@ -15,7 +15,7 @@ Usage: compare_rank_outputs.py [--other-blocks | --no-checkpoints] [--meshes] [-
   with them. The run's bookkeeping (.upgrain/: its manifest and lock) is left out.
 Report, plots and logs are skipped, and so are the deal.II meshes (a piece per rank) unless
 --meshes is given, for runs on one rank count: then they too must be the same bytes (their
-records carry no creation date, dem/io/undated_vtk.h). With --report, report.md is compared
+records carry no creation date, dem/files/undated_vtk.h). With --report, report.md is compared
 line by line but its timings (the line "- Wall clock: ..." and the section "## Timings") and
 the name of the scene file it gives.
 With --other-blocks (runs on different rank counts) so are the compute-grid stress and strain,

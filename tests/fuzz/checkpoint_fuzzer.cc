@@ -16,7 +16,7 @@
 
 #include "coupling/run/checkpoint.h"
 #include "dem/core/error.h"
-#include "dem/io/atomic_file.h"
+#include "dem/files/atomic_file.h"
 #include "dem/io/checksum_block.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,7 +1,7 @@
 // Ellipsoids in the MPI engine (docs/parallel.md, "Ellipsoids"): a deposition of the
-// paper's shapes gives the same positions, velocities, angular velocities and orientations
-// bit for bit on K ranks as on one, through migrations (shape state and contact memory
-// travel with the grains); one rank agrees with the fast summation on one rank to round-off.
+// Yan and Regueiro's shapes (docs/stress.md) gives the same positions, velocities, angular velocities and
+// orientations bit for bit on K ranks as on one, through migrations (shape state and contact memory travel
+// with the grains); one rank agrees with the fast summation on one rank to round-off.
 #include <gtest/gtest.h>
 #include <mpi.h>
 

@@ -83,7 +83,7 @@ inline dem::RankDiagnostics expect_rank_independent(const dem::SceneConfig& scen
   return world.rank_diagnostics();
 }
 
-// The paper's patch test scene: 162 spheres, two layers of 9 x 9, dropped with some
+// Yan and Regueiro's patch test scene (docs/stress.md): 162 spheres, two layers of 9 x 9, dropped with some
 // random velocity into an open box so that they hit the floor and each other.
 inline dem::SceneConfig patch_scene() {
   dem::SceneConfig s;

@@ -35,7 +35,7 @@ SceneConfig rolling_scene(long count) {
   return s;
 }
 
-// The paper's mix of shapes (as tests/parallel/ellipsoid_test.cc), with rolling resistance.
+// Yan and Regueiro's mix of shapes (as tests/parallel/ellipsoid_test.cc), with rolling resistance.
 SceneConfig rolling_ellipsoid_scene(long count) {
   SceneConfig s = test::paper_ellipsoid_bed_scene(count);
   s.container.lx = s.container.ly = 0.04;
@@ -151,7 +151,7 @@ TEST(Summation, FastOnManyRanksMatchesFastOnOneToRoundOff) {
       max_relative_difference(a.omega, b.omega));
 }
 
-// The same with spheres and ellipsoids (the paper's 1:0.8:0.6) mixed: the shaped pairs'
+// The same with spheres and ellipsoids (Yan and Regueiro's 1:0.8:0.6) mixed: the shaped pairs'
 // levers, torques and viscous torques go back with the ghosts' shares too. The grains' impacts
 // amplify the round-off of the other summation order (as OneRankMatchesTheFastSummation in
 // ellipsoid_test.cc: to 1e-10 of the fields' scales).

@@ -89,7 +89,7 @@ TEST(EllipsoidEngine, TorqueFreeTumblingKeepsMomentumAndEnergy) {
 // A 1:1:0.1 disc dropped tilted onto a frictional floor lands on its rim, tumbles and ends
 // lying on a face. Its mechanical energy never grows, and what is left above rest decays.
 // It does not come fully to rest within the test: on its face it rocks (rolls on the gently
-// curved face) with little normal motion, and the paper's contact law has no rolling
+// curved face) with little normal motion, and Yan and Regueiro's contact law (docs/stress.md) has no rolling
 // resistance to damp that (docs/ellipsoids.md; measured: 5.7 % of the drop energy left after
 // 3 s, at damping ratio 0.5 as at 1.0). The next test adds the optional rolling resistance.
 TEST(EllipsoidHardCases, ThinDiscLandsOnItsFaceWithoutGainingEnergy) {

@@ -70,7 +70,8 @@ Collision closed_form(double zeta, double v0) {
   const double t_f = phase / omega_d;
   const double decay = std::exp(-zeta * omega0 * t_f);
   const double delta = v0 / omega_d * decay * std::sin(omega_d * t_f);
-  const double rate = v0 / omega_d * decay * (omega_d * std::cos(omega_d * t_f) - zeta * omega0 * std::sin(omega_d * t_f));
+  const double rate =
+      v0 / omega_d * decay * (omega_d * std::cos(omega_d * t_f) - zeta * omega0 * std::sin(omega_d * t_f));
   return {t_f + delta / -rate, -rate / v0};
 }
 
@@ -93,7 +94,8 @@ TEST(HookeCollision, DampedMatchesTheClampedClosedForm) {
     EXPECT_NEAR(c.restitution, e.restitution, 1e-3 * e.restitution) << "zeta " << zeta;
     EXPECT_NEAR(c.duration, e.duration, 2e-3 * e.duration) << "zeta " << zeta;
     // The clamp only ever keeps energy in: above the unclamped exp(-zeta pi / sqrt(1 - zeta^2)).
-    EXPECT_GT(c.restitution, std::exp(-zeta * std::numbers::pi / std::sqrt(1.0 - zeta * zeta))) << "zeta " << zeta;
+    EXPECT_GT(c.restitution, std::exp(-zeta * std::numbers::pi / std::sqrt(1.0 - zeta * zeta)))
+        << "zeta " << zeta;
   }
 }
 
@@ -118,11 +120,11 @@ TEST(HookeLaw, TangentialStiffnessDefaultsToTwoSeventhsOfTheNormal) {
   s.contact_law = "hooke";
   s.law_parameters = {{"normal stiffness", 7e4}};
   ContactMaterial m;
-  find_contact_law("hooke").constants(s, m);
+  find_contact_law("hooke").constants(s.law_parameters, m);
   EXPECT_DOUBLE_EQ(m.k_n, 7e4);
   EXPECT_DOUBLE_EQ(m.k_t, 2e4);
   s.law_parameters.push_back({"tangential stiffness", 5e3});
-  find_contact_law("hooke").constants(s, m);
+  find_contact_law("hooke").constants(s.law_parameters, m);
   EXPECT_DOUBLE_EQ(m.k_t, 5e3);
 }
 

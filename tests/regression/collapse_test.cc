@@ -1,6 +1,6 @@
-// The paper's constrained collapse (paper section 1): grains deposited behind a gate in a
-// wider box; when the gate is removed the bed collapses into the rest of the box. Checks
-// that the gate holds, then releases, and that nothing is lost or gains energy.
+// Yan and Regueiro's constrained collapse (their section 1, docs/stress.md): grains deposited behind a gate
+// in a wider box; when the gate is removed the bed collapses into the rest of the box. Checks that the gate
+// holds, then releases, and that nothing is lost or gains energy.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -80,7 +80,7 @@ TEST(ConstrainedCollapse, TheGateHoldsTheBedThenReleasesIt) {
               r.energy_balance_error, r.kinetic_to_released);
 }
 
-// The same scene with the paper's ellipsoids (four shapes, a = 1.0-2.5 mm): the gate holds
+// The same scene with their ellipsoids (four shapes, a = 1.0-2.5 mm): the gate holds
 // them, they run out when it opens, nothing leaves the box, no contact solve fails.
 TEST(ConstrainedCollapse, EllipsoidsCollapseToo) {
   SceneConfig s = collapse_scene();

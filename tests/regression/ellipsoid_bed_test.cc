@@ -1,7 +1,7 @@
-// A bed of the paper's ellipsoids (paper section 7, Table 3: shapes 1:1:1, 1:0.8:0.6,
+// A bed of Yan and Regueiro's ellipsoids (their section 7, Table 3, docs/stress.md: shapes 1:1:1, 1:0.8:0.6,
 // 1:0.8:0.4, 1:0.6:0.4, major semi-axes 1.0-2.5 mm, random orientations) deposited and
 // relaxed to static equilibrium by FIRE:
-// - Bagi's stress is symmetric to RAI below 1e-3 % (the paper reached 0.3 %), and
+// - Bagi's stress is symmetric to RAI below 1e-3 % (they reached 0.3 %), and
 //   the dynamic formulas reduce to it, with the inertia of each ellipsoid rotated to the world;
 // - the bed, held at rest for 10^6 steps, gains no energy: the kinetic energy stays below
 //   1e-9 of the potential energy;
@@ -17,7 +17,7 @@ using namespace upgrain;
 using namespace upgrain::dem;
 
 TEST(EllipsoidBed, RelaxedBagiStressIsSymmetricAndTheBedStaysAtRest) {
-  const long count = 69;  // the smallest bed of the paper's Table 3
+  const long count = 69;  // the smallest bed of their Table 3
   const SceneConfig s = test::paper_ellipsoid_bed_scene(count);
   // FIRE's step count on this frictional ellipsoid bed follows the packing, which changes with
   // round-off of the deposition: 129,249, 183,952 and 259,003 steps to 1e-9 with three versions

@@ -1,5 +1,6 @@
-// The paper's static results on beds relaxed to equilibrium (paper section 7, Table 2):
-// Bagi's stress is symmetric (RAI below 1e-4 %, where the paper reached 0.03 %), the
+// Yan and Regueiro's static results on beds relaxed to equilibrium (their section 7, Table 2;
+// docs/stress.md):
+// Bagi's stress is symmetric (RAI below 1e-4 %, where they reached 0.03 %), the
 // dynamic formulas reduce to it, Weber's is clearly asymmetric on a small bed and smaller
 // in magnitude, Drescher's strongly asymmetric. The bed as merely settled is not enough.
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
-// The paper's unconstrained collapse (paper section 1): a column of grains deposited in a
-// narrow box; when all four side walls are removed the column spreads freely on the floor.
-// Checks that the walls hold, that their removal leaves no contact with them, that the pile
-// spreads and slumps on every side, and that nothing is lost, sinks or gains energy.
+// Yan and Regueiro's unconstrained collapse (their section 1, docs/stress.md): a column of grains deposited
+// in a narrow box; when all four side walls are removed the column spreads freely on the floor. Checks that
+// the walls hold, that their removal leaves no contact with them, that the pile spreads and slumps on every
+// side, and that nothing is lost, sinks or gains energy.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -184,7 +184,7 @@ Extent ellipsoid_extent(const ParticleStore& p) {
   return e;
 }
 
-// The same collapse with the paper's ellipsoids (four shapes, a = 1.0-2.5 mm): the walls hold
+// The same collapse with their ellipsoids (four shapes, a = 1.0-2.5 mm): the walls hold
 // the column, and once they go it spreads and slumps on every side; nothing sinks into the
 // floor, the quaternions stay unit and no contact solve fails.
 TEST(UnconstrainedCollapse, EllipsoidsSpreadToo) {

@@ -1,6 +1,6 @@
 #pragma once
-// Ellipsoid pairs for the contact geometry tests: the paper's grain sizes, body 1 up to 2 m from
-// the origin, random, face-to-face or tip-to-tip orientations, and contacts constructed with a
+// Ellipsoid pairs for the contact geometry tests: Yan and Regueiro's grain sizes (docs/stress.md), body 1 up
+// to 2 m from the origin, random, face-to-face or tip-to-tip orientations, and contacts constructed with a
 // known depth and normal (reference::construct_centre2).
 #include <cmath>
 #include <random>
@@ -32,7 +32,7 @@ using reference::random_rotation;
 using reference::random_unit;
 using Case = reference::ConstructedPair;
 
-// A pair of one of kShapes with a known signed depth (reference::constructed_pair): the paper's
+// A pair of one of kShapes with a known signed depth (reference::constructed_pair): Yan and Regueiro's
 // grain sizes, body 1 1.5-2 m from the origin.
 inline Case make_case(std::mt19937_64& rng, const Shape& shape, Orientation o, double delta_over_c) {
   return reference::constructed_pair(rng, shape.ratio, shape.ratio, o, delta_over_c);

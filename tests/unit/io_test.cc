@@ -8,7 +8,7 @@
 #include <fstream>
 
 #include "dem/boundary/container.h"
-#include "dem/io/atomic_file.h"
+#include "dem/files/atomic_file.h"
 #include "dem/io/csv_series.h"
 #include "dem/io/hdf5_snapshot.h"
 

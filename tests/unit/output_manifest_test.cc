@@ -10,10 +10,10 @@
 #include <string>
 
 #include "dem/core/error.h"
-#include "dem/io/atomic_file.h"
+#include "dem/files/atomic_file.h"
+#include "dem/files/output_journal.h"
+#include "dem/files/output_manifest.h"
 #include "dem/io/csv_series.h"
-#include "dem/io/output_journal.h"
-#include "dem/io/output_manifest.h"
 
 namespace fs = std::filesystem;
 using namespace upgrain::dem::io;

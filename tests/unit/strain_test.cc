@@ -50,8 +50,8 @@ Mat3 simple_shear(double gamma) {
 
 Mat3 uniaxial_stretch(double lambda) { return Vec3(lambda, 1.0, 1.0).asDiagonal(); }
 
-// The affine maps of the paper: stretch 1.5, simple shear 1, rotations of 90 and 180 degrees
-// about several axes, and products of these.
+// The affine maps of the verification (docs/strain.md, "Verification"): stretch 1.5, simple shear 1,
+// rotations of 90 and 180 degrees about several axes, and products of these.
 std::vector<Mat3> test_maps() {
   const Vec3 axes[] = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ(), Vec3(1, 1, 1), Vec3(1, -2, 0.5)};
   std::vector<Mat3> maps = {uniaxial_stretch(1.5), simple_shear(1.0)};

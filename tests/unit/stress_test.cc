@@ -1,4 +1,4 @@
-// Grid stress by the static formulas (dem/stress/): the paper's printed asymmetry indices
+// Grid stress by the static formulas (dem/stress/): Yan and Regueiro's printed asymmetry indices
 // reproduced from its printed tensors within their rounding; sigma = F/A for a loaded
 // simple-cubic packing; the exact skew-torque identity and additivity of Bagi's stress in
 // a dynamic state.

@@ -11,7 +11,7 @@
 #include <numeric>
 
 #include "coupling/wall_shear_profile.h"
-#include "dem/io/json_number.h"
+#include "dem/files/json_number.h"
 
 using namespace upgrain;
 using namespace upgrain::coupling;

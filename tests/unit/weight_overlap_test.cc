@@ -1,13 +1,13 @@
 // The overlap a grain's weight gives by its contact law, and the runaway-overlap guard's
-// diagnosis built on it (dem/contact/weight_overlap.h, dem/engine/guards.h).
+// diagnosis built on it (dem/scene/weight_overlap.h, dem/engine/guards.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "dem/contact/weight_overlap.h"
 #include "dem/core/material.h"
 #include "dem/engine/guards.h"
+#include "dem/scene/weight_overlap.h"
 #include "dem/time_step.h"
 
 namespace upgrain::dem {

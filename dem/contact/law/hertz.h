@@ -1,5 +1,5 @@
 #pragma once
-// The Hertz-Mindlin contact law (the paper's law; docs/contact-law.md): Hertz's normal
+// The Hertz-Mindlin contact law (Yan and Regueiro's law; docs/contact-law.md, docs/stress.md): Hertz's normal
 // force of two elastic spheres and Mindlin's no-slip tangential stiffness, with the normal
 // dashpot, the Coulomb-capped incremental tangential spring and the rolling spring-dashpot
 // of contact_law.h. Its time-step rule: the Rayleigh time and the Hertz contact duration.
@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <span>
 
 #include "dem/contact/contact_parameters.h"
 #include "dem/contact/hertz_mindlin.h"
@@ -15,7 +16,6 @@
 #include "dem/contact/law/normal_response.h"
 #include "dem/contact/law/time_scales.h"
 #include "dem/core/material.h"
-#include "dem/scene/scene_config.h"
 
 namespace upgrain::dem {
 
@@ -27,7 +27,7 @@ struct HertzNormal {
   static constexpr bool needs_rotation = false;
   // Its coefficients are the grains' E and nu (Particles section): none of its own.
   static constexpr std::array<LawParameter, 0> parameters{};
-  static void constants(const SceneConfig&, ContactMaterial&) {}
+  static void constants(std::span<const NamedValue>, ContactMaterial&) {}
 
   // F = 4/3 E* a delta, k_n = 2 E* a, k_t = 8 G* a with the contact radius a = sqrt(R* delta)
   // (hertz_mindlin.h; Johnson 1985, eq. 4.23; Mindlin 1949).

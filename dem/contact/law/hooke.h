@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <span>
 
 #include "dem/contact/contact_parameters.h"
 #include "dem/contact/law/contact_law.h"
@@ -17,7 +18,6 @@
 #include "dem/contact/law/normal_response.h"
 #include "dem/contact/law/time_scales.h"
 #include "dem/core/material.h"
-#include "dem/scene/scene_config.h"
 
 namespace upgrain::dem {
 
@@ -36,9 +36,9 @@ struct HookeNormal {
        "2001, LAMMPS's default)."},
   }};
 
-  static void constants(const SceneConfig& s, ContactMaterial& m) {
-    m.k_n = law_parameter(s, parameters[0]);
-    const double k_t = law_parameter(s, parameters[1]);
+  static void constants(std::span<const NamedValue> values, ContactMaterial& m) {
+    m.k_n = law_parameter(values, parameters[0]);
+    const double k_t = law_parameter(values, parameters[1]);
     m.k_t = k_t > 0.0 ? k_t : 2.0 / 7.0 * m.k_n;
   }
 

@@ -2,13 +2,19 @@
 // A parameter a contact law adds to the Contact section of a scene file: the law declares
 // it next to its formulas, the driver's schema lists it, and the scene carries its value
 // by name (SceneConfig::law_parameters), so a law with its own coefficients needs no other
-// file to be read from a scene.
+// file to be read from a scene. The law sees only those values, not the scene: contact/ lies
+// below scene/ (docs/architecture.md, "Folders").
 
+#include <span>
 #include <string>
 
-#include "dem/scene/scene_config.h"
-
 namespace upgrain::dem {
+
+// A parameter of the scene's contact law, by the name the law declares.
+struct NamedValue {
+  std::string name;
+  double value;
+};
 
 struct LawParameter {
   const char* name;           // entry of the Contact section
@@ -18,10 +24,10 @@ struct LawParameter {
   const char* doc;
 };
 
-// The value of a law's parameter in a scene: as set (SceneConfig::law_parameters), else its
-// default.
-inline double law_parameter(const SceneConfig& s, const LawParameter& p) {
-  for (const NamedValue& v : s.law_parameters)
+// The value of a law's parameter among a scene's `values` (SceneConfig::law_parameters): as
+// set, else its default.
+inline double law_parameter(std::span<const NamedValue> values, const LawParameter& p) {
+  for (const NamedValue& v : values)
     if (v.name == p.name) return v.value;
   return std::stod(p.default_value);
 }

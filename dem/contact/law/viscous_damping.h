@@ -1,7 +1,7 @@
 #pragma once
 // The normal dashpot of a contact law: c_n = 2 zeta sqrt(m* k_n) with the normal part's
-// tangent stiffness (paper eq. 21-22; Tsuji et al. 1992 for Hertz, Cundall and Strack
-// 1979 for a linear spring), and a total normal force that never attracts.
+// tangent stiffness (Yan and Regueiro eq. 21-22, docs/stress.md; Tsuji et al. 1992 for Hertz, Cundall and
+// Strack 1979 for a linear spring), and a total normal force that never attracts.
 #include "dem/contact/contact_parameters.h"
 #include "dem/contact/hertz_mindlin.h"
 #include "dem/contact/law/normal_response.h"

@@ -1,4 +1,4 @@
-#include "dem/contact/weight_overlap.h"
+#include "dem/scene/weight_overlap.h"
 
 #include <numbers>
 
@@ -7,6 +7,24 @@
 
 namespace upgrain::dem {
 
+namespace {
+
+// The overlap at which `grows` (the law's force or energy, growing with the overlap) reaches
+// `target`, as a fraction of the radius r: bisection on [0, 10 r] (beyond, the grain is a
+// puddle).
+template <class Grows>
+double overlap_ratio_where(const Grows& grows, double target, double r) {
+  double lo = 0.0, hi = 10.0 * r;
+  if (grows(hi) < target) return hi / r;
+  for (int k = 0; k < 200 && hi - lo > 1e-13 * hi; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (grows(mid) < target ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi) / r;
+}
+
+}  // namespace
+
 double weight_overlap_ratio(const SceneConfig& s) {
   if (!s.effects.gravity || s.gravity <= 0.0) return 0.0;
   const double r = s.particles.largest_radius();
@@ -14,19 +32,12 @@ double weight_overlap_ratio(const SceneConfig& s) {
   const double weight = mass * s.gravity;
   ContactMaterial m = ContactMaterial::from(s.particles.material, s.friction, s.damping_ratio);
   return with_contact_law(s.contact_law, [&]<class Law>() {
-    Law::Normal::constants(s, m);
+    Law::Normal::constants(s.law_parameters, m);
     // A grain on the floor: R* = R, m* = m (the wall does not move).
     const ContactParameters p{m.e_star_pw,     m.g_star_pw, r,     mass, s.friction,
                               s.damping_ratio, s.time_step, m.k_n, m.k_t};
     const auto force = [&](double delta) { return Law::Normal::response(p, delta).force; };
-    // The force grows with the overlap: bisect on [0, 10 R] (beyond, the grain is a puddle).
-    double lo = 0.0, hi = 10.0 * r;
-    if (force(hi) < weight) return hi / r;
-    for (int k = 0; k < 200 && hi - lo > 1e-13 * hi; ++k) {
-      const double mid = 0.5 * (lo + hi);
-      (force(mid) < weight ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi) / r;
+    return overlap_ratio_where(force, weight, r);
   });
 }
 
@@ -37,20 +48,13 @@ double impact_overlap_ratio(const SceneConfig& s, double speed) {
   if (!(kinetic > 0.0)) return 0.0;
   ContactMaterial m = ContactMaterial::from(s.particles.material, s.friction, s.damping_ratio);
   return with_contact_law(s.contact_law, [&]<class Law>() {
-    Law::Normal::constants(s, m);
+    Law::Normal::constants(s.law_parameters, m);
     const ContactParameters p{m.e_star_pw,     m.g_star_pw, r,     mass, s.friction,
                               s.damping_ratio, s.time_step, m.k_n, m.k_t};
     const auto energy = [&](double delta) {
       return Law::Normal::energy(Law::Normal::response(p, delta), delta);
     };
-    // The energy grows with the overlap: bisect on [0, 10 R], as weight_overlap_ratio.
-    double lo = 0.0, hi = 10.0 * r;
-    if (energy(hi) < kinetic) return hi / r;
-    for (int k = 0; k < 200 && hi - lo > 1e-13 * hi; ++k) {
-      const double mid = 0.5 * (lo + hi);
-      (energy(mid) < kinetic ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi) / r;
+    return overlap_ratio_where(energy, kinetic, r);
   });
 }
 

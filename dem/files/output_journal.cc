@@ -1,4 +1,4 @@
-#include "dem/io/output_journal.h"
+#include "dem/files/output_journal.h"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -9,8 +9,8 @@
 #include <utility>
 
 #include "dem/core/error.h"
-#include "dem/io/atomic_file.h"
-#include "dem/io/fnv1a.h"
+#include "dem/files/atomic_file.h"
+#include "dem/files/fnv1a.h"
 
 namespace upgrain::dem::io {
 

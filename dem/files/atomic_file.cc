@@ -1,4 +1,4 @@
-#include "dem/io/atomic_file.h"
+#include "dem/files/atomic_file.h"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "dem/core/error.h"
-#include "dem/io/output_journal.h"
+#include "dem/files/output_journal.h"
 
 namespace upgrain::dem::io {
 

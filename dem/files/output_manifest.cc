@@ -1,4 +1,4 @@
-#include "dem/io/output_manifest.h"
+#include "dem/files/output_manifest.h"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "dem/core/error.h"
-#include "dem/io/fnv1a.h"
+#include "dem/files/fnv1a.h"
 
 namespace upgrain::dem::io {
 

@@ -5,7 +5,7 @@
 // a file the manifest does not list, or lists with other bytes, is never removed.
 //
 // The file, <folder>/.upgrain/manifest, is text, one entry per line:
-//   F <size> <checksum> <path>   a file, as the run left it (64-bit FNV-1a, dem/io/fnv1a.h)
+//   F <size> <checksum> <path>   a file, as the run left it (64-bit FNV-1a, dem/files/fnv1a.h)
 //   W - - <path>                 a file or folder being written when the manifest was saved
 //   D - - <path>                 a folder the run made
 // with paths relative to the output folder and '/' between their parts.

@@ -1,7 +1,7 @@
 #pragma once
 // The journal of what a run writes (docs/output.md, "Manifest"): while it is open, every file
 // and folder written under the output folder through this library (atomic_file.h,
-// csv_series.h) is entered in the folder's manifest (output_manifest.h), and the manifest is
+// dem/io/csv_series.h) is entered in the folder's manifest (output_manifest.h), and the manifest is
 // saved (renamed into place) at every change.
 //
 // The order makes the manifest trustworthy after a crash at any moment: a name is entered as
@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "dem/io/output_manifest.h"
+#include "dem/files/output_manifest.h"
 
 namespace upgrain::dem::io {
 
