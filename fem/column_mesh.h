@@ -132,7 +132,7 @@ inline void write_pieces_and_record(const dealii::DataOut<dim>& data_out, const 
     if (!std::filesystem::is_directory(dir)) throw std::runtime_error("cannot create folder " + folder);
     std::ostringstream vtu;
     data_out.write_vtu(vtu);
-    dem::io::write_text_atomically(dir / piece_name(rank), vtu.str());
+    dem::io::write_text_atomically(dir / piece_name(rank), dem::io::undated_vtk(vtu.str()));
   } catch (const std::exception& e) {
     error = e.what();
   }

@@ -130,17 +130,23 @@ Entry text(std::string name, Get get, std::string unit, std::string doc) {
       [get](SceneInput& in) { return std::string(get(in)); }};
 }
 
+// "a|b|c" of named values.
+template <class Options>
+std::string choices_of(const Options& options) {
+  std::vector<std::string> names;
+  for (const auto& o : options) names.push_back(o.first);
+  return join(names, "|");
+}
+
 // One of named values: an enum, a bool or a string.
 template <class Get>
 Entry choice(std::string name, Get get, std::vector<std::pair<std::string, value_of<Get>>> options,
              std::string doc) {
-  std::vector<std::string> names;
-  for (const auto& o : options) names.push_back(o.first);
   return {std::move(name),
           Kind::selection,
           0,
           0,
-          join(names, "|"),
+          choices_of(options),
           "-",
           std::move(doc),
           [get, options](SceneInput& in, const EntryValue& v, const std::string& path) {
@@ -163,13 +169,11 @@ template <class Get>
 Entry subset(std::string name, Get get,
              std::vector<std::pair<std::string, typename value_of<Get>::value_type>> options,
              std::string doc) {
-  std::vector<std::string> names;
-  for (const auto& o : options) names.push_back(o.first);
   return {std::move(name),
           Kind::multiple_selection,
           0,
           0,
-          join(names, "|"),
+          choices_of(options),
           "-",
           std::move(doc),
           [get, options](SceneInput& in, const EntryValue& v, const std::string&) {
@@ -192,13 +196,11 @@ Entry subset(std::string name, Get get,
 // A comma-separated subset of named flags, each a bool member.
 using Flag = std::function<bool&(SceneInput&)>;
 inline Entry flags(std::string name, std::vector<std::pair<std::string, Flag>> options, std::string doc) {
-  std::vector<std::string> names;
-  for (const auto& o : options) names.push_back(o.first);
   return {std::move(name),
           Kind::multiple_selection,
           0,
           0,
-          join(names, "|"),
+          choices_of(options),
           "-",
           std::move(doc),
           [options](SceneInput& in, const EntryValue& v, const std::string&) {
@@ -214,44 +216,40 @@ inline Entry flags(std::string name, std::vector<std::pair<std::string, Flag>> o
           }};
 }
 
-// Three reals (an Eigen vector or an array).
-template <class Get>
-Entry vector3(std::string name, Get get, double min, double max, std::string unit, std::string doc) {
+// Three reals (Kind::vector3: an Eigen vector or an array) or three integers (Kind::integer3: an
+// array or a C array), written as "x, y, z".
+template <Kind kind, class Get>
+Entry triple(std::string name, Get get, double min, double max, std::string unit, std::string doc) {
+  static_assert(kind == Kind::vector3 || kind == Kind::integer3);
+  using Value = std::conditional_t<kind == Kind::vector3, std::array<double, 3>, std::array<int, 3>>;
   return {std::move(name),
-          Kind::vector3,
+          kind,
           min,
           max,
           "",
           std::move(unit),
           std::move(doc),
           [get](SceneInput& in, const EntryValue& v, const std::string&) {
-            const auto& a = std::get<std::array<double, 3>>(v);
+            const auto& a = std::get<Value>(v);
             for (int d = 0; d < 3; ++d) get(in)[d] = a[d];
           },
           [get](SceneInput& in) {
             auto& x = get(in);
-            return join({format_real(x[0]), format_real(x[1]), format_real(x[2])});
+            std::vector<std::string> items;
+            for (int d = 0; d < 3; ++d)
+              items.push_back(kind == Kind::vector3 ? format_real(x[d]) : std::to_string(x[d]));
+            return join(items);
           }};
 }
 
-// Three integers (an array or a C array).
+template <class Get>
+Entry vector3(std::string name, Get get, double min, double max, std::string unit, std::string doc) {
+  return triple<Kind::vector3>(std::move(name), get, min, max, std::move(unit), std::move(doc));
+}
+
 template <class Get>
 Entry integer3(std::string name, Get get, double min, double max, std::string unit, std::string doc) {
-  return {std::move(name),
-          Kind::integer3,
-          min,
-          max,
-          "",
-          std::move(unit),
-          std::move(doc),
-          [get](SceneInput& in, const EntryValue& v, const std::string&) {
-            const auto& a = std::get<std::array<int, 3>>(v);
-            for (int d = 0; d < 3; ++d) get(in)[d] = a[d];
-          },
-          [get](SceneInput& in) {
-            auto& x = get(in);
-            return join({std::to_string(x[0]), std::to_string(x[1]), std::to_string(x[2])});
-          }};
+  return triple<Kind::integer3>(std::move(name), get, min, max, std::move(unit), std::move(doc));
 }
 
 // A comma-separated list of reals, converted to the member's element type.

@@ -95,7 +95,7 @@ struct SceneConfig {
   std::string contact_law = "hertz-mindlin";
   std::vector<NamedValue> law_parameters;
   double friction = 0.5;       // particle-particle Coulomb coefficient
-  double damping_ratio = 0.5;  // zeta, paper eq. (21)
+  double damping_ratio = 0.5;  // zeta (docs/contact-law.md, eqs. 21-22)
   double gravity = 9.81;       // m/s^2 along -z, when effects.gravity
   double time_step = 1e-6;     // s
   double end_time = 0.4;       // s
