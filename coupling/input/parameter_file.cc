@@ -28,12 +28,14 @@ namespace Patterns = dealii::Patterns;
 std::string documentation(const Entry& e) { return e.doc + " [unit: " + e.unit + "]"; }
 
 std::unique_ptr<Patterns::PatternBase> pattern_of(const Entry& e) {
-  const int lo = static_cast<int>(e.min), hi = static_cast<int>(e.max);
+  // Bounds of integer kinds as ints (only theirs: a real's bound, 1e18, is no int).
+  auto lo = [&] { return static_cast<int>(e.min); };
+  auto hi = [&] { return static_cast<int>(e.max); };
   switch (e.kind) {
     case Kind::real:
       return std::make_unique<Patterns::Double>(e.min, e.max);
     case Kind::integer:
-      return std::make_unique<Patterns::Integer>(lo, hi);
+      return std::make_unique<Patterns::Integer>(lo(), hi());
     case Kind::boolean:
       return std::make_unique<Patterns::Bool>();
     case Kind::selection:
@@ -45,19 +47,17 @@ std::unique_ptr<Patterns::PatternBase> pattern_of(const Entry& e) {
     case Kind::vector3:
       return std::make_unique<Patterns::List>(Patterns::Double(e.min, e.max), 3, 3, ",");
     case Kind::integer3:
-      return std::make_unique<Patterns::List>(Patterns::Integer(lo, hi), 3, 3, ",");
+      return std::make_unique<Patterns::List>(Patterns::Integer(lo(), hi()), 3, 3, ",");
   }
   return std::make_unique<Patterns::Anything>();
 }
 
 void declare(ParameterHandler& prm) {
-  const SceneInput defaults;
+  SceneInput defaults;
   for (const input::Section& section : input::scene_sections()) {
     prm.enter_subsection(section.name);
-    for (const Entry& e : section.entries) {
-      SceneInput copy = defaults;
-      prm.declare_entry(e.name, e.write(copy), *pattern_of(e), documentation(e));
-    }
+    for (const Entry& e : section.entries)
+      prm.declare_entry(e.name, e.write(defaults), *pattern_of(e), documentation(e));
     prm.leave_subsection();
   }
 }
