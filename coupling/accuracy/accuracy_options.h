@@ -9,10 +9,18 @@ namespace upgrain::coupling {
 
 struct AccuracyOptions {
   // The knobs to turn, by name (accuracy_knobs.h); the others keep the scene's setting.
-  std::vector<std::string> knobs = {"time step",       "youngs modulus",    "skin",
-                                    "summation",       "ranks",             "shape",
-                                    "rotation",        "solver tolerance",  "solver iterations",
-                                    "relaxation tolerance", "grid",         "fem",
+  std::vector<std::string> knobs = {"time step",
+                                    "youngs modulus",
+                                    "skin",
+                                    "summation",
+                                    "ranks",
+                                    "shape",
+                                    "rotation",
+                                    "solver tolerance",
+                                    "solver iterations",
+                                    "relaxation tolerance",
+                                    "grid",
+                                    "fem",
                                     "outputs"};
   std::vector<double> time_step_fractions = {0.1, 0.25, 0.5, 1.0};  // of the scene's safe step
   // Young's modulus scaled, with the safe step it allows

@@ -16,9 +16,9 @@ namespace upgrain::coupling {
 // Checkpoints (docs/restart.md): written into <folder>/checkpoints/ at an interval of simulated
 // time, of wall-clock time, and when the run is asked to stop (SIGINT, SIGTERM, SIGHUP).
 struct CheckpointOptions {
-  double interval = 0.0;       // s of simulated time; 0: none on a schedule
+  double interval = 0.0;         // s of simulated time; 0: none on a schedule
   double wall_interval = 600.0;  // s of wall-clock time; 0: none
-  int keep = 2;                // the newest kept; older ones are removed
+  int keep = 2;                  // the newest kept; older ones are removed
   // The scene's parameters as the driver read them (every entry, one per line), stored with
   // their hash so that a restart continues the same scene.
   std::string scene;
