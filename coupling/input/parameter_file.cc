@@ -10,10 +10,10 @@
 #include <regex>
 #include <sstream>
 
+#include "coupling/input/prm_syntax.h"
+#include "coupling/input/scene_input.h"
 #include "coupling/input/scene_sections.h"
-#include "coupling/prm_syntax.h"
-#include "coupling/scene_input.h"
-#include "coupling/scene_text.h"
+#include "coupling/input/scene_text.h"
 #include "dem/core/error.h"
 
 namespace upgrain::coupling {
@@ -247,20 +247,20 @@ void apply_material_file(SceneInput& in, const std::string& scene_file) {
   c.material_file = file.string();
 }
 
-SceneInput read_scene_file(const std::string& filename, Command command) {
+SceneInput read_scene_file(const std::string& filename, const StudyUse& use) {
   SceneInput in = parse_scene_text(read_scene_bytes(filename), filename);
-  in.command = command;
+  in.use = use;
   in.scene_folder = std::filesystem::path(filename).parent_path().string();
   apply_material_file(in, filename);
   validate_scene(in);
   return in;
 }
 
-SceneInput default_scene(Command command) {
+SceneInput default_scene(const StudyUse& use) {
   ParameterHandler prm;
   declare(prm);
   SceneInput in = extract(prm, "built-in default scene");
-  in.command = command;
+  in.use = use;
   validate_scene(in);
   return in;
 }

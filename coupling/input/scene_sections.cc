@@ -1,6 +1,6 @@
 #include "coupling/input/scene_sections.h"
 
-#include "coupling/scene_input.h"
+#include "coupling/input/scene_input.h"
 
 namespace upgrain::coupling::input {
 

@@ -1,7 +1,10 @@
-# The scene file's sections, each declared by the capability that owns it (docs/architecture.md,
-# "How to add a section"), relative to the project's root. Included by coupling/CMakeLists.txt
-# and by the fuzzer's build (tests/fuzz/CMakeLists.txt), which compiles them with its sanitizers.
-set(UPGRAIN_SCENE_SECTION_SOURCES
+# The input layer's sources without deal.II, relative to the project's root: the scene file's
+# sections, each declared by the capability that owns it (docs/architecture.md, "How to add a
+# section"), its syntax and its checks across sections, and each study's section and checks
+# (coupling/studies/sources.cmake). Included by coupling/CMakeLists.txt and by the fuzzer's build
+# (tests/fuzz/CMakeLists.txt), which compiles them with its sanitizers.
+include(${CMAKE_CURRENT_LIST_DIR}/../studies/sources.cmake)
+set(UPGRAIN_INPUT_SOURCES
   coupling/input/entry.cc
   coupling/input/scene_sections.cc
   coupling/input/sections/simulation.cc
@@ -17,8 +20,9 @@ set(UPGRAIN_SCENE_SECTION_SOURCES
   coupling/input/sections/parallel.cc
   coupling/input/sections/stress.cc
   coupling/input/sections/strain.cc
-  coupling/input/sections/study.cc
-  coupling/input/sections/coarse_graining.cc
-  coupling/input/sections/continuum.cc
-  coupling/accuracy/accuracy_section.cc
-  coupling/calibration/calibration_section.cc)
+  coupling/input/prm_syntax.cc
+  coupling/input/scene_text.cc
+  coupling/input/scene_validation.cc
+  coupling/input/scene_limits.cc
+  coupling/input/memory_estimate.cc
+  ${UPGRAIN_STUDY_INPUT_SOURCES})

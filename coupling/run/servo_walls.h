@@ -3,7 +3,7 @@
 // servo wall's velocity along its normal is set from its normal stress, its target and the
 // Hertz stiffness bound of its contacts (dem/boundary/servo_wall.h). The lid of a scene
 // (coupling/run/lid.h) is one such wall; the triaxial test's side walls and platen are others
-// (coupling/calibration/triaxial_run.h). Collective over the engine's ranks; the velocities are
+// (coupling/studies/calibration/triaxial_run.h). Collective over the engine's ranks; the velocities are
 // functions of exact wall forces and counts, so the same bits on every rank count.
 #include <cstddef>
 #include <vector>

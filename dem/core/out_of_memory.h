@@ -1,6 +1,6 @@
 #pragma once
 // An allocation that fails says what was being allocated (docs/input.md, "Memory"). The scene's
-// memory check (coupling/scene_limits.h) refuses a scene that cannot fit before anything is
+// memory check (coupling/input/scene_limits.h) refuses a scene that cannot fit before anything is
 // allocated, but its estimate is a lower bound; a run that still runs out of memory would end
 // with a bare std::bad_alloc. The run's big allocations (the fill, the engine's particle store
 // and lists, the grids, snapshots, checkpoints, the continuum's system) are made inside

@@ -19,7 +19,7 @@ std::vector<double> sample_radii(const std::vector<GradationPoint>& curve, long 
 
 // The mean acceptance probability of that draw, E[(r_min / r)^3] over the mass distribution:
 // sample_radii takes about count / acceptance draws, which a curve spanning decades of radius
-// makes astronomically many (the scene's validation refuses those, coupling/scene_limits.h).
+// makes astronomically many (the scene's validation refuses those, coupling/input/scene_limits.h).
 double sampling_acceptance(const std::vector<GradationPoint>& curve);
 
 }  // namespace upgrain::dem

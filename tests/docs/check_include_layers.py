@@ -11,6 +11,7 @@ the targets outside dem/ with what each depends on. Fails, naming each file and 
 - a file of upscale/, fem/ or coupling/ includes a project header of a target that its own
   target does not depend on, directly or through others.
 """
+import fnmatch
 import glob
 import os
 import re
@@ -141,15 +142,18 @@ def main():
         errors.append(f"dem/CMakeLists.txt: dem_{layer} is no folder of docs/architecture.md")
 
     # Outside dem/: targets by folder, and what each depends on.
+    # A target's files: its folders (path prefixes) and patterns (with *, such as a study's
+    # `coupling/studies/*/*_checks.*` in the input layer); a file is the target's whose prefix or
+    # pattern is the longest that matches it.
     folder_of, depends = {}, {}
     for row in outside_table:
         target = spans(row[0])[0].removeprefix("upgrain::")
-        folder_of[target] = spans(row[1])[0]
+        folder_of[target] = spans(row[1])
         depends[target] = [d for d in names(row[2]) if d not in EXTERNAL]
-    folder_of["dem"] = "dem/"
+    folder_of["dem"] = ["dem/"]
     depends["dem"] = []
     for layer in order:  # a dem/ folder may be named alone (fem: `dem/files/`)
-        folder_of["dem/" + layer + "/"] = "dem/" + layer + "/"
+        folder_of["dem/" + layer + "/"] = ["dem/" + layer + "/"]
         depends["dem/" + layer + "/"] = []
     for target, deps in depends.items():
         for d in deps:
@@ -157,10 +161,12 @@ def main():
                 errors.append(f"docs/architecture.md: {target} depends on {d}, which is not a target of the tables")
 
     def target_of(path):
-        best = None
-        for t, folder in folder_of.items():
-            if path.startswith(folder) and (best is None or len(folder) > len(folder_of[best])):
-                best = t
+        best, best_length = None, -1
+        for t, patterns in folder_of.items():
+            for p in patterns:
+                matches = fnmatch.fnmatch(path, p) if "*" in p else path.startswith(p)
+                if matches and len(p) > best_length:
+                    best, best_length = t, len(p)
         return best
 
     def reach(target):

@@ -1,4 +1,4 @@
-"""The "Strain" section of report.md and its plots (docs/strain.md, coupling/strain_report.cc),
+"""The "Strain" section of report.md and its plots (docs/strain.md, coupling/studies/continuum/strain_report.cc),
 shared by check_output.py and check_study.py. Sane means: the section is there and names the
 reference time, the number of outputs that are in grid_strain/ and each definition's valid
 cells as the last file has them; the three plots are PNG images of a reasonable size that

@@ -14,7 +14,7 @@ execute_process(COMMAND ${launcher} ${UPGRAIN} ${args} ${PRM} --output ${WORK}/o
 if(NOT code EQUAL 0)
   message(FATAL_ERROR "upgrain failed:\n${out}\n${err}")
 endif()
-# p4est, behind the strain mesh, logs every mesh operation unless silenced (coupling/quiet_p4est.h).
+# p4est, behind the strain mesh, logs every mesh operation unless silenced (coupling/app/quiet_p4est.h).
 if(out MATCHES "p[48]est")
   message(FATAL_ERROR "the driver printed p4est's log:\n${out}")
 endif()

@@ -7,8 +7,11 @@
 #include <cstdint>
 #include <string>
 
-#include "coupling/prm_syntax.h"
-#include "coupling/scene_input.h"
+#include "coupling/input/prm_syntax.h"
+#include "coupling/input/scene_input.h"
+#include "coupling/studies/accuracy/accuracy_checks.h"
+#include "coupling/studies/calibration/calibration_checks.h"
+#include "coupling/studies/continuum/continuum_checks.h"
 #include "dem/core/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -20,12 +23,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   try {
     const coupling::SceneInput read = coupling::parse_scene_text(text, "fuzz.prm");
-    // Under each command: a section's checks run only when it is used (the Accuracy section's
-    // for the accuracy study, the Calibration section's when the bed is calibrated).
-    for (const coupling::Command command :
-         {coupling::Command::run, coupling::Command::accuracy_study, coupling::Command::calibration_study}) {
+    // Under each study (a row of coupling/studies/study_table.cc, whose runs this build does not
+    // link): a section's checks run only when it is used (the Accuracy section's for the
+    // accuracy study, the Calibration section's when the bed is calibrated).
+    for (const coupling::StudyUse& use :
+         {coupling::kContinuumUse, coupling::kAccuracyUse, coupling::kCalibrationUse}) {
       coupling::SceneInput in = read;
-      in.command = command;
+      in.use = use;
       // A folder that does not exist: validation looks at it, and nothing creates it.
       in.output.folder = "/nonexistent/upgrain-fuzz-output";
       try {

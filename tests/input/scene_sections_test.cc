@@ -6,8 +6,8 @@
 #include <set>
 #include <sstream>
 
+#include "coupling/input/scene_input.h"
 #include "coupling/input/scene_sections.h"
-#include "coupling/scene_input.h"
 
 namespace upgrain::coupling {
 namespace {

@@ -1,4 +1,4 @@
-// The oedometric test (coupling/calibration/oedometer_run.h, docs/calibration.md) on the case
+// The oedometric test (coupling/studies/calibration/oedometer_run.h, docs/calibration.md) on the case
 // with a closed form: a simple-cubic lattice of frictionless Hertz spheres, 2 x 2 columns of 4,
 // touching each other and the box's walls, without gravity. Under the servo lid each column
 // shortens by 3 sphere-pair and 2 wall closures of the Hertz law (dem::hertz_column_strain);
@@ -9,7 +9,7 @@
 #include <cstdio>
 
 #include "../common/scenes.h"
-#include "coupling/calibration/oedometer_run.h"
+#include "coupling/studies/calibration/oedometer_run.h"
 #include "dem/boundary/container.h"
 #include "dem/core/material.h"
 

@@ -1,4 +1,4 @@
-// The friction-angle test (coupling/calibration/triaxial_run.h, docs/calibration.md) on small
+// The friction-angle test (coupling/studies/calibration/triaxial_run.h, docs/calibration.md) on small
 // random packings of polydisperse Hertz spheres without gravity, frictionless walls: the
 // critical-state friction angle of frictionless spheres is small (about 5-6 degrees for large
 // samples, Peyneau & Roux 2008, Phys. Rev. E 78 011307), and it grows with the interparticle
@@ -11,7 +11,7 @@
 #include <random>
 
 #include "../common/scenes.h"
-#include "coupling/calibration/triaxial_run.h"
+#include "coupling/studies/calibration/triaxial_run.h"
 #include "dem/boundary/container.h"
 
 using namespace upgrain;

@@ -1,4 +1,4 @@
-// The side walls' shear against height (coupling/wall_shear_profile.h, docs/study.md "Wall
+// The side walls' shear against height (coupling/studies/continuum/wall_shear_profile.h, docs/study.md "Wall
 // shear against height"):
 //  - the DEM's binning: each contact's vertical force on its grain in the level of its point
 //    (points beyond the grid in the end levels), over the perimeter times the level height, so
@@ -10,7 +10,7 @@
 
 #include <numeric>
 
-#include "coupling/wall_shear_profile.h"
+#include "coupling/studies/continuum/wall_shear_profile.h"
 #include "dem/files/json_number.h"
 
 using namespace upgrain;

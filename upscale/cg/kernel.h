@@ -6,7 +6,8 @@
 //   line_integral(d, l)            int_0^1 phi(|d - s l|) ds along a branch l.
 // GaussianKernel (gaussian_kernel.h) and LucyKernel (lucy_kernel.h) are the two; another is
 // one file with these members, its rows in kernel_kind.h (KernelKind, its name, with_kernel)
-// and its name among the choices of CoarseGraining/kernel (coupling/input/sections/coarse_graining.cc).
+// and its name among the choices of CoarseGraining/kernel
+// (coupling/studies/continuum/coarse_graining_section.cc).
 #include <concepts>
 
 #include "dem/core/types.h"

@@ -1,6 +1,6 @@
 // The Checkpoint section: when checkpoints are written and how many are kept (docs/restart.md).
+#include "coupling/input/scene_input.h"
 #include "coupling/input/scene_sections.h"
-#include "coupling/scene_input.h"
 
 namespace upgrain::coupling::input {
 

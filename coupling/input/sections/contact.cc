@@ -2,8 +2,8 @@
 // contact law with its own parameters from the law table (dem/contact/contact_laws.h).
 #include <algorithm>
 
+#include "coupling/input/scene_input.h"
 #include "coupling/input/scene_sections.h"
-#include "coupling/scene_input.h"
 #include "dem/contact/contact_laws.h"
 
 namespace upgrain::coupling::input {

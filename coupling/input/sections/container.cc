@@ -1,6 +1,6 @@
 // The Container section: the box, its walls' friction and the collapse scenes (docs/scenes.md).
+#include "coupling/input/scene_input.h"
 #include "coupling/input/scene_sections.h"
-#include "coupling/scene_input.h"
 
 namespace upgrain::coupling::input {
 

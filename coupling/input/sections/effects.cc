@@ -1,7 +1,7 @@
 // The Effects section: which physical effects the engine simulates, each auto (derived from the
 // scene, dem/scene/effect_choice.h), true or false; switching off one a parameter calls for is refused.
+#include "coupling/input/scene_input.h"
 #include "coupling/input/scene_sections.h"
-#include "coupling/scene_input.h"
 #include "dem/scene/effect_choice.h"
 
 namespace upgrain::coupling::input {

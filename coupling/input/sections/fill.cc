@@ -1,6 +1,6 @@
 // The Fill section: how the initial grains are placed in the container.
+#include "coupling/input/scene_input.h"
 #include "coupling/input/scene_sections.h"
-#include "coupling/scene_input.h"
 
 namespace upgrain::coupling::input {
 

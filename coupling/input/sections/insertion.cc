@@ -1,6 +1,6 @@
 // The Insertion section: grains poured in during the run (docs/insertion.md).
+#include "coupling/input/scene_input.h"
 #include "coupling/input/scene_sections.h"
-#include "coupling/scene_input.h"
 
 namespace upgrain::coupling::input {
 

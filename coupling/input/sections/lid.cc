@@ -1,7 +1,7 @@
 // The Lid section: a wall placed on the bed, driven or servo-controlled (docs/scenes.md, Lid).
 #include "coupling/run/lid.h"
+#include "coupling/input/scene_input.h"
 #include "coupling/input/scene_sections.h"
-#include "coupling/scene_input.h"
 
 namespace upgrain::coupling::input {
 

@@ -1,6 +1,6 @@
 // The Output section: the run's folder and what is written into it (docs/output.md).
+#include "coupling/input/scene_input.h"
 #include "coupling/input/scene_sections.h"
-#include "coupling/scene_input.h"
 
 namespace upgrain::coupling::input {
 

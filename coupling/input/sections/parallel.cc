@@ -1,8 +1,8 @@
 // The Parallel section: the summation, the blocks and the load balance (docs/parallel.md).
 #include <sstream>
 
+#include "coupling/input/scene_input.h"
 #include "coupling/input/scene_sections.h"
-#include "coupling/scene_input.h"
 
 namespace upgrain::coupling::input {
 

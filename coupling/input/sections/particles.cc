@@ -2,8 +2,8 @@
 // packing, and their material.
 #include <sstream>
 
+#include "coupling/input/scene_input.h"
 #include "coupling/input/scene_sections.h"
-#include "coupling/scene_input.h"
 #include "dem/scene/gradation.h"
 #include "dem/scene/grain_shape.h"
 

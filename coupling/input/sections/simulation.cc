@@ -1,8 +1,8 @@
 // The Simulation section: the time step and its safety rule, the end of the run, the stop at rest, the
 // neighbour skin.
+#include "coupling/input/scene_input.h"
 #include "coupling/input/scene_sections.h"
 #include "coupling/run/scene_run.h"
-#include "coupling/scene_input.h"
 
 namespace upgrain::coupling::input {
 

@@ -1,7 +1,7 @@
 // The Strain section: finite strain and objective stress rates on the stress grid (docs/strain.md).
 #include "coupling/input/formula_choices.h"
+#include "coupling/input/scene_input.h"
 #include "coupling/input/scene_sections.h"
-#include "coupling/scene_input.h"
 
 namespace upgrain::coupling::input {
 

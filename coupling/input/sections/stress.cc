@@ -1,7 +1,7 @@
 // The Stress section: the average-stress formulas on a grid (docs/stress.md).
 #include "coupling/input/formula_choices.h"
+#include "coupling/input/scene_input.h"
 #include "coupling/input/scene_sections.h"
-#include "coupling/scene_input.h"
 
 namespace upgrain::coupling::input {
 

@@ -1,0 +1,30 @@
+#pragma once
+// What a study uses of a scene (docs/architecture.md, "How to add a study"). The input layer
+// reads and checks a scene for the study the command line names, and knows no study's code:
+// the study's row in the table (coupling/studies/study_table.h) hands it this.
+#include <string>
+#include <string_view>
+
+namespace upgrain::coupling {
+
+struct SceneInput;
+
+struct StudyUse {
+  // As `upgrain --study` takes it; empty for a plain DEM run of the scene (a study's own runs).
+  std::string_view name;
+  // The scene's own study: its Study, Continuum and CoarseGraining sections, when
+  // Study/compare with continuum is true (docs/study.md).
+  bool scene_study = false;
+  // Reads the Continuum section's material without that comparison (the accuracy study's
+  // continuum knob): Continuum/material file is applied.
+  bool continuum_material = false;
+  // Deposits with the scene's Lid; the calibration places its own (docs/calibration.md).
+  bool scene_lid = true;
+  // Always loads the bed in the calibration's tests (Calibration section).
+  bool calibrates = false;
+  // The study's own checks, after every section's and the scene's (validate_scene). Throws
+  // upgrain::Error prefixed by `where`. Null: none.
+  void (*check)(SceneInput& in, const std::string& where) = nullptr;
+};
+
+}  // namespace upgrain::coupling
