@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <ctime>
+#include <optional>
 #include <random>
 #include <regex>
 
@@ -39,6 +40,28 @@ long checkpoint_step(const std::string& rel) {
   static const std::regex name(R"(checkpoints/checkpoint_(\d+)\.h5)");
   std::smatch m;
   return std::regex_match(rel, m, name) ? std::stol(m[1]) : -1;
+}
+
+// Drops the entries of paths the run wrote after the checkpoint that are no longer there. A path
+// is removed before its entry (a kill between the two never leaves a file of the run unlisted:
+// docs/output.md, "Manifest"), so a start killed between the two leaves the entry of a path that
+// is gone. The audit sees no file for it, so nothing else removes the entry, and the next
+// checkpoint would list the path (docs/restart.md, "What a restart does"). Dropped: a file or
+// folder the checkpoint does not hold, any checkpoint (a later one is after the checkpoint; the
+// run removes older ones itself, Checkpoint/keep), and any path entered as being written. A
+// listed file the checkpoint holds stays listed when it is gone: it is missing from the output.
+void forget_gone_after(const fs::path& folder, const std::set<std::string>& at_checkpoint) {
+  const std::optional<dem::io::OutputManifest> m = dem::io::journal_manifest();
+  if (!m) return;
+  std::vector<std::string> gone;
+  for (const auto& [rel, e] : m->entries) {
+    std::error_code ec;
+    if (fs::exists(fs::symlink_status(folder / rel, ec))) continue;
+    const bool forget = e.kind == dem::io::ManifestEntry::Kind::being_written || checkpoint_step(rel) >= 0 ||
+                        at_checkpoint.count(rel) == 0;
+    if (forget) gone.push_back(rel);
+  }
+  for (const std::string& rel : gone) dem::io::note_removed(folder / rel);
 }
 
 }  // namespace
@@ -98,6 +121,7 @@ std::vector<std::string> remove_outputs_after(const fs::path& folder,
   }
   for (const std::string& rel : a.folders)
     if (at_checkpoint.count(rel) == 0) remove_folder_if_empty(folder, rel);
+  forget_gone_after(folder, at_checkpoint);
   std::vector<std::string> notes;
   if (!a.foreign.empty()) notes.push_back("left alone, not written by the run: " + list_paths(a.foreign));
   if (!a.changed.empty())

@@ -29,7 +29,9 @@ void replace_earlier_run(const std::filesystem::path& folder);
 // A restart's clean-up (rank 0, with the output journal open on the folder): what the run wrote
 // after the checkpoint is removed. That is each listed file and folder that `at_checkpoint` (the
 // checkpoint's list) does not hold, the files the run was writing, their temporary files, and the
-// checkpoints after `step`. Files the run did not write are left, and named in the result.
+// checkpoints after `step`; then the entries of such paths that are gone (a start killed during
+// its own clean-up, between a removal and the manifest's save, left them: docs/restart.md).
+// Files the run did not write are left, and named in the result.
 std::vector<std::string> remove_outputs_after(const std::filesystem::path& folder,
                                               const std::set<std::string>& at_checkpoint, long step);
 
