@@ -145,7 +145,7 @@ int run(const std::string& path, long steps, Summation summation, bool periodic)
   const double baseline = current_rss_bytes();  // the process before any particle data
   std::unique_ptr<Simulation> sim = load_bed(path, summation, periodic);
   if (!sim) return 1;
-  const auto n = static_cast<long>(sim->particles().size());
+  const auto n = static_cast<long>(sim->owned());  // owned grains: a periodic cell adds images
   const auto t0 = std::chrono::steady_clock::now();
   sim->run(steps);
   const double secs = seconds_since(t0);
