@@ -123,13 +123,15 @@ int settle(long n, const std::string& path) {
 }
 
 // Reads a bed written by `settle` into a simulation with the benchmark material.
-std::unique_ptr<Simulation> load_bed(const std::string& path,
-                                     Summation summation = Summation::deterministic) {
+// `periodic`: the same grains with periodic x and y instead of the side walls (docs/periodic.md).
+std::unique_ptr<Simulation> load_bed(const std::string& path, Summation summation = Summation::deterministic,
+                                     bool periodic = false) {
   std::optional<upgrain::bench::Bed> bed = upgrain::bench::read_bed(path);
   if (!bed) {
     std::fprintf(stderr, "cannot open %s\n", path.c_str());
     return nullptr;
   }
+  if (periodic) bed->scene.container.periodic = {true, true, false};
   EngineOptions options;
   options.summation = summation;
   return std::make_unique<Simulation>(bed->scene, std::move(bed->particles), MPI_COMM_SELF, options);
@@ -139,22 +141,22 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-int run(const std::string& path, long steps, Summation summation) {
+int run(const std::string& path, long steps, Summation summation, bool periodic) {
   const double baseline = current_rss_bytes();  // the process before any particle data
-  std::unique_ptr<Simulation> sim = load_bed(path, summation);
+  std::unique_ptr<Simulation> sim = load_bed(path, summation, periodic);
   if (!sim) return 1;
-  const auto n = static_cast<long>(sim->particles().size());
+  const auto n = static_cast<long>(sim->owned());  // owned grains: a periodic cell adds images
   const auto t0 = std::chrono::steady_clock::now();
   sim->run(steps);
   const double secs = seconds_since(t0);
   const auto d2 = sim->diagnostics();
   std::printf(
-      "upgrain summation %s particles %ld steps %ld seconds %.4f particle_steps_per_second %.4e "
+      "upgrain summation %s%s particles %ld steps %ld seconds %.4f particle_steps_per_second %.4e "
       "contacts_per_particle %.3f wall_contacts %ld peak_bytes_per_particle %.0f "
       "peak_bytes_per_particle_above_baseline %.0f neighbor_builds %ld\n",
-      to_string(summation).c_str(), n, steps, secs, static_cast<double>(n) * steps / secs,
-      2.0 * d2.particle_contacts / n, d2.wall_contacts, peak_rss_bytes() / n,
-      (peak_rss_bytes() - baseline) / n, d2.neighbor_builds);
+      to_string(summation).c_str(), periodic ? " periodic_xy" : "", n, steps, secs,
+      static_cast<double>(n) * steps / secs, 2.0 * d2.particle_contacts / n, d2.wall_contacts,
+      peak_rss_bytes() / n, (peak_rss_bytes() - baseline) / n, d2.neighbor_builds);
   return 0;
 }
 
@@ -217,11 +219,12 @@ int main(int argc, char** argv) {
   if (mode == "settle" && argc == 4) return settle(std::atol(argv[2]), argv[3]);
   if (mode == "run" && argc >= 3)
     return run(argv[2], argc > 3 ? std::atol(argv[3]) : 2000,
-               argc > 4 && std::string(argv[4]) == "fast" ? Summation::fast : Summation::deterministic);
+               argc > 4 && std::string(argv[4]) == "fast" ? Summation::fast : Summation::deterministic,
+               argc > 5 && std::string(argv[5]) == "periodic");
   if (mode == "stress" && argc >= 4)
     return stress(argv[2], argc > 4 ? std::atol(argv[4]) : 2000, argc > 5 ? std::atol(argv[5]) : 20, argv[3]);
   std::fprintf(stderr,
-               "usage: bench_dense_bed settle N bed.data | run bed.data [steps] | stress bed.data OUT [steps "
-               "[evaluations]]\n");
+               "usage: bench_dense_bed settle N bed.data | run bed.data [steps [fast|deterministic "
+               "[periodic]]] | stress bed.data OUT [steps [evaluations]]\n");
   return 2;
 }

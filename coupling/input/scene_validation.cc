@@ -52,6 +52,39 @@ void apply_stress_box(SceneInput& in, const std::string& where) {
                   ": the upper bound must exceed the lower");
 }
 
+// Container/periodic axes against the rest of the scene (docs/periodic.md): a periodic axis
+// longer than twice the interaction range (the minimum image is then the only image in range),
+// no wall that would sit on a periodic face, no gravity along a periodic z.
+void validate_periodic(const SceneInput& in, const std::string& where) {
+  const dem::SceneConfig& s = in.scene;
+  const std::array<bool, 3>& periodic = s.container.periodic;
+  const double d_max = 2.0 * s.particles.largest_radius();
+  const double range = d_max + s.neighbor_skin * d_max;
+  const char* entry[3] = {"Container/length x", "Container/length y", "Container/height"};
+  const double length[3] = {s.container.lx, s.container.ly, s.container.height};
+  for (int d = 0; d < 3; ++d) {
+    if (!periodic[d] || length[d] > 2.0 * range) continue;
+    std::ostringstream m;
+    m << where << entry[d] << " = " << length[d] << " m: along the periodic axis "
+      << "xyz"[d] << " (Container/periodic axes) the cell must be longer than twice the interaction range, "
+      << 2.0 * range << " m (twice the largest grain diameter, " << d_max
+      << " m, plus the Verlet skin, Simulation/neighbor skin), so that a grain meets one image of another";
+    throw Error(m.str());
+  }
+  if (periodic[0] && s.container.has_gate())
+    throw Error(where +
+                "Container/gate x with Container/periodic axes = x: a periodic x has no walls to hold a "
+                "gate between; set 'gate x = 0' or take x out of 'periodic axes'");
+  if ((periodic[0] || periodic[1]) && s.container.opens_side_walls())
+    throw Error(where +
+                "Container/side walls open time with a periodic x or y (Container/periodic axes): "
+                "a periodic axis has no side walls to open");
+  if (periodic[2] && s.effects.gravity)
+    throw Error(where +
+                "Container/periodic axes = z with gravity on: grains would fall through the cell for "
+                "ever; keep z walled (a floor) or set Effects/gravity = false");
+}
+
 // Container/collapse against the entries of the other scene: the gate belongs to the
 // constrained collapse (a 'gate x' > 0 alone also selects it, as before 'collapse'
 // existed), 'side walls open time' to the unconstrained one, and no entry of the other
@@ -181,6 +214,7 @@ void validate_scene(SceneInput& in) {
     throw Error(m.str());
   }
   validate_collapse(in, where);
+  validate_periodic(in, where);
   if (s.container.has_gate()) {
     if (s.container.gate_x >= s.container.lx || 2.0 * r_max >= s.container.gate_x) {
       std::ostringstream m;

@@ -28,7 +28,10 @@ void RunFiles::write_snapshot(dem::Simulation& sim) {
   sim.check_finite();
   const std::vector<dem::Vec3> forces = sim.wall_forces();
   const dem::ParticleStore& all = sim.whole_state();
-  sim.on_root([&] { recorder_->write_snapshot(all, sim.walls(), forces, sim.time(), sim.step_count()); });
+  // A periodic cell's snapshots carry the image counters (docs/periodic.md).
+  const bool images = sim.decomposition().cell().any();
+  sim.on_root(
+      [&] { recorder_->write_snapshot(all, sim.walls(), forces, sim.time(), sim.step_count(), images); });
   if (!output_->force_network || !sim.contacts_recorded()) return;
   // Every contact once, gathered to rank 0 in the order of the ids: the same file on any rank
   // count with the deterministic summation.

@@ -2,6 +2,7 @@
 // Containers made of rigid planar walls (dem/core/plane_wall.h). An open-top box is a
 // floor and four side planes, each with its own Coulomb coefficient (friction on or off at
 // walls, as in Yan and Regueiro's scenes; docs/scenes.md, docs/stress.md).
+#include <array>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,9 @@ struct BoxContainer {
   // walls are removed and the bed spreads freely on the floor. The floor is an unbounded
   // plane, so a spreading pile never runs off it.
   double side_walls_open_time = 0.0;
+  // The axes along which the container is a periodic cell (docs/periodic.md): [0, lx], [0, ly]
+  // and, for z, [0, height]; a periodic axis has no walls on its two faces.
+  std::array<bool, 3> periodic{false, false, false};
 
   [[nodiscard]] bool has_gate() const { return gate_x > 0.0; }
   [[nodiscard]] bool opens_side_walls() const { return side_walls_open_time > 0.0; }
@@ -40,14 +44,18 @@ inline bool is_side_wall(const std::string& name) {
   return false;
 }
 
+// The floor and the side walls of the bounded axes (a periodic axis has none).
 inline std::vector<PlaneWall> make_open_box(const BoxContainer& box) {
-  std::vector<PlaneWall> walls = {
-      {"floor", Vec3(0, 0, 0), Vec3(0, 0, 1), box.friction[0]},
-      {kSideWallNames[0], Vec3(0, 0, 0), Vec3(1, 0, 0), box.friction[1]},
-      {kSideWallNames[1], Vec3(box.lx, 0, 0), Vec3(-1, 0, 0), box.friction[2]},
-      {kSideWallNames[2], Vec3(0, 0, 0), Vec3(0, 1, 0), box.friction[3]},
-      {kSideWallNames[3], Vec3(0, box.ly, 0), Vec3(0, -1, 0), box.friction[4]},
-  };
+  std::vector<PlaneWall> walls;
+  if (!box.periodic[2]) walls.push_back({"floor", Vec3(0, 0, 0), Vec3(0, 0, 1), box.friction[0]});
+  if (!box.periodic[0]) {
+    walls.push_back({kSideWallNames[0], Vec3(0, 0, 0), Vec3(1, 0, 0), box.friction[1]});
+    walls.push_back({kSideWallNames[1], Vec3(box.lx, 0, 0), Vec3(-1, 0, 0), box.friction[2]});
+  }
+  if (!box.periodic[1]) {
+    walls.push_back({kSideWallNames[2], Vec3(0, 0, 0), Vec3(0, 1, 0), box.friction[3]});
+    walls.push_back({kSideWallNames[3], Vec3(0, box.ly, 0), Vec3(0, -1, 0), box.friction[4]});
+  }
   if (box.has_gate())
     walls.push_back({kGateWallName, Vec3(box.gate_x, 0, 0), Vec3(-1, 0, 0), box.friction[2]});
   return walls;

@@ -27,6 +27,7 @@ void ParticleStore::reserve(std::size_t n) {
   omega.reserve(n);
   force.reserve(n);
   torque.reserve(n);
+  image.reserve(n);
   if (has_shapes()) {
     shape.reserve(n);
     semi_axes.reserve(n);
@@ -47,6 +48,7 @@ void ParticleStore::add_sphere(GlobalId gid, double r, double density, const Vec
   omega.push_back(ang_vel);
   force.push_back(Vec3::Zero());
   torque.push_back(Vec3::Zero());
+  image.push_back({0, 0, 0});
   if (has_shapes()) {
     shape.push_back(ShapeKind::sphere);
     semi_axes.push_back(Vec3::Constant(r));
@@ -91,6 +93,7 @@ void ParticleStore::add_ellipsoid(GlobalId gid, const EllipsoidBody& body, const
   omega.push_back(motion.omega);
   force.push_back(Vec3::Zero());
   torque.push_back(Vec3::Zero());
+  image.push_back({0, 0, 0});
   shape.push_back(ShapeKind::ellipsoid);
   semi_axes.push_back(ax);
   orientation.push_back(body.orientation.normalized());
@@ -127,6 +130,8 @@ void ParticleStore::permute(const std::vector<int>& perm) {
   apply_permutation(omega, perm, s_v);
   apply_permutation(force, perm, s_v);
   apply_permutation(torque, perm, s_v);
+  std::vector<ImageCount> s_i;
+  apply_permutation(image, perm, s_i);
   if (has_shapes()) {
     std::vector<Eigen::Quaterniond> s_q;
     std::vector<ShapeKind> s_k;

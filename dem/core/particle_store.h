@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "dem/core/periodic_cell.h"
 #include "dem/core/shape_kind.h"
 #include "dem/core/types.h"
 
@@ -35,6 +36,9 @@ struct ParticleStore {
   std::vector<Vec3> omega;          // angular velocity (rad/s)
   std::vector<Vec3> force;          // contact force of the current step (N)
   std::vector<Vec3> torque;         // contact torque about the centroid (N m)
+  // Crossings of a periodic cell per axis (dem/core/periodic_cell.h): x + image L is the grain's
+  // unwrapped position. Zero along bounded axes; a ghost's is its owner's plus the image shift.
+  std::vector<ImageCount> image;
 
   // Shapes of three-axis ellipsoids (docs/ellipsoids.md). Empty while every grain is a
   // sphere, so sphere scenes carry and compute nothing for them; once an ellipsoid is

@@ -77,6 +77,11 @@ Box default_box(const SceneConfig& scene, const SceneExtent& e, double r_max) {
   b.lo = Vec3(0.0, 0.0, e.count > 0 ? std::min(0.0, e.z_min - r_max) : 0.0);
   b.hi = Vec3(scene.container.lx, scene.container.ly, e.count > 0 ? std::max(0.0, e.z_max + r_max) : 0.0);
   if (scene.insertion.enabled()) b.hi.z() = std::max(b.hi.z(), scene.insertion.inlet_hi.z());
+  // A periodic z is the cell [0, height] (docs/periodic.md).
+  if (scene.container.periodic[2]) {
+    b.lo.z() = 0.0;
+    b.hi.z() = scene.container.height;
+  }
   return b;
 }
 
@@ -143,6 +148,18 @@ Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, std::v
       for (const StateRecord& r : all) shapes_in.push_back(sphere_shape(r));
   }
   const Decomposition& dec = domain_->decomposition();
+  // Into a periodic cell first (a packing's grains may lie a cell or more away, with their image
+  // counters): each to the rank of its block.
+  if (dec.cell().any()) {
+    for (std::size_t i = 0; i < p_.size(); ++i) wrap(dec.cell(), p_.x[i], p_.image[i]);
+    for (StateRecord& r : all) {
+      Vec3 x = get(r.x);
+      ImageCount n{r.image[0], r.image[1], r.image[2]};
+      wrap(dec.cell(), x, n);
+      put(r.x, x);
+      for (int d = 0; d < 3; ++d) r.image[d] = n[d];
+    }
+  }
   for (std::size_t k = 0; k < all.size(); ++k) {
     if (dec.owner_of(get(all[k].x)) != dec.rank()) continue;
     append_state(p_, all[k]);
@@ -186,7 +203,9 @@ void Simulation::set_up(long count, double max_radius, bool shapes, const Box& b
   skin_ = scene_.neighbor_skin * 2.0 * max_radius_;
   max_radius_ = std::max(max_radius_, 1e-12);
   range_ = 2.0 * max_radius_ + skin_;
-  domain_ = std::make_unique<Domain>(comm, box, range_, shapes_, options);
+  // The scene's periodic axes, and any the options add (a test's own box).
+  for (int d = 0; d < 3; ++d) options_.periodic[d] = options.periodic[d] || scene_.container.periodic[d];
+  domain_ = std::make_unique<Domain>(comm, box, range_, shapes_, options_);
   lists_ = std::make_unique<VerletList>(
       max_radius_, skin_, summation_ == Summation::deterministic ? PairOrder::global_id : PairOrder::local);
 }
@@ -201,9 +220,13 @@ void Simulation::step() {
   const std::vector<Vec3>& x_built = lists_->positions_at_build();
   const double limit2 = lists_->rebuild_displacement2();
   bool moved = false;
+  const PeriodicCell& cell = domain_->decomposition().cell();
+  const bool periodic = cell.any();
   for (int i = 0; i < n; ++i) {
     p_.v[i] += half * (p_.force[i] * p_.inv_mass[i] + g_);
     p_.x[i] += dt_ * p_.v[i];
+    // Along a periodic axis, onto the cell's grid: its images are then exact (periodic_cell.h).
+    if (periodic) snap(cell, p_.x[i]);
     // Written so that a non-finite position counts as moved: the rebuild's guard then names
     // the particle at once (a NaN compares false, and would otherwise never rebuild).
     moved = moved || !((p_.x[i] - x_built[i]).squaredNorm() <= limit2);
@@ -266,13 +289,13 @@ void Simulation::step() {
   if (rebuilding) {
     rebuild();
     rebuild_pending_ = false;
-  } else if (ranks() > 1)
+  } else if (domain_->has_ghosts())
     domain_->refresh_ghosts(p_);
   const Clock::time_point t3 = Clock::now();
   evaluate_forces();
   const Clock::time_point t4 = Clock::now();
   // Fast summation: the ghosts' shares go home (LAMMPS's reverse communication).
-  if (summation_ == Summation::fast && ranks() > 1) {
+  if (summation_ == Summation::fast && domain_->has_ghosts()) {
     // A fixed array: no allocation per step.
     std::array<std::vector<Vec3>*, 5> sums{&p_.force};
     std::size_t m = 1;
@@ -569,8 +592,10 @@ int Simulation::owner_of_local(std::size_t i) const {
 GridStress Simulation::grid_stress(const RegularGrid& grid) const {
   if (!recorded_) throw Error("grid stress: no contacts recorded at the last step (request_contacts())");
   if (summation_ == Summation::deterministic)
-    return parallel_grid_stress(p_, n_owned_, out_.contacts, grid, grain_dynamics(), comm());
-  return summed_grid_stress(p_, n_owned_, out_.contacts, grid, grain_dynamics(), comm());
+    return parallel_grid_stress(p_, n_owned_, out_.contacts, grid, grain_dynamics(), comm(),
+                                decomposition().cell());
+  return summed_grid_stress(p_, n_owned_, out_.contacts, grid, grain_dynamics(), comm(),
+                            decomposition().cell());
 }
 
 ComputeGridStress Simulation::compute_grid_stress() const {
@@ -632,7 +657,9 @@ EnergyBalance Simulation::energy() const {
     const double m = p_.mass(k);
     e[0] = 0.5 * m * p_.v[i].squaredNorm();
     e[1] = rotation_ ? p_.rotational_energy(k) : 0.0;
-    e[2] = -m * g_.dot(p_.x[i]);
+    // The unwrapped position (periodic_cell.h): a grain that crosses a periodic face along
+    // gravity (an incline) keeps a continuous potential energy.
+    e[2] = -m * g_.dot(unwrapped(domain_->decomposition().cell(), p_.x[i], p_.image[i]));
     e[3] = elastic_per_particle ? out_.particle_elastic[k].normal : 0.0;
     e[4] = elastic_per_particle ? out_.particle_elastic[k].tangential : 0.0;
     e[5] = elastic_per_particle ? out_.particle_elastic[k].rolling : 0.0;

@@ -83,6 +83,7 @@ std::vector<char> to_bytes(const EngineState& s) {
   w.put(s.solver_stats);
   w.put(s.reference_mass);
   w.put(s.domain.box);
+  w.put(s.domain.periodic);
   w.put(s.domain.blocks);
   for (const std::vector<double>& p : s.domain.planes) w.put(p);
   w.put(s.domain.balance);
@@ -142,6 +143,7 @@ EngineState from_bytes(const std::vector<char>& bytes) {
   r.get(s.solver_stats);
   r.get(s.reference_mass);
   r.get(s.domain.box);
+  r.get(s.domain.periodic);
   r.get(s.domain.blocks);
   for (std::vector<double>& p : s.domain.planes) r.get(p);
   r.get(s.domain.balance);
@@ -265,6 +267,16 @@ Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_roo
   o.box = s.domain.box;
   o.balance_at_start = false;
   set_up(static_cast<long>(s.particles.size()), max_radius, s.particles.has_shapes(), s.domain.box, comm, o);
+  if (domain_->decomposition().cell().periodic != s.domain.periodic) {
+    auto axes = [](const std::array<bool, 3>& p) {
+      std::string a;
+      for (int d = 0; d < 3; ++d)
+        if (p[d]) a += "xyz"[d];
+      return a.empty() ? std::string("none") : a;
+    };
+    throw Error("restore: the state's periodic axes (" + axes(s.domain.periodic) + ") are not the scene's (" +
+                axes(domain_->decomposition().cell().periodic) + ")");
+  }
   // The grains are placed by where the lists were last built (below): the balance too.
   domain_->restore(s.domain, s.positions_at_build, s.step);
   // Spheres in a scene that pours ellipsoids (set_up): with their shapes, as in the run.
@@ -290,7 +302,7 @@ Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_roo
   history_.restore(lists_->pairs(), lists_->walls(), p_.id, s.history);
   // Back to the positions of the state, and the ghosts with them.
   for (int i = 0; i < n_owned_; ++i) p_.x[i] = s.particles.x[index_of(s.particles, p_.id[i])];
-  if (ranks() > 1) domain_->refresh_ghosts(p_);
+  if (domain_->has_ghosts()) domain_->refresh_ghosts(p_);
 
   // The last evaluation's per-particle output that the next step reads.
   const std::size_t n = p_.size();

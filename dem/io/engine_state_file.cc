@@ -69,6 +69,13 @@ void write_particles(hid_t parent, const EngineState& s) {
   write_vectors(g, "force", p.force);
   write_vectors(g, "torque", p.torque);
   write_vectors(g, "positions_at_build", s.positions_at_build);
+  // The image counters of a periodic cell (docs/periodic.md); a bounded box writes none.
+  if (s.domain.periodic[0] || s.domain.periodic[1] || s.domain.periodic[2]) {
+    std::vector<std::int32_t> image(3 * n);
+    for (std::size_t i = 0; i < n; ++i)
+      for (int d = 0; d < 3; ++d) image[3 * i + d] = p.image[i][d];
+    write_dataset(g, "image", image.data(), n, 3);
+  }
   if (p.has_shapes()) {
     std::vector<std::int32_t> kind(n);
     std::vector<double> q(4 * n);
@@ -152,6 +159,10 @@ void write_domain(hid_t parent, const DomainState& d) {
   write_dataset(g, "blocks", blocks, 3);
   const char* names[3] = {"planes_x", "planes_y", "planes_z"};
   for (int a = 0; a < 3; ++a) write_dataset(g, names[a], d.planes[a].data(), d.planes[a].size());
+  if (d.periodic[0] || d.periodic[1] || d.periodic[2]) {
+    const std::int32_t periodic[3] = {d.periodic[0], d.periodic[1], d.periodic[2]};
+    write_dataset(g, "periodic", periodic, 3);
+  }
   const double balance[4] = {static_cast<double>(d.balance.count), static_cast<double>(d.balance.last_step),
                              d.balance.before, d.balance.after};
   write_dataset(g, "balance", balance, 4);
@@ -241,6 +252,11 @@ EngineState read_engine_state(const hdf5::Reader& in, const std::string& group) 
     *field = in.read_vectors(pg + name);
     if (field->size() != n) throw Error(in.where() + pg + name + " does not hold one row per particle");
   }
+  p.image.assign(n, {0, 0, 0});
+  if (in.exists(pg + "image")) {
+    const std::vector<std::int32_t> image = in.read<std::int32_t>(pg + "image", H5T_NATIVE_INT32, n, 3);
+    for (std::size_t i = 0; i < n; ++i) p.image[i] = {image[3 * i], image[3 * i + 1], image[3 * i + 2]};
+  }
   if (in.exists(pg + "shape")) {
     const std::vector<std::int32_t> kind = in.read<std::int32_t>(pg + "shape", H5T_NATIVE_INT32, n);
     for (std::int32_t k : kind) {
@@ -313,6 +329,10 @@ EngineState read_engine_state(const hdf5::Reader& in, const std::string& group) 
   for (int d = 0; d < 3; ++d) s.domain.blocks[d] = blocks[d];
   const char* names3[3] = {"planes_x", "planes_y", "planes_z"};
   for (int d = 0; d < 3; ++d) s.domain.planes[d] = in.read_all<double>(dg + names3[d]);
+  if (in.exists(dg + "periodic")) {
+    const std::vector<std::int32_t> periodic = in.read<std::int32_t>(dg + "periodic", H5T_NATIVE_INT32, 3);
+    for (int d = 0; d < 3; ++d) s.domain.periodic[d] = periodic[d] != 0;
+  }
   const std::vector<double> balance = in.read<double>(dg + "balance", H5T_NATIVE_DOUBLE, 4);
   s.domain.balance = {in.whole(balance[0], dg + "balance[0]"), in.whole(balance[1], dg + "balance[1]"),
                       balance[2], balance[3]};

@@ -3,6 +3,7 @@
 #include <hdf5.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <numeric>
 #include <sstream>
 
@@ -29,7 +30,7 @@ std::vector<double> flatten(const std::vector<Vec3>& v, const std::vector<std::s
 
 void write_snapshot(const std::filesystem::path& path, const ParticleStore& p,
                     const std::vector<PlaneWall>& walls, const std::vector<Vec3>& wall_force, double time,
-                    long step) {
+                    long step, bool images) {
   const std::size_t n = p.size();
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), 0);
@@ -61,6 +62,12 @@ void write_snapshot(const std::filesystem::path& path, const ParticleStore& p,
     for (const auto& f : vectors) {
       const std::vector<double> flat = flatten(*f.data, order);
       write_dataset(parts, f.name, flat.data(), n, 3);
+    }
+    if (images) {
+      std::vector<std::int32_t> image(3 * n);
+      for (std::size_t k = 0; k < n; ++k)
+        for (int d = 0; d < 3; ++d) image[3 * k + d] = p.image[order[k]][d];
+      write_dataset(parts, "image", image.data(), n, 3);
     }
     if (p.has_shapes()) {
       const std::vector<double> axes = flatten(p.semi_axes, order);

@@ -24,9 +24,11 @@ struct SnapshotInfo {
 // add /particles/{semi_axes (N x 3: a, b, c), orientation (N x 4: unit quaternion w, x, y,
 // z, body -> world), shape_tensor (N x 9: Q diag(a, b, c) Q^T, row-major)}; radius is then
 // the bounding radius a.
+// A periodic cell's scene (`images`, docs/periodic.md) adds /particles/image (N x 3 int32: the
+// crossings of each axis, unwrapped position = position + image L).
 void write_snapshot(const std::filesystem::path& path, const ParticleStore& p,
                     const std::vector<PlaneWall>& walls, const std::vector<Vec3>& wall_force, double time,
-                    long step);
+                    long step, bool images = false);
 
 // An XDMF 3 temporal collection over the snapshots, for ParaView (Xdmf3 reader):
 // particles as a polyvertex grid with radius, velocity, angular velocity and force, and for

@@ -1,6 +1,7 @@
 // Whether a run can start from a packing: every grain inside the container, no two grains
 // overlapping by more than a settled bed's contacts do (docs/input.md, "Starting from a packing").
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "dem/contact/ellipsoid_geometry.h"
@@ -23,6 +24,33 @@ void check_packing(const Packing& packing, const BoxContainer& box, const std::s
                    double overlap_limit) {
   const ParticleStore& p = packing.grains;
   const std::size_t n = p.size();
+  // Image flags belong to periodic axes; along one, the file's box must be the cell.
+  const char* length_entry[3] = {"Container/length x", "Container/length y", "Container/height"};
+  const double length[3] = {box.lx, box.ly, box.height};
+  for (std::size_t i = 0; i < n; ++i)
+    for (int d = 0; d < 3; ++d)
+      if (p.image[i][d] != 0 && !box.periodic[d]) {
+        std::ostringstream m;
+        m << "packing " << file << ", " << packing.name(i) << ": image flag "
+          << "xyz"[d] << " = " << p.image[i][d] << ", but "
+          << "xyz"[d]
+          << " is walled (Container/periodic axes): the grain was wrapped through a periodic boundary; "
+             "make the axis periodic or unwrap the positions first";
+        throw Error(m.str());
+      }
+  if (packing.file_box)
+    for (int d = 0; d < 3; ++d) {
+      const double lo = packing.file_box->lo[d], hi = packing.file_box->hi[d];
+      const double tol = 1e-9 * length[d];
+      if (!box.periodic[d] || (std::abs(lo) <= tol && std::abs(hi - length[d]) <= tol)) continue;
+      std::ostringstream m;
+      m.precision(10);
+      m << "packing " << file << ":" << packing.box_line[d] << ": the box along the periodic axis "
+        << "xyz"[d] << " is [" << lo << ", " << hi << "] m, and the periodic cell is [0, " << length[d]
+        << "] m (" << length_entry[d] << "); shift the positions so that the box starts at 0 and set "
+        << length_entry[d] << " = " << hi - lo;
+      throw Error(m.str());
+    }
   std::vector<PlaneWall> walls = make_open_box(box);
   // The gate of a constrained collapse holds the grains in [0, gate x]; the x+ wall is beyond it.
   if (box.has_gate())

@@ -118,6 +118,7 @@ Packing number_grains(std::vector<PackedGrain> grains, double density, const std
       }
       p.grains.add_ellipsoid(id, {ax, density, g.orientation.normalized()}, {g.x, g.v, g.omega});
     }
+    p.grains.image.back() = g.image;
     p.file_id.push_back(g.file_id);
     p.line.push_back(g.line);
   }
@@ -140,7 +141,12 @@ Packing read_packing(const std::filesystem::path& path, double density) {
     p.format = "Upgrain snapshot";
   } else if (looks_like_lammps_data(path)) {
     std::string style;
-    p = number_grains(read_lammps_data(path, density, notes, style), density, path.string(), "line");
+    std::optional<Box> box;
+    std::array<long, 3> box_line{0, 0, 0};
+    p = number_grains(read_lammps_data(path, density, notes, style, &box, &box_line), density, path.string(),
+                      "line");
+    p.file_box = box;
+    p.box_line = box_line;
     p.format = "LAMMPS data file (atom_style " + style + ")";
   } else {
     p = number_grains(read_text_table(path), density, path.string(), "line");

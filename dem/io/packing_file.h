@@ -3,11 +3,14 @@
 // whitespace), a LAMMPS/LIGGGHTS data file (atom_style sphere or granular) or an Upgrain
 // snapshot (HDF5). docs/input.md, "Starting from a packing".
 #include <Eigen/Geometry>
+#include <array>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "dem/boundary/container.h"
+#include "dem/core/box.h"
 #include "dem/core/particle_store.h"
 
 namespace upgrain::dem::io {
@@ -21,6 +24,7 @@ struct PackedGrain {
   Vec3 omega = Vec3::Zero();
   Vec3 semi_axes = Vec3::Ones();                                    // a >= b >= c; a sphere has a = b = c = r
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // body -> world
+  ImageCount image{0, 0, 0};  // a LAMMPS data file's image flags (docs/periodic.md)
 };
 
 struct Packing {
@@ -30,6 +34,9 @@ struct Packing {
   std::string format;              // what the file was read as, for the log
   std::string where_word;          // "line" for text files, "row" for snapshots
   std::vector<std::string> notes;  // what the user should hear (a density the scene overrides)
+  // A LAMMPS data file's box (its xlo xhi, ylo yhi, zlo zhi lines), and the line of each axis's.
+  std::optional<Box> file_box;
+  std::array<long, 3> box_line{0, 0, 0};
 
   // "grain 17 (line 19)": a grain by the file's id and where the file gives it.
   [[nodiscard]] std::string name(std::size_t k) const;
@@ -48,14 +55,19 @@ Packing number_grains(std::vector<PackedGrain> grains, double density, const std
 // Text tables and LAMMPS data files (packing_text.cc).
 std::vector<PackedGrain> read_text_table(const std::filesystem::path& path);
 bool looks_like_lammps_data(const std::filesystem::path& path);
-// `notes` receives what the file says that the run does not use (a density per atom).
+// `notes` receives what the file says that the run does not use (a density per atom); `box`
+// its box, when the header gives all three axes' bounds (`box_line`: their lines). The image
+// flags are kept: check_packing() refuses them on an axis that is not periodic.
 std::vector<PackedGrain> read_lammps_data(const std::filesystem::path& path, double density,
-                                          std::vector<std::string>& notes, std::string& style);
+                                          std::vector<std::string>& notes, std::string& style,
+                                          std::optional<Box>* box = nullptr,
+                                          std::array<long, 3>* box_line = nullptr);
 
 // Refuses a packing a run cannot start from: a grain reaching through a wall of the container
-// (the floor, the side walls, the gate of a constrained collapse), or two grains overlapping by
-// more than `overlap_limit` of the smaller one's smallest semi-axis. Throws upgrain::Error
-// naming the file and the grains.
+// (the floor, the side walls, the gate of a constrained collapse), two grains overlapping by
+// more than `overlap_limit` of the smaller one's smallest semi-axis, an image flag on an axis
+// that is not periodic, or a file's box that is not the periodic cell along a periodic axis.
+// Throws upgrain::Error naming the file and the grains.
 void check_packing(const Packing& packing, const BoxContainer& box, const std::string& file,
                    double overlap_limit);
 

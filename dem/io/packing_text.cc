@@ -252,7 +252,10 @@ bool looks_like_lammps_data(const std::filesystem::path& path) {
 }
 
 std::vector<PackedGrain> read_lammps_data(const std::filesystem::path& path, double density,
-                                          std::vector<std::string>& notes, std::string& style) {
+                                          std::vector<std::string>& notes, std::string& style,
+                                          std::optional<Box>* box, std::array<long, 3>* box_line) {
+  Box bounds;
+  std::array<long, 3> bound_line{0, 0, 0};
   const std::vector<Line> lines = read_lines(path);
   long atoms = -1;
   std::size_t k = 1;  // the first line is the title
@@ -262,7 +265,17 @@ std::vector<PackedGrain> read_lammps_data(const std::filesystem::path& path, dou
     if (f.empty()) continue;
     if (!number(f[0].text)) break;  // the first section
     if (f.size() == 2 && f[1].text == "atoms") atoms = whole_at(path, lines[k].number, f[0], "atoms");
+    // "xlo xhi" and its kin: the box, which a periodic cell must match (docs/periodic.md).
+    for (int d = 0; d < 3; ++d)
+      if (f.size() == 4 && f[2].text == std::string(1, "xyz"[d]) + "lo" &&
+          f[3].text == std::string(1, "xyz"[d]) + "hi") {
+        bounds.lo[d] = number_at(path, lines[k].number, f[0], std::string(1, "xyz"[d]) + "lo");
+        bounds.hi[d] = number_at(path, lines[k].number, f[1], std::string(1, "xyz"[d]) + "hi");
+        bound_line[d] = lines[k].number;
+      }
   }
+  if (box != nullptr && bound_line[0] > 0 && bound_line[1] > 0 && bound_line[2] > 0) *box = bounds;
+  if (box_line != nullptr) *box_line = bound_line;
   if (atoms < 1)
     throw Error("packing " + path.string() + ": a LAMMPS data file without a positive 'N atoms' line");
   std::vector<PackedGrain> grains;
@@ -311,12 +324,16 @@ std::vector<PackedGrain> read_lammps_data(const std::filesystem::path& path, dou
         }
         for (int d = 0; d < 3; ++d)
           g.x[d] = number_at(path, l.number, l.fields[4 + d], std::string(1, "xyz"[d]));
+        // Image flags: kept, so that a periodic cell continues the grain's unwrapped path;
+        // check_packing() refuses them along a walled axis.
         if (l.fields.size() == 10)
-          for (int d = 0; d < 3; ++d)
-            if (whole_at(path, l.number, l.fields[7 + d], std::string("image flag ") + "xyz"[d]) != 0)
-              throw Error(at(path, l.number, l.fields[7 + d].column) +
-                          "a non-zero image flag: the grain was wrapped through a periodic boundary, but "
-                          "Upgrain's container has walls; unwrap the positions first");
+          for (int d = 0; d < 3; ++d) {
+            const long n = whole_at(path, l.number, l.fields[7 + d], std::string("image flag ") + "xyz"[d]);
+            if (n < -1000000000L || n > 1000000000L)
+              throw Error(at(path, l.number, l.fields[7 + d].column) + "image flag " + "xyz"[d] + " = " +
+                          std::to_string(n) + " is beyond a billion cells");
+            g.image[d] = static_cast<std::int32_t>(n);
+          }
         if (!by_id.emplace(g.file_id, grains.size()).second)
           throw Error(at(path, l.number) + "atom " + std::to_string(g.file_id) + " is given twice");
         grains.push_back(g);

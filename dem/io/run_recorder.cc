@@ -70,11 +70,11 @@ void RunRecorder::record_walls(double time, long step, const std::vector<PlaneWa
 }
 
 void RunRecorder::write_snapshot(const ParticleStore& p, const std::vector<PlaneWall>& walls,
-                                 const std::vector<Vec3>& wall_forces, double time, long step) {
+                                 const std::vector<Vec3>& wall_forces, double time, long step, bool images) {
   char name[64];
   std::snprintf(name, sizeof name, "particles_%09ld.h5", step);
   const std::filesystem::path rel = std::filesystem::path("snapshots") / name;
-  io::write_snapshot(folder_ / rel, p, walls, wall_forces, time, step);
+  io::write_snapshot(folder_ / rel, p, walls, wall_forces, time, step, images);
   snapshots_.push_back({rel.string(), time, step, static_cast<long>(p.size()), p.has_shapes()});
   flush();
 }

@@ -25,7 +25,7 @@ class RunRecorder {
   void record_series(double time, long step, const EnergyBalance& e, double balance_error,
                      const StepDiagnostics& d);
   void write_snapshot(const ParticleStore& p, const std::vector<PlaneWall>& walls,
-                      const std::vector<Vec3>& wall_forces, double time, long step);
+                      const std::vector<Vec3>& wall_forces, double time, long step, bool images = false);
   // One row of walls.csv per wall in the scene (not removed), at a time-series row: where the
   // wall is and how fast it moves, and the force the particles exert on it (wall_forces). The
   // displacement is from the wall's point at its first row.

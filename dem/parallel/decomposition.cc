@@ -41,11 +41,27 @@ std::array<int, 3> choose_blocks(int ranks, const Box& box, double min_block) {
   return best;
 }
 
-Decomposition::Decomposition(MPI_Comm comm, const Box& box, double min_block, std::array<int, 3> blocks)
-    : box_(box), min_block_(min_block) {
+Decomposition::Decomposition(MPI_Comm comm, const Box& box, double min_block, std::array<int, 3> blocks,
+                             std::array<bool, 3> periodic)
+    : box_(box), cell_(make_periodic_cell(box, periodic)), min_block_(min_block) {
+  box_ = cell_.box;  // the faces of the periodic axes on their grid
   MPI_Comm_size(comm, &size_);
-  if (blocks[0] <= 0 || blocks[1] <= 0 || blocks[2] <= 0) blocks = choose_blocks(size_, box, min_block);
-  const Vec3 l = box.hi - box.lo;
+  for (int d = 0; d < 3; ++d) {
+    // Minimum image (Allen and Tildesley 2017, sec. 1.6.2): with the cell longer than twice the
+    // interaction range, a grain is in range of at most one image of any other, so each pair
+    // is one pair, and a ghost layer never reaches a second image.
+    if (periodic[d] && !(box.hi[d] - box.lo[d] > 2.0 * min_block)) {
+      std::ostringstream m;
+      m << "periodic cell: the periodic axis "
+        << "xyz"[d] << " is " << box.hi[d] - box.lo[d]
+        << " m long, not longer than twice the interaction range " << min_block
+        << " m (largest diameter + skin); make the cell longer along "
+        << "xyz"[d] << " or the grains smaller";
+      throw Error(m.str());
+    }
+  }
+  if (blocks[0] <= 0 || blocks[1] <= 0 || blocks[2] <= 0) blocks = choose_blocks(size_, box_, min_block);
+  const Vec3 l = box_.hi - box_.lo;
   if (blocks[0] * blocks[1] * blocks[2] != size_) {
     std::ostringstream m;
     m << "domain decomposition: " << blocks[0] << " x " << blocks[1] << " x " << blocks[2] << " blocks for "
@@ -65,13 +81,15 @@ Decomposition::Decomposition(MPI_Comm comm, const Box& box, double min_block, st
     }
   }
   dims_ = blocks;
-  const int periods[3] = {0, 0, 0};
+  const int periods[3] = {periodic[0] ? 1 : 0, periodic[1] ? 1 : 0, periodic[2] ? 1 : 0};
   // reorder = 0: the Cartesian rank is the rank in `comm`, so callers' rank 0 stays rank 0.
   MPI_Cart_create(comm, 3, dims_.data(), periods, 0, &cart_);
   MPI_Comm_rank(cart_, &rank_);
   MPI_Cart_coords(cart_, rank_, 3, coords_.data());
   for (int d = 0; d < 3; ++d) {
     MPI_Cart_shift(cart_, d, 1, &neighbor_[d][0], &neighbor_[d][1]);
+    image_shift_[d][0] = periodic[d] && coords_[d] == 0 ? l[d] : 0.0;
+    image_shift_[d][1] = periodic[d] && coords_[d] == dims_[d] - 1 ? -l[d] : 0.0;
     planes_[d].resize(static_cast<std::size_t>(dims_[d] + 1));
     for (int k = 0; k <= dims_[d]; ++k) planes_[d][k] = box_.lo[d] + k * (box_.hi[d] - box_.lo[d]) / dims_[d];
   }
@@ -81,8 +99,10 @@ Decomposition::Decomposition(MPI_Comm comm, const Box& box, double min_block, st
 void Decomposition::update_block() {
   const double inf = std::numeric_limits<double>::infinity();
   for (int d = 0; d < 3; ++d) {
-    block_.lo[d] = coords_[d] == 0 ? -inf : plane(d, coords_[d]);
-    block_.hi[d] = coords_[d] == dims_[d] - 1 ? inf : plane(d, coords_[d] + 1);
+    // A periodic axis has no open faces: its border blocks end at the cell's faces.
+    const bool open = !cell_.periodic[d];
+    block_.lo[d] = open && coords_[d] == 0 ? -inf : plane(d, coords_[d]);
+    block_.hi[d] = open && coords_[d] == dims_[d] - 1 ? inf : plane(d, coords_[d] + 1);
   }
 }
 
@@ -127,6 +147,17 @@ std::array<int, 3> Decomposition::block_of(const Vec3& x) const {
     c[d] = static_cast<int>(std::upper_bound(first, last, x[d]) - first);
   }
   return c;
+}
+
+int Decomposition::step_towards(int d, int c) const {
+  int diff = c - coords_[d];
+  if (cell_.periodic[d]) {
+    // The shorter way round; with two blocks both ways reach the same neighbour.
+    const int n = dims_[d];
+    if (diff > n / 2) diff -= n;
+    if (diff < -(n / 2)) diff += n;
+  }
+  return diff > 0 ? 1 : diff < 0 ? -1 : 0;
 }
 
 int Decomposition::rank_of_block(const std::array<int, 3>& c) const {

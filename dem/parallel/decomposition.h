@@ -1,8 +1,11 @@
 #pragma once
 // Cartesian domain decomposition: px x py x pz blocks over a global box, one block per rank
-// of an MPI Cartesian communicator (non-periodic). The outer faces of the border blocks are
-// open: a particle outside the box (above the fill, say) belongs to the nearest block, so
-// ownership is defined everywhere. The planes start equally spaced; the load balance
+// of an MPI Cartesian communicator, periodic along the periodic axes of the cell
+// (docs/periodic.md). Along a bounded axis the outer faces of the border blocks are open: a
+// particle outside the box (above the fill, say) belongs to the nearest block, so ownership is
+// defined everywhere. Along a periodic axis the box is the cell: the border blocks end at its
+// faces, and their neighbours across them are the blocks at the other end (the same rank when
+// the axis has one block). The planes start equally spaced; the load balance
 // (load_balance.h) moves them per axis, keeping the tensor grid. The block-choice rule is
 // in docs/parallel.md.
 #include <mpi.h>
@@ -11,6 +14,7 @@
 #include <vector>
 
 #include "dem/core/box.h"
+#include "dem/core/periodic_cell.h"
 #include "dem/core/types.h"
 
 namespace upgrain::dem {
@@ -26,8 +30,11 @@ class Decomposition {
  public:
   // blocks {0, 0, 0}: chosen by choose_blocks(). Collective over `comm`. Throws
   // upgrain::Error (on every rank) when px py pz differs from the rank count or a block is
-  // thinner than `min_block` (the interaction range: largest diameter + skin).
-  Decomposition(MPI_Comm comm, const Box& box, double min_block, std::array<int, 3> blocks = {0, 0, 0});
+  // thinner than `min_block` (the interaction range: largest diameter + skin), or when a
+  // periodic axis is not longer than twice `min_block` (a grain would then meet two images of
+  // another, and the minimum image would not be the only one in range).
+  Decomposition(MPI_Comm comm, const Box& box, double min_block, std::array<int, 3> blocks = {0, 0, 0},
+                std::array<bool, 3> periodic = {false, false, false});
   ~Decomposition();
   Decomposition(const Decomposition&) = delete;
   Decomposition& operator=(const Decomposition&) = delete;
@@ -41,8 +48,17 @@ class Decomposition {
   // This rank's block; the open outer faces are +-infinity.
   [[nodiscard]] const Box& block() const { return block_; }
   // Neighbour rank across the lower (side 0) or upper (side 1) face along axis d, or
-  // MPI_PROC_NULL at the border of the box.
+  // MPI_PROC_NULL at the border of the box along a bounded axis.
   [[nodiscard]] int neighbor(int d, int side) const { return neighbor_[d][side]; }
+  // The box with the periodic flags: the cell.
+  [[nodiscard]] const PeriodicCell& cell() const { return cell_; }
+  [[nodiscard]] bool periodic(int d) const { return cell_.periodic[d]; }
+  // The shift a position takes when it crosses face `side` of this block along axis d into the
+  // neighbour: +L (side 0) or -L (side 1) across a face of a periodic cell, else 0.
+  [[nodiscard]] double image_shift(int d, int side) const { return image_shift_[d][side]; }
+  // The step (-1, 0 or +1) from this block's coordinate towards block coordinate c along d: the
+  // shorter way round along a periodic axis.
+  [[nodiscard]] int step_towards(int d, int c) const;
 
   // Block coordinates of a point (clamped into the grid: the outer blocks are open).
   [[nodiscard]] std::array<int, 3> block_of(const Vec3& x) const;
@@ -66,7 +82,9 @@ class Decomposition {
   std::array<int, 3> dims_{1, 1, 1};
   std::array<int, 3> coords_{0, 0, 0};
   std::array<std::array<int, 2>, 3> neighbor_{};
+  std::array<std::array<double, 2>, 3> image_shift_{};
   Box box_, block_;
+  PeriodicCell cell_;
   double min_block_ = 0.0;
   std::array<std::vector<double>, 3> planes_;  // blocks[d] + 1 per axis
   void update_block();

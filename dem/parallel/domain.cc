@@ -38,7 +38,7 @@ std::string block_name(const std::array<int, 3>& c) {
 }  // namespace
 
 Domain::Domain(MPI_Comm comm, const Box& box, double range, bool shapes, const DomainOptions& options)
-    : decomp_(std::make_unique<Decomposition>(comm, box, range, options.blocks)),
+    : decomp_(std::make_unique<Decomposition>(comm, box, range, options.blocks, options.periodic)),
       shapes_(shapes),
       range_(range) {
   if (options.balance_interval < 0) throw Error("load balance: balance_interval must be >= 0 steps");
@@ -51,6 +51,7 @@ DomainState Domain::state() const {
   const Decomposition& dec = *decomp_;
   DomainState s;
   s.box = dec.box();
+  s.periodic = dec.cell().periodic;
   s.blocks = dec.blocks();
   for (int d = 0; d < 3; ++d)
     for (int k = 0; k <= s.blocks[d]; ++k) s.planes[d].push_back(dec.plane(d, k));
@@ -106,7 +107,10 @@ void Domain::place_planes(const long* histogram) {
     if (blocks[d] < 2) continue;
     std::vector<double> cuts =
         quantile_cuts(histogram + d * kBalanceBins, kBalanceBins, box.lo[d], box.hi[d], blocks[d]);
-    clamp_cuts(cuts, box.lo[d], box.hi[d], dec.min_block());
+    // Along a periodic axis the border blocks have neighbours across the cell's faces: they too
+    // stay one range thick (planes at least a range inside the cell).
+    const double inset = dec.periodic(d) ? dec.min_block() : 0.0;
+    clamp_cuts(cuts, box.lo[d] + inset, box.hi[d] - inset, dec.min_block());
     dec.set_cuts(d, cuts);
   }
 }
@@ -123,12 +127,21 @@ void Domain::migrate(ParticleStore& p, std::vector<ContactHistoryRecord>& record
   const Decomposition& dec = *decomp_;
   const std::array<int, 3>& me = dec.coords();
   const int n = static_cast<int>(p.size());
+  // Back into the periodic cell, counting the crossings (every rank, one rank included).
+  const PeriodicCell& cell = dec.cell();
+  if (cell.any())
+    for (int i = 0; i < n; ++i) wrap(cell, p.x[i], p.image[i]);
+  // How many blocks apart along axis d: the shorter way round a periodic axis.
+  auto apart = [&](const std::array<int, 3>& c, int d) {
+    const int k = std::abs(c[d] - me[d]);
+    return dec.periodic(d) ? std::min(k, dec.blocks()[d] - k) : k;
+  };
   // A particle may only move to an adjacent block between two rebuilds: farther, and the
   // ghosts it should have met were never here. Stop, naming it, rather than lose contacts.
   std::string message;
   for (int i = 0; i < n && message.empty(); ++i) {
     const std::array<int, 3> c = dec.block_of(p.x[i]);
-    if (std::abs(c[0] - me[0]) > 1 || std::abs(c[1] - me[1]) > 1 || std::abs(c[2] - me[2]) > 1) {
+    if (apart(c, 0) > 1 || apart(c, 1) > 1 || apart(c, 2) > 1) {
       std::ostringstream m;
       m << "particle " << p.id[i] << " at (" << p.x[i][0] << ", " << p.x[i][1] << ", " << p.x[i][2]
         << ") m moved from block " << block_name(me) << " (rank " << dec.rank() << ") to block "
@@ -179,7 +192,7 @@ void Domain::migration_pass(ParticleStore& p, std::vector<ContactHistoryRecord>&
     for (std::size_t i = 0; i < n; ++i) {
       const int c = dec.block_of(p.x[i])[d];
       if (c != me[d]) {
-        const int s = c < me[d] ? 0 : 1;
+        const int s = dec.step_towards(d, c) < 0 ? 0 : 1;
         const StateRecord r = pack_state(p, i);
         state_out_[s].push_back(r);
         if (shapes_) shape_out_[s].push_back(pack_shape(p, i));
@@ -233,6 +246,7 @@ void Domain::build_ghosts(ParticleStore& p, int n_owned) {
         ghost_out_[s].push_back(pack_state(p, static_cast<std::size_t>(i)));
         if (shapes_) shape_out_[s].push_back(pack_shape(p, static_cast<std::size_t>(i)));
       }
+      shift_images(ghost_out_[s], d, s);
     }
     const std::array<int, 2> nb{dec.neighbor(d, 0), dec.neighbor(d, 1)};
     timed([&] {
@@ -249,9 +263,28 @@ void Domain::build_ghosts(ParticleStore& p, int n_owned) {
   }
   // Every particle is inside its owner's block at a build (migration has just run), so the
   // block holding a ghost's centroid names its owner.
+  // An image lies outside the cell: its owner holds it wrapped.
   ghost_owner_.resize(p.size() - static_cast<std::size_t>(n_owned));
-  for (std::size_t k = 0; k < ghost_owner_.size(); ++k)
-    ghost_owner_[k] = dec.owner_of(p.x[static_cast<std::size_t>(n_owned) + k]);
+  for (std::size_t k = 0; k < ghost_owner_.size(); ++k) {
+    Vec3 x = p.x[static_cast<std::size_t>(n_owned) + k];
+    ImageCount image{0, 0, 0};
+    wrap(dec.cell(), x, image);
+    ghost_owner_[k] = dec.owner_of(x);
+  }
+}
+
+// A record's position along d moved by the route's image shift, and its image counter the
+// other way (the unwrapped position stays its owner's). The shift is a whole number of the
+// cell's quanta and the position is on the grid: the sum is exact (periodic_cell.h).
+template <class Record>
+void Domain::shift_images(std::vector<Record>& out, int d, int s) const {
+  const double shift = decomp_->image_shift(d, s);
+  if (shift == 0.0) return;
+  const int count = shift > 0.0 ? -1 : 1;
+  for (Record& r : out) {
+    r.x[d] += shift;
+    if constexpr (requires { r.image; }) r.image[d] += count;
+  }
 }
 
 void Domain::refresh_ghosts(ParticleStore& p) {
@@ -266,6 +299,7 @@ void Domain::refresh_ghosts(ParticleStore& p) {
         put(r.v, p.v[send[k]]);
         put(r.omega, p.omega[send[k]]);
       }
+      shift_images(motion_out_[s], d, s);
       motion_in_[s].resize(static_cast<std::size_t>(ghost_recv_count_[d][s]));
       if (shapes_) {
         orientation_out_[s].resize(send.size());

@@ -36,6 +36,8 @@ struct DomainOptions {
   long balance_interval = 0;
   BalanceCost balance_cost = BalanceCost::particles;
   bool balance_at_start = true;
+  // The axes along which the box is a periodic cell (docs/periodic.md); bounded by default.
+  std::array<bool, 3> periodic{false, false, false};
 };
 
 // The load balance so far (identical on every rank): the number of rebalances, the step of
@@ -53,6 +55,7 @@ struct BalanceRecord {
 // are balanced over the grains at once (Domain::restore).
 struct DomainState {
   Box box;
+  std::array<bool, 3> periodic{false, false, false};
   std::array<int, 3> blocks{1, 1, 1};
   std::array<std::vector<double>, 3> planes;  // blocks[d] + 1 per axis, the box faces included
   BalanceRecord balance;
@@ -71,7 +74,12 @@ class Domain {
   [[nodiscard]] int rank() const { return decomp_->rank(); }
   [[nodiscard]] int size() const { return decomp_->size(); }
 
-  // Collective, at a rebuild (the store holds owned particles only). Sends every particle
+  // Whether this rank holds ghosts: more than one rank, or a periodic axis (one rank is then
+  // its own neighbour across the cell's faces, and its ghosts are images of its own grains).
+  [[nodiscard]] bool has_ghosts() const { return size() > 1 || decomp_->cell().any(); }
+  // Collective, at a rebuild (the store holds owned particles only). Along the periodic axes,
+  // first puts every owned particle back into the cell, counting its crossings (wrap(),
+  // dem/core/periodic_cell.h). Sends every particle
   // whose centroid left the block to the block that holds it now, with the history records
   // that involve it (a copy stays: the partner may stay). When a load balance is due, the
   // planes move first (`slots_per_owned`: the list slots of each owned particle, for the
@@ -82,7 +90,9 @@ class Domain {
   // Collective, once the rebuild is complete: measures the balance a rebalance left.
   void measure_balance(int n_owned, const std::vector<int>& slots_per_owned);
   // Collective: appends to `p` (its owned particles) every particle of the other ranks within
-  // the interaction range of this block, and remembers the routes.
+  // the interaction range of this block, and remembers the routes. A particle sent across a
+  // face of a periodic cell arrives as its image: shifted by the cell's length (exactly, on the
+  // cell's grid) and its image counter by one, so its unwrapped position is its owner's.
   void build_ghosts(ParticleStore& p, int n_owned);
   // Collective: the ghosts' positions, velocities (and orientations) along the same routes.
   void refresh_ghosts(ParticleStore& p);
@@ -134,6 +144,10 @@ class Domain {
   std::array<std::array<std::vector<int>, 2>, 3> ghost_send_;
   std::array<std::array<int, 2>, 3> ghost_recv_start_{};
   std::array<std::array<int, 2>, 3> ghost_recv_count_{};
+  // Shifts each route's ghosts by its image shift along its axis (ghost routes of a periodic
+  // cell's faces), from record index `first` on.
+  template <class Record>
+  void shift_images(std::vector<Record>& out, int d, int s) const;
   std::vector<int> ghost_owner_;
   // Message buffers, kept between steps (a ghost refresh allocates nothing after warm-up).
   std::array<std::vector<StateRecord>, 2> ghost_out_, ghost_in_;  // a ghost arrives whole at a build

@@ -19,7 +19,10 @@ namespace upgrain::dem {
 
 // Sends to_side[s] to neighbour[s] and receives from_side[s] from it (s = 0 lower, 1
 // upper face). With counts_known the receive buffers already have their sizes (a ghost
-// refresh); otherwise the counts are exchanged first.
+// refresh); otherwise the counts are exchanged first. A message carries the side it was sent
+// towards in its tag (tag .. tag + 3), so that the two messages between the same two ranks are
+// told apart: along a periodic axis of two blocks both neighbours are one rank, and of one
+// block, the rank itself.
 template <class T>
 void exchange_along_axis(MPI_Comm comm, const std::array<int, 2>& neighbor,
                          const std::array<std::vector<T>, 2>& to_side,
@@ -30,8 +33,8 @@ void exchange_along_axis(MPI_Comm comm, const std::array<int, 2>& neighbor,
                                    static_cast<long>(to_side[1].size())};
     std::array<long, 2> recv_count{0, 0};
     for (int s = 0; s < 2; ++s) {
-      MPI_Irecv(&recv_count[s], 1, MPI_LONG, neighbor[s], tag, comm, &req[s]);
-      MPI_Isend(&send_count[s], 1, MPI_LONG, neighbor[s], tag, comm, &req[2 + s]);
+      MPI_Irecv(&recv_count[s], 1, MPI_LONG, neighbor[s], tag + 1 - s, comm, &req[s]);
+      MPI_Isend(&send_count[s], 1, MPI_LONG, neighbor[s], tag + s, comm, &req[2 + s]);
     }
     MPI_Waitall(4, req.data(), MPI_STATUSES_IGNORE);
     for (int s = 0; s < 2; ++s) from_side[s].resize(static_cast<std::size_t>(recv_count[s]));
@@ -41,8 +44,9 @@ void exchange_along_axis(MPI_Comm comm, const std::array<int, 2>& neighbor,
     const std::size_t bytes_out = to_side[s].size() * sizeof(T);
     if (bytes_in > 2147483647u || bytes_out > 2147483647u)
       throw Error("parallel exchange: message above 2 GB");
-    MPI_Irecv(from_side[s].data(), static_cast<int>(bytes_in), MPI_BYTE, neighbor[s], tag + 1, comm, &req[s]);
-    MPI_Isend(to_side[s].data(), static_cast<int>(bytes_out), MPI_BYTE, neighbor[s], tag + 1, comm,
+    MPI_Irecv(from_side[s].data(), static_cast<int>(bytes_in), MPI_BYTE, neighbor[s], tag + 3 - s, comm,
+              &req[s]);
+    MPI_Isend(to_side[s].data(), static_cast<int>(bytes_out), MPI_BYTE, neighbor[s], tag + 2 + s, comm,
               &req[2 + s]);
   }
   MPI_Waitall(4, req.data(), MPI_STATUSES_IGNORE);

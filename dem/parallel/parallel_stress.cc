@@ -155,11 +155,25 @@ std::vector<ParticleStressShare> particle_stress_shares(const ParticleStore& p, 
   return out;
 }
 
+// The positions by which grains are put into grid cells: in a periodic cell, wrapped
+// (periodic_cell.h), so that a ghost image and a grain not yet wrapped since it crossed a face
+// belong to the cell their grain is in; their branch vectors keep the image positions (the
+// minimum image). Otherwise the positions themselves.
+namespace {
+std::vector<Vec3> positions_in_cell(const std::vector<Vec3>& x, const PeriodicCell& cell) {
+  if (!cell.any()) return x;
+  std::vector<Vec3> w = x;
+  ImageCount image{0, 0, 0};
+  for (Vec3& y : w) wrap(cell, y, image);
+  return w;
+}
+}  // namespace
+
 GridStress parallel_grid_stress(const ParticleStore& local, int n_owned,
                                 const std::vector<ContactSample>& contacts, const RegularGrid& grid,
-                                const GrainDynamics& dynamics, MPI_Comm comm) {
+                                const GrainDynamics& dynamics, MPI_Comm comm, const PeriodicCell& cell) {
   const int cells = grid.num_cells();
-  const CellAssignment a = assign_cells(grid, local.x);
+  const CellAssignment a = assign_cells(grid, positions_in_cell(local.x, cell));
   const std::vector<ParticleStressShare> shares =
       particle_stress_shares(local, n_owned, contacts, a.cell, a.centre, dynamics);
 
@@ -230,9 +244,9 @@ ComputeGridStress parallel_compute_grid_stress(const ParticleStore& local, int n
 
 GridStress summed_grid_stress(const ParticleStore& local, int n_owned,
                               const std::vector<ContactSample>& contacts, const RegularGrid& grid,
-                              const GrainDynamics& dynamics, MPI_Comm comm) {
+                              const GrainDynamics& dynamics, MPI_Comm comm, const PeriodicCell& cell) {
   const int cells = grid.num_cells();
-  const CellAssignment a = assign_cells(grid, local.x);
+  const CellAssignment a = assign_cells(grid, positions_in_cell(local.x, cell));
   std::vector<StressSums> sums =
       cell_stress_sums(local, static_cast<std::size_t>(n_owned), contacts, a.cell, a.centre, dynamics);
   int size = 1;

@@ -47,9 +47,11 @@ std::vector<ParticleStressShare> particle_stress_shares(const ParticleStore& loc
 // A fixed user grid, independent of the rank count: collective over `comm`; every rank
 // receives the same GridStress. The shares are gathered on rank 0, summed per cell in
 // global-id order, and the cell sums broadcast.
+// In a periodic `cell`, grains are put into grid cells by their wrapped positions (an image
+// belongs to its grain's cell) and contacts keep their minimum-image branch vectors.
 GridStress parallel_grid_stress(const ParticleStore& local, int n_owned,
                                 const std::vector<ContactSample>& contacts, const RegularGrid& grid,
-                                const GrainDynamics& dynamics, MPI_Comm comm);
+                                const GrainDynamics& dynamics, MPI_Comm comm, const PeriodicCell& cell = {});
 
 // The compute grids (one block per rank), block r at index r, clipped to the decomposition
 // box (the outer blocks are open). Not collective: every rank knows the planes.
@@ -73,7 +75,7 @@ ComputeGridStress parallel_compute_grid_stress(const ParticleStore& local, int n
 // local particle i).
 GridStress summed_grid_stress(const ParticleStore& local, int n_owned,
                               const std::vector<ContactSample>& contacts, const RegularGrid& grid,
-                              const GrainDynamics& dynamics, MPI_Comm comm);
+                              const GrainDynamics& dynamics, MPI_Comm comm, const PeriodicCell& cell = {});
 ComputeGridStress summed_compute_grid_stress(const ParticleStore& local, int n_owned,
                                              const std::vector<ContactSample>& contacts,
                                              const Decomposition& decomposition,

@@ -1,6 +1,7 @@
 #pragma once
 // Flat, trivially copyable message records of the parallel engine: they travel as bytes
 // (MPI_BYTE), so no MPI datatype has to be kept in step with them.
+#include <cstdint>
 #include <type_traits>
 
 #include "dem/core/particle_store.h"
@@ -19,6 +20,7 @@ struct StateRecord {
   GlobalId gid;
   double radius, inv_mass, inv_inertia;
   double x[3], v[3], omega[3], force[3], torque[3];
+  std::int32_t image[3];  // periodic image counter (dem/core/periodic_cell.h)
 };
 
 // The shape of an ellipsoid scene's particle (every grain; spheres as a = b = c): sent next
@@ -61,6 +63,7 @@ inline StateRecord pack_state(const ParticleStore& p, std::size_t i) {
   put(r.omega, p.omega[i]);
   put(r.force, p.force[i]);
   put(r.torque, p.torque[i]);
+  for (int d = 0; d < 3; ++d) r.image[d] = p.image[i][d];
   return r;
 }
 
@@ -74,6 +77,7 @@ inline void append_state(ParticleStore& p, const StateRecord& r) {
   p.omega.push_back(get(r.omega));
   p.force.push_back(get(r.force));
   p.torque.push_back(get(r.torque));
+  p.image.push_back({r.image[0], r.image[1], r.image[2]});
 }
 
 }  // namespace upgrain::dem
@@ -127,6 +131,7 @@ inline void truncate_store(ParticleStore& p, std::size_t n) {
   p.omega.resize(n);
   p.force.resize(n);
   p.torque.resize(n);
+  p.image.resize(n);
   if (p.has_shapes()) {
     p.shape.resize(n);
     p.semi_axes.resize(n);
@@ -146,6 +151,7 @@ inline void copy_particle(ParticleStore& p, std::size_t from, std::size_t to) {
   p.omega[to] = p.omega[from];
   p.force[to] = p.force[from];
   p.torque[to] = p.torque[from];
+  p.image[to] = p.image[from];
   if (p.has_shapes()) {
     p.shape[to] = p.shape[from];
     p.semi_axes[to] = p.semi_axes[from];

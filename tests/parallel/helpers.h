@@ -22,9 +22,9 @@ inline dem::EngineOptions fast_summation() {
   return o;
 }
 
-// Bitwise equality of x, v and omega, and of the orientations when the stores have shapes,
-// particle by particle (both sorted by id). Reports the count of differing numbers and the
-// first difference, not one failure per number.
+// Bitwise equality of x, v and omega, the periodic image counters, and of the orientations when the stores
+// have shapes, particle by particle (both sorted by id). Reports the count of differing numbers and the first
+// difference, not one failure per number.
 inline void expect_bitwise_equal(const dem::ParticleStore& a, const dem::ParticleStore& b,
                                  const std::string& what) {
   ASSERT_EQ(a.size(), b.size()) << what;
@@ -47,6 +47,8 @@ inline void expect_bitwise_equal(const dem::ParticleStore& a, const dem::Particl
         }
       }
     }
+    if (a.image[i] != b.image[i] && differing++ == 0)
+      first = "particle " + std::to_string(a.id[i]) + " image counter";
     if (!a.has_shapes()) continue;
     ASSERT_EQ(a.semi_axes[i], b.semi_axes[i]) << what;
     for (int c = 0; c < 4; ++c) {

@@ -127,6 +127,16 @@ TEST(Restart, SphereDepositionContinuesBitwise) {
   expect_restart_is_bitwise(s, 2500, 1500, "300 spheres");
 }
 
+// A bed without side walls (periodic x and y over the floor, docs/periodic.md): the image
+// counters and the periodic flags travel in the state, and grains cross the faces on both sides
+// of the capture.
+TEST(Restart, PeriodicBedContinuesBitwise) {
+  SceneConfig s = test::deposition_scene(240);
+  s.container.periodic = {true, true, false};
+  s.fill.velocity = Vec3(0.4, -0.3, -0.5);
+  expect_restart_is_bitwise(s, 1500, 1000, "240 spheres, periodic x and y");
+}
+
 TEST(Restart, RollingResistanceContinuesBitwise) {
   SceneConfig s = test::deposition_scene(200);
   s.effects.rolling_resistance = true;

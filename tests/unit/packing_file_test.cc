@@ -142,8 +142,10 @@ TEST(Packing, BadTablesNameLineAndColumn) {
   expect_refused(
       scratch("atomic.data", "title\n\n1 atoms\n\nAtoms # atomic\n\n1 1 0.01 0.01 0.01\n"),
       R"(atomic.data:5: the Atoms section is atom_style 'atomic'; Upgrain reads atom_style sphere or granular)");
-  expect_refused(scratch("image.data", "title\n\n1 atoms\n\nAtoms\n\n1 1 0.002 2650 0.01 0.01 0.01 0 1 0\n"),
-                 R"(image.data:7:33: a non-zero image flag)");
+  // Image flags on a walled axis (docs/periodic.md): the file, grain, line and axis named.
+  expect_refused(
+      scratch("image.data", "title\n\n1 atoms\n\nAtoms\n\n1 1 0.002 2650 0.01 0.01 0.01 0 1 0\n"),
+      R"(image.data, grain 1 \(line 7\): image flag y = 1, but y is walled \(Container/periodic axes\))");
   expect_refused(scratch("count.data", "title\n\n2 atoms\n\nAtoms\n\n1 1 0.002 2650 0.01 0.01 0.01\n"),
                  R"(the header says 2 atoms, the Atoms section has 1)");
   expect_refused(scratch("missing.csv"), R"(missing.csv: no such file)");
@@ -184,4 +186,30 @@ TEST(Packing, GrainsOutsideTheContainerOrOverlappingAreRefused) {
               "id,x,y,z,a,b,c,qw,qx,qy,qz\n0,0.03,0.03,0.01,0.003,0.001,0.001,1,0,0,0\n"
               "1,0.03,0.0321,0.01,0.003,0.001,0.001,0.70710678118654752,0,0,0.70710678118654752\n"),
       R"(grain 0 \(line 2\) and grain 1 \(line 3\) overlap by 0.00167 m)", box);
+}
+
+// A LAMMPS data file of a periodic cell (docs/periodic.md): its image flags are kept along the
+// periodic axes, and its box must be the cell.
+TEST(Packing, LammpsImageFlagsAreKeptAlongPeriodicAxes) {
+  const std::string text =
+      "LAMMPS data file\n\n2 atoms\n1 atom types\n\n0 0.03 xlo xhi\n0 0.03 ylo yhi\n0 0.1 zlo zhi\n\n"
+      "Atoms # sphere\n\n1 1 0.002 2650 0.01 0.01 0.001 2 -1 0\n2 1 0.002 2650 0.02 0.01 0.001 0 0 0\n";
+  BoxContainer box;
+  box.lx = box.ly = 0.03;
+  box.periodic = {true, true, false};
+  const fs::path f = scratch("periodic.data", text);
+  EXPECT_EQ(refusal(f, box), "");
+  const io::Packing p = io::read_packing(f, 2650.0);
+  EXPECT_EQ(p.grains.image[0], (ImageCount{2, -1, 0}));
+  EXPECT_EQ(p.grains.image[1], (ImageCount{0, 0, 0}));
+  // Periodic along x only: the flag along y is refused.
+  box.periodic = {true, false, false};
+  expect_refused(f, R"(periodic.data, grain 1 \(line 12\): image flag y = -1, but y is walled)", box);
+  // A box that is not the cell.
+  box.periodic = {true, true, false};
+  box.lx = 0.04;
+  expect_refused(
+      f,
+      R"(periodic.data:6: the box along the periodic axis x is \[0, 0.03\] m, and the periodic cell is \[0, 0.04\] m \(Container/length x\))",
+      box);
 }
