@@ -21,9 +21,9 @@ struct SnapshotInfo {
 // Layout: /particles/{id, radius, position, velocity, angular_velocity, force}
 // (position etc. are N x 3), /walls/{name (attribute list), point, normal, friction,
 // force}; root attributes time (s), step, units, sign_convention. Scenes with ellipsoids
-// add /particles/{semi_axes (N x 3: a, b, c), orientation (N x 4: unit quaternion w, x, y,
-// z, body -> world), shape_tensor (N x 9: Q diag(a, b, c) Q^T, row-major)}; radius is then
-// the bounding radius a.
+// add /particles/{each shape's description (dem/shape/shape_description.h: semi_axes, N x 3:
+// a, b, c), orientation (N x 4: unit quaternion w, x, y, z, body -> world), shape_tensor
+// (N x 9: Q diag(a, b, c) Q^T, row-major)}; radius is then the bounding radius a.
 void write_snapshot(const std::filesystem::path& path, const ParticleStore& p,
                     const std::vector<PlaneWall>& walls, const std::vector<Vec3>& wall_force, double time,
                     long step);
