@@ -87,8 +87,8 @@ void compute(const ForceInput& in) {
   TangentialSpring dummy_spring;
   Vec3 rolling_viscous;  // the dashpot part of one contact's rolling torque
 
-  // The law's constants, pair and wall, as locals: read through the input they would be reloaded
-  // after every store of a force.
+  // The law's constants, pair and wall (dem/contact/contact_laws.h), copied into locals once per
+  // evaluation: no store of a force can alias them, so they stay in registers or on the stack.
   const auto law = constants_of<Law>(*in.law);
 
   // Particle-wall contacts: R* = r and m* = m (a rigid plane). The contact point lies on the
