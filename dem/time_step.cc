@@ -38,9 +38,9 @@ TimeStepEstimate estimate_time_step(const SceneConfig& s) {
                                                        : expected_impact_speed(s, fill_top_height(s));
   t.impact_speed = std::max(e.impact_speed, 1e-3);  // a resting bed still has contacts
   const LawInfo& law = find_contact_law(s.contact_law);
-  law.constants(s.law_parameters, t.law_constants);
   const LawTimeLimit limit =
-      law.time_limit(t, s.time_step_rule.rayleigh_fraction, s.time_step_rule.hertz_fraction);
+      law.time_limit(law.constants(t.material, s.law_parameters), t, s.time_step_rule.rayleigh_fraction,
+                     s.time_step_rule.hertz_fraction);
   e.rayleigh_time = limit.rayleigh_time;
   e.contact_time = limit.contact_time;
   e.hertz_time = s.contact_law == HertzMindlin::name ? limit.contact_time : 0.0;

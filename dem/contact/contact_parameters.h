@@ -1,24 +1,29 @@
 #pragma once
-// The constants of one contact evaluation, as the force loop fills them per pair or wall
-// entry, and the energy accounts a contact books into. Plain data shared by every part of
-// every contact law (dem/contact/law/).
+// The values of one contact evaluation the force loop fills per pair or wall entry, the pair
+// and wall constants of a law, and the energy accounts a contact books into. Plain data shared
+// by every part of every contact law (dem/contact/law/).
 #include <cmath>
 
 #include "dem/core/types.h"
 
 namespace upgrain::dem {
 
+// What the parts of a law read of one contact besides its geometry: the law's own constants
+// (its normal part's `Constants`) come beside it, from the law (contact_response.h).
 struct ContactParameters {
-  double e_star;    // effective Young's modulus (Pa)
-  double g_star;    // effective shear modulus (Pa)
-  double r_star;    // effective radius (m)
-  double m_star;    // effective mass (kg)
-  double friction;  // Coulomb coefficient
-  double zeta;      // damping ratio
-  double dt;        // time step (s)
-  // Linear laws (Hooke): the normal and tangential spring constants (N/m); unused by Hertz.
-  double k_n = 0.0;
-  double k_t = 0.0;
+  double r_star = 0.0;    // effective radius (m)
+  double m_star = 0.0;    // effective mass (kg)
+  double friction = 0.0;  // Coulomb coefficient
+  double zeta = 0.0;      // damping ratio
+  double dt = 0.0;        // time step (s)
+};
+
+// A law's constants between two grains and between a grain and a wall (each law says how the
+// two follow from the scene: dem/contact/law/).
+template <class Constants>
+struct PairAndWall {
+  Constants pair;
+  Constants wall;
 };
 
 struct ContactEnergy {

@@ -21,18 +21,20 @@ struct ContactForce {
   double stiffness;  // the law's tangent normal stiffness k_n (for the rolling spring)
 };
 
-// spring: the tangential force of this contact on i, carried from the previous step
-// (incremental spring). Updated in place.
+// c: the law's constants for this kind of contact (pair or wall, PairAndWall). spring: the
+// tangential force of this contact on i, carried from the previous step (incremental spring).
+// Updated in place.
 // Always inlined into the force loop: as a call, the kinematics are copied through memory
 // per contact (measured with callgrind: about a fifth of the loop's instructions).
 template <bool Tangential, bool Damping, bool Rotation, bool Energy, class Law = HertzMindlin>
-[[gnu::always_inline]] inline ContactForce contact_response(const ContactParameters& p,
+[[gnu::always_inline]] inline ContactForce contact_response(const typename Law::Normal::Constants& c,
+                                                            const ContactParameters& p,
                                                             const ContactKinematics& k,
                                                             TangentialSpring& spring, ContactEnergy& energy) {
   using Normal = typename Law::Normal;
   const Vec3& n = k.normal;
   const double delta = k.overlap;
-  const NormalResponse r = Normal::response(p, delta);
+  const NormalResponse r = Normal::response(c, p, delta);
 
   // Relative velocity of i with respect to j at the contact point.
   Vec3 v_rel = k.v_i - k.v_j;

@@ -16,6 +16,7 @@
 
 #include <array>
 
+#include "dem/contact/contact_laws.h"
 #include "dem/contact/contact_response.h"
 #include "dem/contact/contact_sample.h"
 #include "dem/contact/effects.h"
@@ -77,8 +78,9 @@ struct ForceInput {
   // Deterministic summation with energy tracking: each owned particle's dissipation since the
   // last rebuild, to which the evaluation adds (its wall contacts and the pairs it is first in).
   DissipatedEnergy* dissipation = nullptr;
-  ContactMaterial material;
-  RollingParameters rolling;  // scenes with rolling resistance
+  ContactMaterial material;           // friction between grains, damping ratio
+  const LawConstants* law = nullptr;  // the constants of the law the loop was compiled for
+  RollingParameters rolling;          // scenes with rolling resistance
   double dt = 0.0;
   // Ellipsoid scenes: every local grain posed once per evaluation, and this rank's contact
   // solver counters, cumulative.

@@ -87,10 +87,13 @@ void compute(const ForceInput& in) {
   TangentialSpring dummy_spring;
   Vec3 rolling_viscous;  // the dashpot part of one contact's rolling torque
 
-  // Particle-wall contacts: the wall is a rigid plane of the particles' own material, so
-  // R* = r and m* = m. The contact point lies on the plane, at arm r - delta.
-  ContactParameters wp{mat.e_star_pw,     mat.g_star_pw, 0.0,     0.0,    0.0,
-                       mat.damping_ratio, in.dt,         mat.k_n, mat.k_t};
+  // The law's constants, pair and wall (dem/contact/contact_laws.h), copied into locals once per
+  // evaluation: no store of a force can alias them, so they stay in registers or on the stack.
+  const auto law = constants_of<Law>(*in.law);
+
+  // Particle-wall contacts: R* = r and m* = m (a rigid plane). The contact point lies on the
+  // plane, at arm r - delta.
+  ContactParameters wp{.r_star = 0.0, .m_star = 0.0, .friction = 0.0, .zeta = mat.damping_ratio, .dt = in.dt};
   auto forget_wall = [&](std::size_t e) {
     forget_history<kWallTangential, kRolling>(h.wall_spring.data(), h.wall_rolling.data(), e);
   };
@@ -141,8 +144,8 @@ void compute(const ForceInput& in) {
       ContactEnergy ce;
       ContactEnergy& sink = kDeterministic ? ce : energy;
       TangentialSpring& spring = kWallTangential ? h.wall_spring[e] : dummy_spring;
-      const ContactForce cf =
-          contact_response<kWallTangential, E::damping, kRotation, kEnergy, Law>(wp, kin, spring, sink);
+      const ContactForce cf = contact_response<kWallTangential, E::damping, kRotation, kEnergy, Law>(
+          law.wall, wp, kin, spring, sink);
       if constexpr (kEnergy) {
         // A moving wall's work on the grain, F . v_wall dt, and the wall's part of the second
         // half of the dashpot's work, which step() books with the grain's own velocity: the
@@ -194,8 +197,8 @@ void compute(const ForceInput& in) {
   };
 
   // Particle pairs.
-  ContactParameters cp{mat.e_star_pp,     mat.g_star_pp, 0.0,     0.0,    mat.friction_pp,
-                       mat.damping_ratio, in.dt,         mat.k_n, mat.k_t};
+  ContactParameters cp{
+      .r_star = 0.0, .m_star = 0.0, .friction = mat.friction_pp, .zeta = mat.damping_ratio, .dt = in.dt};
   auto forget = [&](int k) {
     forget_history<kTangential, kRolling>(h.pair_spring.data(), h.pair_rolling.data(),
                                           static_cast<std::size_t>(k));
@@ -328,8 +331,8 @@ void compute(const ForceInput& in) {
           ContactEnergy ce;
           ContactEnergy& sink = kDeterministic ? ce : energy;
           TangentialSpring& spring = kTangential ? h.pair_spring[k] : dummy_spring;
-          const ContactForce cf =
-              contact_response<kTangential, E::damping, kRotation, kEnergy, Law>(cp, kin, spring, sink);
+          const ContactForce cf = contact_response<kTangential, E::damping, kRotation, kEnergy, Law>(
+              law.pair, cp, kin, spring, sink);
           fi += cf.on_i;
           force[j] -= cf.on_i;
           if constexpr (Record) out.contacts.push_back({i, j, xi + kin.lever_i, cf.on_i});

@@ -100,7 +100,9 @@ Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, std::v
       summation_(options.summation),
       g_(scene.effects.gravity ? Vec3(0, 0, -scene.gravity) : Vec3::Zero()),
       dt_(scene.time_step),
-      material_(ContactMaterial::from(scene.particles.material, scene.friction, scene.damping_ratio)),
+      material_{scene.friction, scene.damping_ratio},
+      law_constants_(
+          find_contact_law(scene.contact_law).constants(scene.particles.material, scene.law_parameters)),
       rolling_(rolling_parameters(scene.rolling_friction, scene.rolling_damping_ratio,
                                   scene.effects.twisting_resistance, scene.particles.material.youngs_modulus,
                                   scene.particles.material.poisson_ratio)) {
@@ -113,7 +115,6 @@ Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, std::v
         "twisting resistance needs rolling resistance: set Effects/rolling resistance = true or "
         "Effects/twisting "
         "resistance = false");
-  find_contact_law(scene.contact_law).constants(scene.law_parameters, material_);
   if (!scene.effects.wall_friction) {
     for (auto& w : walls_) w.friction = 0.0;
   }
@@ -382,6 +383,7 @@ void Simulation::evaluate_forces() {
   in.history = &history_;
   in.dissipation = dissipation_share_.data();
   in.material = material_;
+  in.law = &law_constants_;
   in.rolling = rolling_;
   in.dt = dt_;
   in.posed = &posed_;

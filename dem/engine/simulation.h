@@ -266,6 +266,7 @@ class Simulation {
   bool rotation_ = false;
   bool shapes_ = false;
   ContactMaterial material_;
+  LawConstants law_constants_;  // the scene's law's own (dem/contact/contact_laws.h)
   RollingParameters rolling_;
   ForceLoops loops_{};
 

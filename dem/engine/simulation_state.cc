@@ -237,11 +237,12 @@ Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_roo
     : scene_(scene),
       summation_(options.summation),
       dt_(scene.time_step),
-      material_(ContactMaterial::from(scene.particles.material, scene.friction, scene.damping_ratio)),
+      material_{scene.friction, scene.damping_ratio},
+      law_constants_(
+          find_contact_law(scene.contact_law).constants(scene.particles.material, scene.law_parameters)),
       rolling_(rolling_parameters(scene.rolling_friction, scene.rolling_damping_ratio,
                                   scene.effects.twisting_resistance, scene.particles.material.youngs_modulus,
                                   scene.particles.material.poisson_ratio)) {
-  find_contact_law(scene.contact_law).constants(scene.law_parameters, material_);
   // Rank 0's state on every rank for a moment, as the scene's particles in the first
   // constructor; each rank then keeps its block's part.
   int rank = 0;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "dem/engine/wall_columns.h"
+#include "dem/shape/grain_shapes.h"
 
 namespace upgrain::dem::io {
 
@@ -85,7 +86,8 @@ void write_particles(hid_t parent, const EngineState& s) {
       q[4 * i] = o.x(), q[4 * i + 1] = o.y(), q[4 * i + 2] = o.z(), q[4 * i + 3] = o.w();
     }
     write_dataset(g, "shape", kind.data(), n);
-    write_vectors(g, "semi_axes", p.semi_axes);
+    for (const shapes::DescriptionColumn& c : shapes::description_columns())
+      write_vectors(g, c.name, p.*c.values);
     write_dataset(g, "orientation", q.data(), n, 4);
     write_vectors(g, "inertia_body", p.inertia_body);
   }
@@ -263,12 +265,15 @@ EngineState read_engine_state(const hdf5::Reader& in, const std::string& group) 
       if (k < 0 || k >= kShapeKinds) throw Error(in.where() + "unknown shape kind " + std::to_string(k));
       p.shape.push_back(static_cast<ShapeKind>(k));
     }
-    p.semi_axes = in.read_vectors(pg + "semi_axes");
+    // Each shape's own description (dem/shape/shape_description.h).
+    const auto columns = shapes::description_columns();
+    for (const shapes::DescriptionColumn& c : columns) p.*c.values = in.read_vectors(pg + c.name);
     p.inertia_body = in.read_vectors(pg + "inertia_body");
     const std::vector<double> q = in.read<double>(pg + "orientation", H5T_NATIVE_DOUBLE, n, 4);
     for (std::size_t i = 0; i < n; ++i)
       p.orientation.emplace_back(q[4 * i + 3], q[4 * i], q[4 * i + 1], q[4 * i + 2]);
-    if (p.semi_axes.size() != n || p.inertia_body.size() != n)
+    if (p.inertia_body.size() != n ||
+        std::ranges::any_of(columns, [&](const auto& c) { return (p.*c.values).size() != n; }))
       throw Error(in.where() + "shapes of another particle count");
   }
   s.damping_force = in.read_vectors(pg + "damping_force", true);

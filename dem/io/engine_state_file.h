@@ -11,8 +11,9 @@
 //   digits, damping, friction,
 //     tangential stiffness change, rolling, rolling stiffness change); solver_stats (9 int64);
 //   particles/{id, radius, inv_mass, inv_inertia, x, v, omega, force, torque,
-//     positions_at_build} and, when present, {shape (int32), semi_axes, orientation (x, y, z,
-//     w), inertia_body, damping_force, damping_torque, rolling_damping_torque, elastic (N x 3),
+//     positions_at_build} and, when present, {shape (int32), each shape's description
+//     (dem/shape/shape_description.h: semi_axes for the ellipsoid), orientation (x, y, z, w),
+//     inertia_body, damping_force, damping_torque, rolling_damping_torque, elastic (N x 3),
 //     dissipation_share (N x 5)};
 //   history/{a, b (int64), values (H x 13: tangential force and stiffness, rolling torque and
 //     stiffness, normal, r_star, gap budget)};

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <sstream>
 
-#include "dem/contact/ellipsoid_geometry.h"
+#include "dem/contact/geometry/pair_geometries.h"
 #include "dem/core/error.h"
 #include "dem/files/atomic_file.h"
 #include "dem/io/hdf5_reader.h"
@@ -19,11 +19,6 @@ namespace {
 using hdf5::Handle;
 using hdf5::write_attribute;
 using hdf5::write_dataset;
-
-Ellipsoid body_of(const ParticleStore& p, std::size_t i) {
-  if (!p.oriented(i)) return Ellipsoid::sphere(p.x[i], p.radius[i]);
-  return {p.x[i], p.orientation[i], p.semi_axes[i]};
-}
 
 void split_force(NetworkContact& c, const Vec3& force) {
   c.normal_force = force.dot(c.normal) * c.normal;
@@ -86,9 +81,7 @@ std::vector<NetworkContact> force_network(const ParticleStore& p, const std::vec
     if (r.b >= 0) {
       const auto b = static_cast<std::size_t>(r.b);
       c.b = r.b;
-      const ContactGeometry g = p.oriented(a) || p.oriented(b)
-                                    ? ellipsoid_contact(body_of(p, a), body_of(p, b), stats)
-                                    : sphere_sphere_contact(p.x[a], p.radius[a], p.x[b], p.radius[b]);
+      const ContactGeometry g = pair_contact(p, a, b, stats);  // the pair's row of the geometry table
       c.normal = g.normal;
       c.overlap = g.depth;
     } else {
@@ -96,7 +89,7 @@ std::vector<NetworkContact> force_network(const ParticleStore& p, const std::vec
       const PlaneWall& w = walls.at(static_cast<std::size_t>(c.wall));
       // Into the wall; the overlap is how far the grain reaches behind the plane.
       c.normal = -w.normal;
-      c.overlap = p.reach(a, w.normal) - (p.x[a] - w.point).dot(w.normal);
+      c.overlap = wall_depth(p, a, w);
     }
     split_force(c, get(r.force));
     out.push_back(c);

@@ -10,6 +10,7 @@
 #include "dem/core/error.h"
 #include "dem/files/atomic_file.h"
 #include "dem/io/hdf5_util.h"
+#include "dem/shape/grain_shapes.h"
 
 namespace upgrain::dem::io {
 
@@ -70,8 +71,10 @@ void write_snapshot(const std::filesystem::path& path, const ParticleStore& p,
       write_dataset(parts, "image", image.data(), n, 3);
     }
     if (p.has_shapes()) {
-      const std::vector<double> axes = flatten(p.semi_axes, order);
-      write_dataset(parts, "semi_axes", axes.data(), n, 3);
+      for (const shapes::DescriptionColumn& c : shapes::description_columns()) {
+        const std::vector<double> flat = flatten(p.*c.values, order);
+        write_dataset(parts, c.name, flat.data(), n, 3);
+      }
       std::vector<double> quat(4 * n), tensor(9 * n);
       for (std::size_t k = 0; k < n; ++k) {
         const Eigen::Quaterniond& q = p.orientation[order[k]];
@@ -140,11 +143,13 @@ void write_xdmf(const std::filesystem::path& path, const std::vector<SnapshotInf
       << item("angular_velocity", 3) << "</Attribute>\n"
       << "    <Attribute Name=\"force\" AttributeType=\"Vector\" Center=\"Node\">" << item("force", 3)
       << "</Attribute>\n";
-    if (s.shapes)
+    if (s.shapes) {
       x << "    <Attribute Name=\"shape_tensor\" AttributeType=\"Tensor\" Center=\"Node\">"
-        << item("shape_tensor", 9) << "</Attribute>\n"
-        << "    <Attribute Name=\"semi_axes\" AttributeType=\"Vector\" Center=\"Node\">"
-        << item("semi_axes", 3) << "</Attribute>\n";
+        << item("shape_tensor", 9) << "</Attribute>\n";
+      for (const shapes::DescriptionColumn& c : shapes::description_columns())
+        x << "    <Attribute Name=\"" << c.name << "\" AttributeType=\"Vector\" Center=\"Node\">"
+          << item(c.name, 3) << "</Attribute>\n";
+    }
     x << "   </Grid>\n";
   }
   x << "  </Grid>\n </Domain>\n</Xdmf>\n";

@@ -21,9 +21,9 @@ struct SnapshotInfo {
 // Layout: /particles/{id, radius, position, velocity, angular_velocity, force}
 // (position etc. are N x 3), /walls/{name (attribute list), point, normal, friction,
 // force}; root attributes time (s), step, units, sign_convention. Scenes with ellipsoids
-// add /particles/{semi_axes (N x 3: a, b, c), orientation (N x 4: unit quaternion w, x, y,
-// z, body -> world), shape_tensor (N x 9: Q diag(a, b, c) Q^T, row-major)}; radius is then
-// the bounding radius a.
+// add /particles/{each shape's description (dem/shape/shape_description.h: semi_axes, N x 3:
+// a, b, c), orientation (N x 4: unit quaternion w, x, y, z, body -> world), shape_tensor
+// (N x 9: Q diag(a, b, c) Q^T, row-major)}; radius is then the bounding radius a.
 // A periodic cell's scene (`images`, docs/periodic.md) adds /particles/image (N x 3 int32: the
 // crossings of each axis, unwrapped position = position + image L).
 void write_snapshot(const std::filesystem::path& path, const ParticleStore& p,

@@ -4,21 +4,12 @@
 #include <cmath>
 #include <sstream>
 
-#include "dem/contact/ellipsoid_geometry.h"
+#include "dem/contact/geometry/pair_geometries.h"
 #include "dem/core/error.h"
 #include "dem/io/packing_file.h"
 #include "dem/neighbor/cell_grid.h"
 
 namespace upgrain::dem::io {
-
-namespace {
-
-Ellipsoid body_of(const ParticleStore& p, std::size_t i) {
-  if (!p.has_shapes()) return Ellipsoid::sphere(p.x[i], p.radius[i]);
-  return {p.x[i], p.orientation[i], p.semi_axes[i]};
-}
-
-}  // namespace
 
 void check_packing(const Packing& packing, const BoxContainer& box, const std::string& file,
                    double overlap_limit) {
@@ -59,7 +50,7 @@ void check_packing(const Packing& packing, const BoxContainer& box, const std::s
                 walls.end());
   for (std::size_t i = 0; i < n; ++i) {
     for (const PlaneWall& w : walls) {
-      const double depth = p.reach(i, w.normal) - (p.x[i] - w.point).dot(w.normal);
+      const double depth = wall_depth(p, i, w);  // the grain's row of the wall-geometry table
       if (depth > overlap_limit * p.min_semi_axis(i)) {
         std::ostringstream m;
         m.precision(6);
@@ -93,9 +84,7 @@ void check_packing(const Packing& packing, const BoxContainer& box, const std::s
             if (j <= i) continue;
             const double touch = p.radius[i] + p.radius[j];
             if ((p.x[i] - p.x[j]).squaredNorm() >= touch * touch) continue;
-            const double depth = p.oriented(i) || p.oriented(j)
-                                     ? ellipsoid_contact(body_of(p, i), body_of(p, j), stats).depth
-                                     : touch - (p.x[i] - p.x[j]).norm();
+            const double depth = pair_contact(p, i, j, stats).depth;  // the pair's row of the geometry table
             const double allowed = overlap_limit * std::min(p.min_semi_axis(i), p.min_semi_axis(j));
             if (depth > allowed) {
               std::ostringstream m;

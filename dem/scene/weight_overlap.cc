@@ -3,7 +3,6 @@
 #include <numbers>
 
 #include "dem/contact/contact_laws.h"
-#include "dem/core/material.h"
 
 namespace upgrain::dem {
 
@@ -30,13 +29,12 @@ double weight_overlap_ratio(const SceneConfig& s) {
   const double r = s.particles.largest_radius();
   const double mass = s.particles.material.density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
   const double weight = mass * s.gravity;
-  ContactMaterial m = ContactMaterial::from(s.particles.material, s.friction, s.damping_ratio);
   return with_contact_law(s.contact_law, [&]<class Law>() {
-    Law::Normal::constants(s.law_parameters, m);
+    const auto c = Law::Normal::constants(s.particles.material, s.law_parameters).wall;
     // A grain on the floor: R* = R, m* = m (the wall does not move).
-    const ContactParameters p{m.e_star_pw,     m.g_star_pw, r,     mass, s.friction,
-                              s.damping_ratio, s.time_step, m.k_n, m.k_t};
-    const auto force = [&](double delta) { return Law::Normal::response(p, delta).force; };
+    const ContactParameters p{
+        .r_star = r, .m_star = mass, .friction = s.friction, .zeta = s.damping_ratio, .dt = s.time_step};
+    const auto force = [&](double delta) { return Law::Normal::response(c, p, delta).force; };
     return overlap_ratio_where(force, weight, r);
   });
 }
@@ -46,13 +44,12 @@ double impact_overlap_ratio(const SceneConfig& s, double speed) {
   const double mass = s.particles.material.density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
   const double kinetic = 0.5 * mass * speed * speed;
   if (!(kinetic > 0.0)) return 0.0;
-  ContactMaterial m = ContactMaterial::from(s.particles.material, s.friction, s.damping_ratio);
   return with_contact_law(s.contact_law, [&]<class Law>() {
-    Law::Normal::constants(s.law_parameters, m);
-    const ContactParameters p{m.e_star_pw,     m.g_star_pw, r,     mass, s.friction,
-                              s.damping_ratio, s.time_step, m.k_n, m.k_t};
+    const auto c = Law::Normal::constants(s.particles.material, s.law_parameters).wall;
+    const ContactParameters p{
+        .r_star = r, .m_star = mass, .friction = s.friction, .zeta = s.damping_ratio, .dt = s.time_step};
     const auto energy = [&](double delta) {
-      return Law::Normal::energy(Law::Normal::response(p, delta), delta);
+      return Law::Normal::energy(Law::Normal::response(c, p, delta), delta);
     };
     return overlap_ratio_where(energy, kinetic, r);
   });

@@ -5,12 +5,17 @@
 #include <cstddef>
 
 #include "dem/core/particle_store.h"
+#include "dem/shape/shape_description.h"
 
 namespace upgrain::dem::shapes {
 
 struct Ellipsoid {
   static constexpr ShapeKind kind = ShapeKind::ellipsoid;
   static constexpr const char* name = "ellipsoid";
+  // Its description in the files (shape_description.h); its orientation and principal moments
+  // are those of every shape but the sphere.
+  static constexpr DescriptionColumn description[] = {
+      {"semi_axes", &ParticleStore::semi_axes, "a, b, c (m), a >= b >= c along the body x, y, z axes"}};
 
   // The height of the grain's highest point: its support along z, sqrt(e_z^T M e_z) with
   // M = R diag(a^2, b^2, c^2) R^T.

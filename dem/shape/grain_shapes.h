@@ -2,7 +2,11 @@
 // The shape table: one row per grain shape, in the order of ShapeKind. What a shape's contacts
 // are with each other shape and with a wall is the table of dem/contact/geometry/
 // pair_geometries.h. Adding a shape: docs/architecture.md, "How to add a shape".
+#include <algorithm>
+#include <array>
 #include <cstddef>
+#include <iterator>
+#include <span>
 #include <type_traits>
 #include <utility>
 
@@ -28,6 +32,28 @@ constexpr bool rows_in_kind_order(ShapeList<S...>) {
 }  // namespace detail
 static_assert(detail::rows_in_kind_order(GrainShapes{}) && GrainShapes::size == kShapeKinds,
               "one row per ShapeKind, in its order");
+
+// The columns of the shapes' descriptions (shape_description.h): each shape's in the table's
+// order, a column that several shapes declare once.
+namespace detail {
+template <class... S>
+constexpr auto description_columns(ShapeList<S...>) {
+  constexpr std::size_t most = (std::size(S::description) + ... + 0);
+  std::array<DescriptionColumn, most> all{};
+  std::size_t n = 0;
+  auto add = [&](const DescriptionColumn& c) {
+    for (std::size_t k = 0; k < n; ++k)
+      if (all[k].values == c.values) return;
+    all[n++] = c;
+  };
+  (std::ranges::for_each(S::description, add), ...);
+  return std::pair{all, n};
+}
+}  // namespace detail
+inline std::span<const DescriptionColumn> description_columns() {
+  static constexpr auto columns = detail::description_columns(GrainShapes{});
+  return {columns.first.data(), columns.second};
+}
 
 // Calls f.template operator()<S>() for the shape S of kind k among `list`, and returns its result.
 template <class F, class... S>

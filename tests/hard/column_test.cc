@@ -13,6 +13,7 @@
 
 #include "../common/scenes.h"
 #include "dem/contact/hertz_mindlin.h"
+#include "dem/contact/law/hertz.h"
 #include "dem/engine/relaxation.h"
 #include "dem/engine/simulation.h"
 #include "dem/time_step.h"
@@ -72,16 +73,15 @@ ColumnResult settle_column(const ColumnCase& c) {
 
   const ParticleStore at_rest = sim.gather_sorted_by_id();
   const double m = at_rest.mass(0), g = s.gravity;
-  const ContactMaterial cm = ContactMaterial::from(c.material, 0.0, 0.0);
+  const HertzNormal::Constants cm = HertzNormal::constants(c.material, {}).pair;
   auto error_of = [&](double overlap, double e_star, double r_star, double load) {
     const double hertz = hertz::overlap_for_force(e_star, r_star, load);
     out.worst_overlap_error = std::max(out.worst_overlap_error, std::abs(overlap - hertz) / hertz);
   };
   const double floor_overlap = c.r - at_rest.x[0].z();
-  error_of(floor_overlap, cm.e_star_pw, c.r, c.n * m * g);
+  error_of(floor_overlap, cm.e_star, c.r, c.n * m * g);
   for (int k = 0; k + 1 < c.n; ++k)
-    error_of(2 * c.r - (at_rest.x[k + 1].z() - at_rest.x[k].z()), cm.e_star_pp, c.r / 2,
-             (c.n - 1 - k) * m * g);
+    error_of(2 * c.r - (at_rest.x[k + 1].z() - at_rest.x[k].z()), cm.e_star, c.r / 2, (c.n - 1 - k) * m * g);
   out.floor_overlap_ratio = floor_overlap / c.r;
   const double weight = c.n * m * g;
   out.floor_force_error = std::abs(-sim.wall_forces()[0].z() - weight) / weight;

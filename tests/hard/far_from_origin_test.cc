@@ -15,6 +15,7 @@
 #include "../common/scenes.h"
 #include "dem/boundary/container.h"
 #include "dem/contact/hertz_mindlin.h"
+#include "dem/contact/law/hertz.h"
 #include "dem/engine/simulation.h"
 #include "dem/time_step.h"
 
@@ -106,8 +107,8 @@ TEST(HardFarFromOrigin, SphereStackShiftedBy1And100KmRestsWhereItDoesAtTheOrigin
   ParticleStore p;
   for (int k = 0; k < 4; ++k)  // slightly apart, dropped
     p.add_sphere(k, r, 2650, Vec3(0.006, 0.006, r + 1e-5 + (2 * r + 1e-5) * k), Vec3::Zero(), Vec3::Zero());
-  const ContactMaterial cm = ContactMaterial::from(s.particles.material, 0.0, 0.0);
-  const double top = hertz::overlap_for_force(cm.e_star_pp, r / 2, p.mass(0) * s.gravity);
+  const HertzNormal::Constants cm = HertzNormal::constants(s.particles.material, {}).pair;
+  const double top = hertz::overlap_for_force(cm.e_star, r / 2, p.mass(0) * s.gravity);
   expect_same_rest(s, p, top, 20000, "4 spheres");
 }
 
@@ -121,7 +122,7 @@ TEST(HardFarFromOrigin, EllipsoidStackShiftedBy1And100KmRestsWhereItDoesAtTheOri
     p.add_ellipsoid(k, {Vec3(a, 0.8 * a, c), 2650, Eigen::Quaterniond::Identity()},
                     {Vec3(0.006, 0.006, c + 1e-5 + (2 * c + 1e-5) * k), Vec3::Zero(), Vec3::Zero()});
   // The top contact's overlap, of the order of two spheres of radius c under one grain's weight.
-  const ContactMaterial cm = ContactMaterial::from(s.particles.material, 0.0, 0.0);
-  const double top = hertz::overlap_for_force(cm.e_star_pp, c / 2, p.mass(0) * s.gravity);
+  const HertzNormal::Constants cm = HertzNormal::constants(s.particles.material, {}).pair;
+  const double top = hertz::overlap_for_force(cm.e_star, c / 2, p.mass(0) * s.gravity);
   expect_same_rest(s, p, top, 20000, "3 ellipsoids");
 }

@@ -7,6 +7,7 @@
 
 #include "../common/scenes.h"
 #include "dem/contact/hertz_mindlin.h"
+#include "dem/contact/law/hertz.h"
 #include "dem/engine/simulation.h"
 
 using namespace upgrain;
@@ -22,12 +23,12 @@ struct Collision {
 Collision collide(double zeta, double v_rel, int steps_per_contact) {
   const double r = 5e-3;
   SceneConfig s = test::bare_scene(1.0);
-  const ContactMaterial cm = ContactMaterial::from(s.particles.material, 0.5, zeta);
+  const HertzNormal::Constants cm = HertzNormal::constants(s.particles.material, {}).pair;
   ParticleStore p;
   p.add_sphere(0, r, 2650, Vec3(-r - 1e-5, 0, 0), Vec3(0.5 * v_rel, 0, 0), Vec3::Zero());
   p.add_sphere(1, r, 2650, Vec3(r + 1e-5, 0, 0), Vec3(-0.5 * v_rel, 0, 0), Vec3::Zero());
   const double m = p.mass(0);
-  const double t_hertz = hertz::contact_duration(cm.e_star_pp, 0.5 * r, 0.5 * m, v_rel);
+  const double t_hertz = hertz::contact_duration(cm.e_star, 0.5 * r, 0.5 * m, v_rel);
   s.time_step = t_hertz / steps_per_contact;
   s.effects.damping = zeta > 0.0;
   s.damping_ratio = zeta;

@@ -107,8 +107,8 @@ TEST(HookeCollision, RestitutionDoesNotDependOnTheImpactSpeed) {
 }
 
 TEST(HookeLaw, ForceStiffnessAndEnergyAreThoseOfALinearSpring) {
-  ContactParameters p{0, 0, 1e-3, 1e-5, 0.5, 0.0, 1e-6, kKn, 3e3};
-  const NormalResponse r = HookeNormal::response(p, 2e-5);
+  const ContactParameters p{.r_star = 1e-3, .m_star = 1e-5, .friction = 0.5, .zeta = 0.0, .dt = 1e-6};
+  const NormalResponse r = HookeNormal::response({.k_n = kKn, .k_t = 3e3}, p, 2e-5);
   EXPECT_DOUBLE_EQ(r.force, kKn * 2e-5);
   EXPECT_DOUBLE_EQ(r.stiffness, kKn);
   EXPECT_DOUBLE_EQ(r.tangential_stiffness, 3e3);
@@ -119,13 +119,14 @@ TEST(HookeLaw, TangentialStiffnessDefaultsToTwoSeventhsOfTheNormal) {
   SceneConfig s;
   s.contact_law = "hooke";
   s.law_parameters = {{"normal stiffness", 7e4}};
-  ContactMaterial m;
-  find_contact_law("hooke").constants(s.law_parameters, m);
-  EXPECT_DOUBLE_EQ(m.k_n, 7e4);
-  EXPECT_DOUBLE_EQ(m.k_t, 2e4);
+  const auto hooke = [&] {
+    return constants_of<Hooke>(find_contact_law("hooke").constants(s.particles.material, s.law_parameters));
+  };
+  EXPECT_DOUBLE_EQ(hooke().pair.k_n, 7e4);
+  EXPECT_DOUBLE_EQ(hooke().pair.k_t, 2e4);
+  EXPECT_DOUBLE_EQ(hooke().wall.k_n, 7e4);  // a wall alike
   s.law_parameters.push_back({"tangential stiffness", 5e3});
-  find_contact_law("hooke").constants(s.law_parameters, m);
-  EXPECT_DOUBLE_EQ(m.k_t, 5e3);
+  EXPECT_DOUBLE_EQ(hooke().pair.k_t, 5e3);
 }
 
 TEST(HookeLaw, TimeStepRuleIsAFractionOfTheLightestPairsContactTime) {

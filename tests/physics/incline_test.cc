@@ -10,6 +10,7 @@
 
 #include "../common/scenes.h"
 #include "dem/contact/hertz_mindlin.h"
+#include "dem/contact/law/hertz.h"
 #include "dem/engine/simulation.h"
 
 using namespace upgrain;
@@ -36,10 +37,10 @@ Motion roll(double theta_deg, double mu, bool rotation) {
   s.container.lx = s.container.ly = 10.0;
   const double theta = theta_deg * M_PI / 180.0;
   ParticleStore p;
-  const ContactMaterial cm = ContactMaterial::from(s.particles.material, mu, 0.5);
+  const HertzNormal::Constants cm = HertzNormal::constants(s.particles.material, {}).pair;
   const double m = 2650 * 4.0 / 3 * M_PI * kR * kR * kR;
   // Start at the static normal overlap so that the normal spring is not excited.
-  const double delta = hertz::overlap_for_force(cm.e_star_pw, kR, m * kG * std::cos(theta));
+  const double delta = hertz::overlap_for_force(cm.e_star, kR, m * kG * std::cos(theta));
   p.add_sphere(0, kR, 2650, Vec3(1.0, 5.0, kR - delta), Vec3::Zero(), Vec3::Zero());
   BoxContainer box;
   box.friction[0] = mu;

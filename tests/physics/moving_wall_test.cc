@@ -15,6 +15,7 @@
 
 #include "../common/scenes.h"
 #include "dem/contact/hertz_mindlin.h"
+#include "dem/contact/law/hertz.h"
 #include "dem/core/error.h"
 #include "dem/engine/simulation.h"
 
@@ -38,8 +39,8 @@ TEST(MovingWall, BeltBringsASphereToTwoSeventhsOfItsSpeed) {
   s.effects.energy_tracking = true;
   s.container.lx = s.container.ly = 10.0;
   const double mu = 0.3, v_w = 0.2, g = 9.81, m = sphere_mass();
-  const ContactMaterial cm = ContactMaterial::from(s.particles.material, mu, 0.0);
-  const double delta = hertz::overlap_for_force(cm.e_star_pw, kR, m * g);
+  const HertzNormal::Constants cm = HertzNormal::constants(s.particles.material, {}).pair;
+  const double delta = hertz::overlap_for_force(cm.e_star, kR, m * g);
   ParticleStore p;
   p.add_sphere(0, kR, kRho, Vec3(1.0, 5.0, kR - delta), Vec3::Zero(), Vec3::Zero());
   PlaneWall belt{"belt", Vec3::Zero(), Vec3(0, 0, 1), mu};
@@ -101,13 +102,13 @@ TEST(MovingWall, PressedLidWorkIsStoredAndDissipated) {
   EXPECT_NEAR(2 * kR - sim.walls()[1].point.z(), travel, 1e-12);
   // The squeeze is shared by the two contacts, which carry the same force at rest.
   const double overlap = 0.5 * travel;
-  const ContactMaterial cm = ContactMaterial::from(s.particles.material, 0.0, 0.5);
-  const double force = hertz::normal_force(cm.e_star_pw, kR, overlap);
+  const HertzNormal::Constants cm = HertzNormal::constants(s.particles.material, {}).pair;
+  const double force = hertz::normal_force(cm.e_star, kR, overlap);
   const std::vector<Vec3> f = sim.wall_forces();
   EXPECT_NEAR(f[0].z(), -force, 1e-6 * force);
   EXPECT_NEAR(f[1].z(), force, 1e-6 * force);
   // Work in = elastic energy of two contacts + dashpot dissipation (+ what kinetic is left).
-  const double stored = 2 * hertz::normal_energy(cm.e_star_pw, kR, overlap);
+  const double stored = 2 * hertz::normal_energy(cm.e_star, kR, overlap);
   EXPECT_NEAR(e.elastic_normal, stored, 1e-5 * stored);
   EXPECT_NEAR(e.work_by_walls, e.elastic_normal + e.dissipated_damping + e.kinetic(), 1e-6 * e.work_by_walls);
   EXPECT_LT(std::abs(balance_error(e0, e)), 1e-6);

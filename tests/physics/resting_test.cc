@@ -4,6 +4,7 @@
 
 #include "../common/scenes.h"
 #include "dem/contact/hertz_mindlin.h"
+#include "dem/contact/law/hertz.h"
 #include "dem/engine/simulation.h"
 
 using namespace upgrain;
@@ -21,8 +22,8 @@ TEST(RestingSphere, StaticOverlapIsHertzForItsWeight) {
     const double weight = p.mass(0) * 9.81;
     Simulation sim(s, p);
     sim.run(100000);
-    const ContactMaterial cm = ContactMaterial::from(s.particles.material, 0.5, 0.7);
-    const double expected = hertz::overlap_for_force(cm.e_star_pw, r, weight);
+    const HertzNormal::Constants cm = HertzNormal::constants(s.particles.material, {}).pair;
+    const double expected = hertz::overlap_for_force(cm.e_star, r, weight);
     const double overlap = r - sim.particles().x[0].z();
     EXPECT_NEAR(overlap, expected, 1e-6 * expected) << "radius " << r;
     EXPECT_NEAR(sim.wall_forces()[0].z(), -weight, 1e-6 * weight);

@@ -11,6 +11,7 @@
 
 #include "../common/scenes.h"
 #include "dem/contact/hertz_mindlin.h"
+#include "dem/contact/law/hertz.h"
 #include "dem/contact/rolling_resistance.h"
 #include "dem/engine/simulation.h"
 #include "dem/time_step.h"
@@ -37,9 +38,9 @@ std::unique_ptr<Simulation> sphere_on_floor(double theta, const Vec3& v0, double
   s.rolling_friction = kMuR;
   s.rolling_damping_ratio = eta_r;
   s.container.lx = s.container.ly = 10.0;
-  const ContactMaterial cm = ContactMaterial::from(s.particles.material, 0.5, 0.5);
+  const HertzNormal::Constants cm = HertzNormal::constants(s.particles.material, {}).pair;
   const double m = 2650 * 4.0 / 3 * std::numbers::pi * kR * kR * kR;
-  const double delta = hertz::overlap_for_force(cm.e_star_pw, kR, m * kG * std::cos(theta));
+  const double delta = hertz::overlap_for_force(cm.e_star, kR, m * kG * std::cos(theta));
   ParticleStore p;
   // Rolling without slip about the contact: omega = n_floor x v / r = z x v / r.
   p.add_sphere(0, kR, 2650, Vec3(1.0, 5.0, kR - delta), v0, Vec3::UnitZ().cross(v0) / (kR - delta));
@@ -101,8 +102,8 @@ TEST(RollingResistance, SphereOnASlopeHoldsBelowTheRollingAngleAndRollsAbove) {
     // Elastic take-up only: the rolling spring turned by M / k_r under M = m g sin(theta) r,
     // plus the Mindlin spring's m g sin(theta) / k_t; then no creep.
     const double m = q.mass(0), f_n = m * kG * std::cos(theta), f_t = m * kG * std::sin(theta);
-    const double e_star = ContactMaterial::from(test::bare_scene(1.0).particles.material, 0.5, 0.5).e_star_pw;
-    const double g_star = ContactMaterial::from(test::bare_scene(1.0).particles.material, 0.5, 0.5).g_star_pw;
+    const double e_star = HertzNormal::constants(test::bare_scene(1.0).particles.material, {}).pair.e_star;
+    const double g_star = HertzNormal::constants(test::bare_scene(1.0).particles.material, {}).pair.g_star;
     const double delta = hertz::overlap_for_force(e_star, kR, f_n);
     const double k_r = rolling_stiffness(hertz::normal_stiffness(e_star, kR, delta), kMuR, kR);
     const double elastic = kR * (f_t * kR) / k_r + f_t / hertz::tangential_stiffness(g_star, kR, delta);

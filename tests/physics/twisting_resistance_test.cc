@@ -12,6 +12,7 @@
 
 #include "../common/scenes.h"
 #include "dem/contact/hertz_mindlin.h"
+#include "dem/contact/law/hertz.h"
 #include "dem/contact/rolling_resistance.h"
 #include "dem/engine/simulation.h"
 
@@ -42,11 +43,11 @@ SpinningSphere spinning_sphere(double omega0, bool twisting, double eta = 0.0) {
   s.rolling_friction = 0.05;
   s.rolling_damping_ratio = eta;
   s.container.lx = s.container.ly = 10.0;
-  const ContactMaterial cm = ContactMaterial::from(s.particles.material, kMu, 0.5);
+  const HertzNormal::Constants cm = HertzNormal::constants(s.particles.material, {}).pair;
   SpinningSphere out;
   out.mass = 2650 * 4.0 / 3 * std::numbers::pi * kR * kR * kR;
   out.inertia = 0.4 * out.mass * kR * kR;
-  const double delta = hertz::overlap_for_force(cm.e_star_pw, kR, out.mass * kG);
+  const double delta = hertz::overlap_for_force(cm.e_star, kR, out.mass * kG);
   out.a = std::sqrt(kR * delta);
   ParticleStore p;
   p.add_sphere(0, kR, 2650, Vec3(1.0, 1.0, kR - delta), Vec3::Zero(), Vec3(0, 0, omega0));

@@ -9,7 +9,10 @@
 using namespace upgrain::dem;
 
 namespace {
-ContactParameters params() { return {2e7, 8e6, 1e-3, 1e-5, 0.5, 0.3, 1e-6}; }
+constexpr HertzNormal::Constants kHertz{.e_star = 2e7, .g_star = 8e6};
+ContactParameters params() {
+  return {.r_star = 1e-3, .m_star = 1e-5, .friction = 0.5, .zeta = 0.3, .dt = 1e-6};
+}
 ContactKinematics kinematics(double delta, const Vec3& vi = Vec3::Zero()) {
   ContactKinematics k;
   k.normal = Vec3(0, 0, 1);
@@ -27,10 +30,11 @@ TEST(ContactResponse, ElasticNormalForceIsHertz) {
   TangentialSpring spring;
   ContactEnergy e;
   const auto p = params();
-  const auto f = contact_response<false, false, false, true>(p, kinematics(1e-5), spring, e);
-  EXPECT_DOUBLE_EQ(f.normal, hertz::normal_force(p.e_star, p.r_star, 1e-5));
+  const auto f = contact_response<false, false, false, true>(kHertz, p, kinematics(1e-5), spring, e);
+  EXPECT_DOUBLE_EQ(f.normal, hertz::normal_force(kHertz.e_star, p.r_star, 1e-5));
   EXPECT_TRUE(f.on_i.isApprox(Vec3(0, 0, -f.normal)));  // pushes i away from j
-  EXPECT_NEAR(e.elastic_normal, hertz::normal_energy(p.e_star, p.r_star, 1e-5), 1e-12 * e.elastic_normal);
+  EXPECT_NEAR(e.elastic_normal, hertz::normal_energy(kHertz.e_star, p.r_star, 1e-5),
+              1e-12 * e.elastic_normal);
 }
 
 TEST(ContactResponse, DampingNeverAttracts) {
@@ -39,27 +43,29 @@ TEST(ContactResponse, DampingNeverAttracts) {
   auto p = params();
   p.zeta = 5.0;
   // i moves away from j fast: elastic minus damping would be negative.
-  const auto f = contact_response<false, true, false, true>(p, kinematics(1e-7, Vec3(0, 0, -10)), spring, e);
+  const auto f =
+      contact_response<false, true, false, true>(kHertz, p, kinematics(1e-7, Vec3(0, 0, -10)), spring, e);
   EXPECT_EQ(f.normal, 0.0);
   EXPECT_GT(e.dissipated_damping, 0.0);
   // Approaching: damping adds to the elastic force.
   ContactEnergy e2;
-  const auto g = contact_response<false, true, false, true>(p, kinematics(1e-7, Vec3(0, 0, 0.1)), spring, e2);
-  EXPECT_GT(g.normal, hertz::normal_force(p.e_star, p.r_star, 1e-7));
+  const auto g =
+      contact_response<false, true, false, true>(kHertz, p, kinematics(1e-7, Vec3(0, 0, 0.1)), spring, e2);
+  EXPECT_GT(g.normal, hertz::normal_force(kHertz.e_star, p.r_star, 1e-7));
 }
 
 TEST(ContactResponse, SpringBuildsThenSlidesAtCoulombLimit) {
   const auto p = params();
   const double delta = 1e-5;
-  const double k_t = hertz::tangential_stiffness(p.g_star, p.r_star, delta);
-  const double fn = hertz::normal_force(p.e_star, p.r_star, delta);
+  const double k_t = hertz::tangential_stiffness(kHertz.g_star, p.r_star, delta);
+  const double fn = hertz::normal_force(kHertz.e_star, p.r_star, delta);
   const Vec3 v(1e-3, 0, 0);  // i slides along +x relative to j
   TangentialSpring spring;
   ContactEnergy e;
-  contact_response<true, false, false, true>(p, kinematics(delta, v), spring, e);
+  contact_response<true, false, false, true>(kHertz, p, kinematics(delta, v), spring, e);
   EXPECT_NEAR(spring.force.x(), -k_t * v.x() * p.dt, 1e-15);  // opposes the sliding
   for (int s = 0; s < 100000; ++s)
-    contact_response<true, false, false, true>(p, kinematics(delta, v), spring, e);
+    contact_response<true, false, false, true>(kHertz, p, kinematics(delta, v), spring, e);
   EXPECT_NEAR(spring.force.norm(), p.friction * fn, 1e-12 * fn);
   EXPECT_LT(spring.force.x(), 0.0);
   EXPECT_GT(e.dissipated_friction, 0.0);
@@ -70,7 +76,7 @@ TEST(ContactResponse, SpringIsCarriedIntoTheNewTangentPlane) {
   TangentialSpring spring{Vec3(1e-3, 0, 2e-4), 0.0};  // has a component along the current normal (0,0,1)
   const double before = spring.force.norm();
   ContactEnergy e;
-  contact_response<true, false, false, false>(p, kinematics(1e-5), spring, e);
+  contact_response<true, false, false, false>(kHertz, p, kinematics(1e-5), spring, e);
   EXPECT_NEAR(spring.force.z(), 0.0, 1e-18);
   EXPECT_NEAR(spring.force.norm(), before, 1e-15);
 }
@@ -82,8 +88,8 @@ TEST(ContactResponse, RotationEntersTheSlidingVelocity) {
   k.omega_i = Vec3(0, 2.0, 0);
   TangentialSpring with_rot, without;
   ContactEnergy e;
-  contact_response<true, false, true, false>(p, k, with_rot, e);
-  contact_response<true, false, false, false>(p, k, without, e);
+  contact_response<true, false, true, false>(kHertz, p, k, with_rot, e);
+  contact_response<true, false, false, false>(kHertz, p, k, without, e);
   EXPECT_LT(with_rot.force.x(), 0.0);
   EXPECT_EQ(without.force.norm(), 0.0);
 }

@@ -1,10 +1,8 @@
 #include "coupling/studies/accuracy/collision_reference.h"
 
 #include <cmath>
-#include <numbers>
 
 #include "dem/contact/contact_laws.h"
-#include "dem/contact/hertz_mindlin.h"
 #include "dem/engine/simulation.h"
 
 namespace upgrain::coupling {
@@ -26,12 +24,9 @@ CollisionError collision_error(const dem::SceneConfig& scene, double radius, dou
   p.add_sphere(1, radius, density, dem::Vec3(radius + gap, 0, 0), dem::Vec3(-0.5 * speed, 0, 0),
                dem::Vec3::Zero());
   const double m_star = 0.5 * p.mass(0), r_star = 0.5 * radius;
-  dem::ContactMaterial law;
-  dem::find_contact_law(s.contact_law).constants(s.law_parameters, law);
-  const dem::ContactMaterial moduli = dem::ContactMaterial::from(s.particles.material, 0.0, 0.0);
-  const double exact = s.contact_law == "hooke"
-                           ? std::numbers::pi * std::sqrt(m_star / law.k_n)
-                           : dem::hertz::contact_duration(moduli.e_star_pp, r_star, m_star, speed);
+  const dem::LawInfo& law = dem::find_contact_law(s.contact_law);
+  const double exact =
+      law.collision_duration(law.constants(s.particles.material, s.law_parameters), r_star, m_star, speed);
   dem::Simulation sim(s, p, std::vector<dem::PlaneWall>{});
   auto overlap = [&] {
     const dem::ParticleStore& q = sim.particles();

@@ -6,6 +6,7 @@
 #include "dem/contact/contact_kinematics.h"
 #include "dem/contact/ellipsoid_geometry.h"
 #include "dem/contact/grain_poses.h"
+#include "dem/core/particle_store.h"
 #include "dem/core/plane_wall.h"
 
 namespace upgrain::dem {
@@ -29,6 +30,14 @@ struct EllipsoidPlane {
     kin.lever_i = g.lever1;
     if (r_held == 0.0) r_held = gaussian_curvature_radius(g);
     return true;
+  }
+
+  // How far grain i of `p` reaches behind `wall`, outside the force loop (wall_depth()): its
+  // support along the wall's normal, sqrt(m^T M m) (docs/ellipsoid-contact.md), less its
+  // centre's distance.
+  static double depth(const ParticleStore& p, std::size_t i, const PlaneWall& wall) {
+    return (p.orientation[i].conjugate() * wall.normal).cwiseProduct(p.semi_axes[i]).norm() -
+           (p.x[i] - wall.point).dot(wall.normal);
   }
 };
 

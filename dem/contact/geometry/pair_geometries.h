@@ -5,6 +5,9 @@
 // grains' kinds (ParticleStore::shape) through this table: sphere pairs in closed form in the
 // force pass, the others collected in one batch per geometry and solved before it.
 //
+// Contacts outside the force loop (the force network, the packing checks) go by the same rows,
+// one at a time: pair_contact() and wall_depth().
+//
 // Adding a shape (docs/architecture.md, "How to add a shape"): a row per new pair and one
 // for its wall contacts, with a geometry file per new kind of geometry.
 #include <array>
@@ -136,6 +139,37 @@ decltype(auto) with_wall_geometry(ShapeKind k, F&& f) {
       return r;
     }
   }(static_cast<WallGeometries*>(nullptr));
+}
+
+// Calls f.template operator()<Geometry>() with the pair geometry of grains of kinds a and b.
+template <class F>
+decltype(auto) with_pair_geometry(ShapeKind a, ShapeKind b, F&& f) {
+  return [&]<class... R>(std::tuple<R...>*) -> decltype(auto) {
+    using Ret = decltype(f.template operator()<SpherePair>());
+    const auto is = [&]<class Row>() {
+      return (Row::First::kind == a && Row::Second::kind == b) ||
+             (Row::First::kind == b && Row::Second::kind == a);
+    };
+    if constexpr (std::is_void_v<Ret>) {
+      ((is.template operator()<R>() ? (f.template operator()<typename R::Type>(), true) : false) || ...);
+    } else {
+      Ret r{};
+      ((is.template operator()<R>() ? (r = f.template operator()<typename R::Type>(), true) : false) || ...);
+      return r;
+    }
+  }(static_cast<PairGeometries*>(nullptr));
+}
+
+// Contacts outside the force loop (the force network, the packing checks), by the same table:
+// one pair at a time, cold (no warm start, no radius held from first touch).
+// The geometry of grains i and j of `p`: body 1 is i, the normal from i to j.
+inline ContactGeometry pair_contact(const ParticleStore& p, std::size_t i, std::size_t j,
+                                    ContactSolverStats& stats) {
+  return with_pair_geometry(p.kind(i), p.kind(j), [&]<class G>() { return G::contact(p, i, j, stats); });
+}
+// How far grain i of `p` reaches behind `wall` (> 0: overlap).
+inline double wall_depth(const ParticleStore& p, std::size_t i, const PlaneWall& wall) {
+  return with_wall_geometry(p.kind(i), [&]<class G>() { return G::depth(p, i, wall); });
 }
 
 }  // namespace upgrain::dem

@@ -4,8 +4,11 @@
 // radius r_i r_j / (r_i + r_j) (Johnson 1985, sec. 4.2). The force loop evaluates it inline, as
 // every scene's most frequent pair.
 #include <cmath>
+#include <cstddef>
 
 #include "dem/contact/contact_kinematics.h"
+#include "dem/contact/ellipsoid_geometry.h"
+#include "dem/core/particle_store.h"
 
 namespace upgrain::dem {
 
@@ -37,6 +40,11 @@ struct SpherePairArms {
 struct SpherePair {
   static constexpr bool closed_form = true;
   static constexpr const char* name = "sphere-sphere, closed form";
+
+  // Grains i and j of `p` outside the force loop (body 1 is i; pair_contact()).
+  static ContactGeometry contact(const ParticleStore& p, std::size_t i, std::size_t j, ContactSolverStats&) {
+    return sphere_sphere_contact(p.x[i], p.radius[i], p.x[j], p.radius[j]);
+  }
 };
 
 }  // namespace upgrain::dem

@@ -1,7 +1,11 @@
 #pragma once
 // Sphere against a plane wall in closed form: overlap r - gap, normal along the wall's normal,
 // the contact point on the plane at arm gap from the centre, and R* = r (the wall is flat).
+#include <cstddef>
+
 #include "dem/contact/contact_kinematics.h"
+#include "dem/core/particle_store.h"
+#include "dem/core/plane_wall.h"
 
 namespace upgrain::dem {
 
@@ -19,6 +23,11 @@ namespace upgrain::dem {
 struct SpherePlane {
   static constexpr bool closed_form = true;
   static constexpr const char* name = "sphere-plane, closed form";
+
+  // How far grain i of `p` reaches behind `wall`, outside the force loop (wall_depth()).
+  static double depth(const ParticleStore& p, std::size_t i, const PlaneWall& wall) {
+    return p.radius[i] - (p.x[i] - wall.point).dot(wall.normal);
+  }
 };
 
 }  // namespace upgrain::dem

@@ -11,6 +11,7 @@
 #include "dem/contact/geometry/shaped_pair.h"
 #include "dem/contact/grain_poses.h"
 #include "dem/core/contact_history.h"
+#include "dem/core/particle_store.h"
 
 namespace upgrain::dem {
 
@@ -78,6 +79,18 @@ struct SupportFunctionPair {
   static void solve(const GrainPoses& poses, std::vector<ShapedPair>& pairs,
                     const ContactSolverSettings& settings, ContactSolverStats& stats) {
     shaped_pair_geometries(poses, pairs, settings, stats);
+  }
+
+  // Grain i of `p` as the solver sees it: a sphere as an ellipsoid of equal axes.
+  static Ellipsoid body(const ParticleStore& p, std::size_t i) {
+    if (!p.oriented(i)) return Ellipsoid::sphere(p.x[i], p.radius[i]);
+    return {p.x[i], p.orientation[i], p.semi_axes[i]};
+  }
+  // Grains i and j of `p` outside the force loop (body 1 is i; pair_contact()): a cold start,
+  // nothing held.
+  static ContactGeometry contact(const ParticleStore& p, std::size_t i, std::size_t j,
+                                 ContactSolverStats& stats) {
+    return ellipsoid_contact(body(p, i), body(p, j), stats);
   }
 };
 

@@ -36,28 +36,41 @@ struct HookeNormal {
        "2001, LAMMPS's default)."},
   }};
 
-  static void constants(std::span<const NamedValue> values, ContactMaterial& m) {
-    m.k_n = law_parameter(values, parameters[0]);
+  // Its constants, particle-particle and particle-wall alike.
+  struct Constants {
+    double k_n = 0.0;  // normal spring constant (N/m)
+    double k_t = 0.0;  // tangential spring constant (N/m)
+  };
+  static PairAndWall<Constants> constants(const Material&, std::span<const NamedValue> values) {
+    Constants c;
+    c.k_n = law_parameter(values, parameters[0]);
     const double k_t = law_parameter(values, parameters[1]);
-    m.k_t = k_t > 0.0 ? k_t : 2.0 / 7.0 * m.k_n;
+    c.k_t = k_t > 0.0 ? k_t : 2.0 / 7.0 * c.k_n;
+    return {c, c};
   }
 
-  [[gnu::always_inline]] static NormalResponse response(const ContactParameters& p, double delta) {
-    return {p.k_n * delta, p.k_n, p.k_t};
+  [[gnu::always_inline]] static NormalResponse response(const Constants& c, const ContactParameters&,
+                                                        double delta) {
+    return {c.k_n * delta, c.k_n, c.k_t};
   }
   // The spring's energy k_n delta^2 / 2.
   [[gnu::always_inline]] static double energy(const NormalResponse& r, double delta) {
     return 0.5 * r.force * delta;
   }
 
-  // The undamped collision lasts pi / omega_0 = pi sqrt(m* / k_n); the lightest pair
-  // (m* = m / 2) is the shortest. dt <= (Hertz fraction) of it: the one contact-duration
-  // fraction serves every law (docs/contact-law.md, time step). No Rayleigh limit: k_n is
-  // not the grains' elasticity.
-  static LawTimeLimit time_limit(const SceneTimeScales& s, double, double duration_fraction) {
+  // An undamped collision lasts half a period of the oscillator, pi / omega_0 = pi sqrt(m* / k_n),
+  // at any speed.
+  static double collision_duration(const Constants& c, double, double m_star, double) {
+    return std::numbers::pi * std::sqrt(m_star / c.k_n);
+  }
+
+  // The lightest pair (m* = m / 2) has the shortest collision. dt <= (Hertz fraction) of it:
+  // the one contact-duration fraction serves every law (docs/contact-law.md, time step). No
+  // Rayleigh limit: k_n is not the grains' elasticity.
+  static LawTimeLimit time_limit(const PairAndWall<Constants>& c, const SceneTimeScales& s, double,
+                                 double duration_fraction) {
     LawTimeLimit t;
-    const double k_n = s.law_constants.k_n;
-    t.contact_time = std::numbers::pi * std::sqrt(0.5 * s.lightest / k_n);
+    t.contact_time = collision_duration(c.pair, 0.0, 0.5 * s.lightest, 0.0);
     t.safe_step = duration_fraction * t.contact_time;
     t.limiting = "Hooke";
     return t;

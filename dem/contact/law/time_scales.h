@@ -10,12 +10,11 @@ namespace upgrain::dem {
 
 struct SceneTimeScales {
   Material material;
-  double r_min = 0.0;             // smallest grain size (sphere radius, ellipsoid major semi-axis a)
-  double thinnest = 1.0;          // smallest c/a of the mix (1 for spheres)
-  double flattest = 1.0;          // largest Gaussian radius factor (b/a)/(c/a) at a c pole (1 for spheres)
-  double lightest = 0.0;          // mass of the lightest grain (kg)
-  double impact_speed = 0.0;      // m/s, > 0
-  ContactMaterial law_constants;  // the law's own constants (law's constants())
+  double r_min = 0.0;         // smallest grain size (sphere radius, ellipsoid major semi-axis a)
+  double thinnest = 1.0;      // smallest c/a of the mix (1 for spheres)
+  double flattest = 1.0;      // largest Gaussian radius factor (b/a)/(c/a) at a c pole (1 for spheres)
+  double lightest = 0.0;      // mass of the lightest grain (kg)
+  double impact_speed = 0.0;  // m/s, > 0
 };
 
 // What a law's rule gives: its limit on the time step and its name, with the time scales
