@@ -132,10 +132,10 @@ decltype(auto) with_wall_geometry(ShapeKind k, F&& f) {
   return [&]<class... R>(std::tuple<R...>*) -> decltype(auto) {
     using Ret = decltype(f.template operator()<SpherePlane>());
     if constexpr (std::is_void_v<Ret>) {
-      ((R::Shape::kind == k ? (f.template operator()<typename R::Type>(), true) : false) || ...);
+      (void)((R::Shape::kind == k ? (f.template operator()<typename R::Type>(), true) : false) || ...);
     } else {
       Ret r{};
-      ((R::Shape::kind == k ? (r = f.template operator()<typename R::Type>(), true) : false) || ...);
+      (void)((R::Shape::kind == k ? (r = f.template operator()<typename R::Type>(), true) : false) || ...);
       return r;
     }
   }(static_cast<WallGeometries*>(nullptr));
@@ -151,10 +151,12 @@ decltype(auto) with_pair_geometry(ShapeKind a, ShapeKind b, F&& f) {
              (Row::First::kind == b && Row::Second::kind == a);
     };
     if constexpr (std::is_void_v<Ret>) {
-      ((is.template operator()<R>() ? (f.template operator()<typename R::Type>(), true) : false) || ...);
+      (void)((is.template operator()<R>() ? (f.template operator()<typename R::Type>(), true) : false) ||
+             ...);
     } else {
       Ret r{};
-      ((is.template operator()<R>() ? (r = f.template operator()<typename R::Type>(), true) : false) || ...);
+      (void)((is.template operator()<R>() ? (r = f.template operator()<typename R::Type>(), true) : false) ||
+             ...);
       return r;
     }
   }(static_cast<PairGeometries*>(nullptr));
