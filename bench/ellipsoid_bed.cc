@@ -208,7 +208,7 @@ int main(int argc, char** argv) {
   const bool deposition = argc > 5 && std::string(argv[5]) == "deposition";
   if (argc > 6 && std::string(argv[6]) == "fast") timed_options.summation = Summation::fast;
   const double r = 1.5e-3;
-  const GrainShape shape{0.8, 0.6, 1.0};
+  const GrainShape shape = ellipsoid_grain(0.8, 0.6);
   const double a = r / std::cbrt(0.8 * 0.6);
   Bed spheres, ellipsoids;
   if (deposition) {

@@ -28,9 +28,10 @@ TimeStepEstimate estimate_time_step(const SceneConfig& s) {
   // (Gaussian radius a b / c at the c pole) and the lightest grain's mass. Spheres: 1.
   double mass_factor = 1.0;
   for (const GrainShape& g : s.particles.shapes) {
-    t.thinnest = std::min(t.thinnest, g.c_over_a);
-    t.flattest = std::max(t.flattest, g.b_over_a / g.c_over_a);
-    mass_factor = std::min(mass_factor, g.b_over_a * g.c_over_a);
+    const ShapeScales k = scales(g);
+    t.thinnest = std::min(t.thinnest, k.thinnest);
+    t.flattest = std::max(t.flattest, k.flattest);
+    mass_factor = std::min(mass_factor, k.volume);
   }
   t.lightest = mass_factor * t.material.density * 4.0 / 3.0 * std::numbers::pi * t.r_min * t.r_min * t.r_min;
   TimeStepEstimate e;

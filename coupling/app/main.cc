@@ -205,10 +205,12 @@ int run(int argc, char** argv) {
   dem::throw_if_any(MPI_COMM_WORLD, refusal);
   const dem::TimeStepEstimate ts = dem::estimate_time_step(in.scene);
   if (rank == 0) {
+    const std::string grains = dem::has_shapes(in.scene.particles.shapes)
+                                   ? "grains (" + dem::shape_nouns(in.scene.particles.shapes) + ")"
+                                   : "spheres";
     std::printf("upgrain: %s\n  %ld %s, time step %.3g s (safe %.3g s, %s-limited), end time %.3g s\n",
-                in.source.c_str(), in.scene.particles.count,
-                dem::has_ellipsoids(in.scene.particles.shapes) ? "grains (ellipsoids)" : "spheres",
-                in.scene.time_step, ts.safe_step, ts.limiting.c_str(), in.scene.end_time);
+                in.source.c_str(), in.scene.particles.count, grains.c_str(), in.scene.time_step, ts.safe_step,
+                ts.limiting.c_str(), in.scene.end_time);
     if (coupling::compares_with_continuum(in))
       std::printf(
           "  study: DEM deposition -> grid stress -> continuum column (Q%u) -> comparison and report\n",

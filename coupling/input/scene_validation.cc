@@ -2,6 +2,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "coupling/input/scene_input.h"
@@ -126,25 +127,28 @@ void validate_collapse(const SceneInput& in, const std::string& where) {
                 "needs; set 'Study/compare with continuum = false'");
 }
 
-// The shapes of a packing's grains that set the safe time step (dem/time_step.cc): the thinnest
-// (smallest c/a), the flattest (largest b/c) and the lightest for its size (smallest b c / a^2).
-// Empty when every grain is a sphere.
+// The shapes of a packing's grains that set the safe time step (dem/time_step.cc): the thinnest,
+// the flattest and the lightest for its size (dem::ShapeScales). Empty when every grain is a
+// sphere.
 std::vector<dem::GrainShape> limiting_shapes(const dem::ParticleStore& p) {
   std::vector<dem::GrainShape> out;
   if (!p.has_shapes()) return out;
-  const dem::GrainShape none{2.0, 2.0, 1.0};
-  dem::GrainShape thinnest = none, flattest = none, lightest = none;
+  std::optional<dem::GrainShape> thinnest, flattest, lightest;
+  auto keep = [](std::optional<dem::GrainShape>& held, const dem::GrainShape& g, auto scale, bool larger) {
+    if (!held || (larger ? scale(g) > scale(*held) : scale(g) < scale(*held))) held = g;
+  };
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (!p.oriented(i)) continue;
-    const dem::Vec3& ax = p.semi_axes[i];
-    const dem::GrainShape g{ax.y() / ax.x(), ax.z() / ax.x(), 1.0};
-    if (g.c_over_a < thinnest.c_over_a) thinnest = g;
-    if (flattest.b_over_a > 1.0 || g.b_over_a / g.c_over_a > flattest.b_over_a / flattest.c_over_a)
-      flattest = g;
-    if (g.b_over_a * g.c_over_a < lightest.b_over_a * lightest.c_over_a) lightest = g;
+    const dem::GrainShape g = dem::grain_shape_of(p, i);
+    keep(
+        thinnest, g, [](const dem::GrainShape& s) { return dem::scales(s).thinnest; }, false);
+    keep(
+        flattest, g, [](const dem::GrainShape& s) { return dem::scales(s).flattest; }, true);
+    keep(
+        lightest, g, [](const dem::GrainShape& s) { return dem::scales(s).volume; }, false);
   }
-  for (const dem::GrainShape& g : {thinnest, flattest, lightest})
-    if (g.b_over_a <= 1.0) out.push_back(g);
+  for (const auto& g : {thinnest, flattest, lightest})
+    if (g) out.push_back(*g);
   return out;
 }
 

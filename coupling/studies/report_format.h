@@ -16,13 +16,18 @@ inline std::string fmt(double v, int digits = 4) {
 }
 
 // The grains of a scene in its parameter table, before their size: " spheres, radius " or
-// " ellipsoids (a:b:c 1:0.8:0.6, 1:1:1), major semi-axis ".
+// " ellipsoids (a:b:c 1:0.8:0.6, 1:1:1), major semi-axis " (the mix as Particles/shapes writes it).
 inline std::string grain_kind(const std::vector<dem::GrainShape>& shapes) {
-  if (!dem::has_ellipsoids(shapes)) return " spheres, radius ";
-  std::string kind = " ellipsoids (a:b:c";
-  for (std::size_t k = 0; k < shapes.size(); ++k)
-    kind += (k == 0 ? " 1:" : ", 1:") + fmt(shapes[k].b_over_a) + ":" + fmt(shapes[k].c_over_a);
-  return kind + "), major semi-axis ";
+  if (!dem::has_shapes(shapes)) return " spheres, radius ";
+  std::string kind(1, ' ');
+  kind += dem::shape_nouns(shapes);
+  kind += " (a:b:c";
+  for (std::size_t k = 0; k < shapes.size(); ++k) {
+    kind += k == 0 ? " " : ", ";
+    kind += dem::format_grain_shape(shapes[k], [](double v) { return fmt(v); });
+  }
+  kind += "), major semi-axis ";
+  return kind;
 }
 
 }  // namespace upgrain::coupling

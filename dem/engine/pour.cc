@@ -39,11 +39,7 @@ void Pour::before_step(Simulation& sim) {
     const GlobalId id = static_cast<GlobalId>(sim.particle_count()) + static_cast<GlobalId>(k);
     const GrainShape shape = shapes.empty() ? GrainShape{} : shapes[static_cast<std::size_t>(plan_.shape[g])];
     const Eigen::Quaterniond q = random_orientation(turn);  // drawn for spheres too
-    if (shape.is_sphere())
-      batch.add_sphere(id, plan_.radius[g], density, x[k], in.velocity, Vec3::Zero());
-    else
-      batch.add_ellipsoid(id, {shape.semi_axes(plan_.radius[g]), density, q},
-                          {x[k], in.velocity, Vec3::Zero()});
+    add_grain(batch, shape, id, plan_.radius[g], density, q, {x[k], in.velocity, Vec3::Zero()});
   }
   sim.insert(batch);
   state_.inserted += static_cast<long>(x.size());

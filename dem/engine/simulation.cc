@@ -191,7 +191,7 @@ void Simulation::set_up(long count, double max_radius, bool shapes, const Box& b
   // and its restart choose the same.
   if (scene_.insertion.enabled()) {
     max_radius = std::max(max_radius, scene_.particles.largest_radius());
-    shapes = shapes || has_ellipsoids(scene_.particles.shapes);
+    shapes = shapes || has_shapes(scene_.particles.shapes);
   }
   shapes_ = shapes;
   rotation_ = scene_.effects.integrates_rotation(shapes_);

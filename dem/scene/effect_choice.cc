@@ -89,11 +89,11 @@ ChosenEffects choose_effects(const SceneConfig& s, const EffectSwitches& sw, con
 
   // Rolling resistance is not part of Yan and Regueiro's law (docs/stress.md): only on when asked for.
   const bool rolling_on = sw.rolling_resistance == EffectSwitch::on;
-  const bool shapes = has_ellipsoids(s.particles.shapes);
+  const bool shapes = has_shapes(s.particles.shapes);
   const bool torques = set.friction || set.wall_friction || rolling_on || shapes;
   std::string why_rotation;
   if (shapes)
-    why_rotation = "ellipsoids turn under normal forces";
+    why_rotation = shape_nouns(s.particles.shapes) + " turn under normal forces";
   else if (torques)
     why_rotation = "tangential forces or rolling resistance turn the spheres";
   else

@@ -104,21 +104,17 @@ ParticleStore fill_container(const SceneConfig& s) {
   // scene do not change when its shapes do.
   std::mt19937_64 shape_rng(s.fill.seed ^ 0x9e3779b97f4a7c15ULL);
   const std::vector<GrainShape>& shapes = s.particles.shapes;
-  const bool ellipsoids = has_ellipsoids(shapes);
+  const bool shaped = has_shapes(shapes);
   const std::vector<int> shape_of = assign_shapes(shapes, n, shape_rng);
   auto add = [&](long k, const Vec3& x) {
-    const GrainShape shape = shapes.empty() ? GrainShape{} : shapes[shape_of[k]];
-    if (!ellipsoids || shape.is_sphere()) {
+    if (!shaped) {
       p.add_sphere(k, radii[k], density, x, velocity(), Vec3::Zero());
-      if (!ellipsoids) return;
-    } else {
-      const Eigen::Quaterniond q = random_orientation(shape_rng);
-      p.add_ellipsoid(k, {shape.semi_axes(radii[k]), density, q}, {x, velocity(), Vec3::Zero()});
       return;
     }
     // A sphere in a mixed scene draws an orientation too, so the stream does not depend on
     // which grains are spheres.
-    (void)random_orientation(shape_rng);
+    const Eigen::Quaterniond q = random_orientation(shape_rng);
+    add_grain(p, shapes[shape_of[k]], k, radii[k], density, q, {x, velocity(), Vec3::Zero()});
   };
   if (s.fill.method == FillMethod::lattice) {
     const LatticeShape l = lattice_shape(s, r_max);

@@ -143,8 +143,7 @@ PourPlan plan_pour(const SceneConfig& s) {
   for (std::size_t k = 0; k < plan.radius.size(); ++k) {
     const double a = plan.radius[k];
     const GrainShape g = shapes.empty() ? GrainShape{} : shapes[static_cast<std::size_t>(plan.shape[k])];
-    total +=
-        s.particles.material.density * 4.0 / 3.0 * std::numbers::pi * a * (a * g.b_over_a) * (a * g.c_over_a);
+    total += s.particles.material.density * 4.0 / 3.0 * std::numbers::pi * a * a * a * scales(g).volume;
     plan.cumulative_mass[k] = total;
     plan.largest_radius = std::max(plan.largest_radius, a);
   }

@@ -2,7 +2,10 @@
 // The three-axis ellipsoid: semi-axes a >= b >= c along its body axes, an orientation, and the
 // principal moments of a solid ellipsoid (docs/ellipsoids.md). Its contacts:
 // dem/contact/geometry/pair_geometries.h.
+#include <Eigen/Geometry>
+#include <array>
 #include <cstddef>
+#include <span>
 
 #include "dem/core/particle_store.h"
 #include "dem/shape/shape_description.h"
@@ -30,6 +33,23 @@ struct Ellipsoid {
     if (d.squaredNorm() > p.radius[i] * p.radius[i]) return false;
     const Vec3 y = p.orientation[i].conjugate() * d;
     return y.cwiseQuotient(p.semi_axes[i]).squaredNorm() <= 1.0;
+  }
+
+  // In a scene's mix (dem/scene/grain_shape.h): its size is a, its ratios b/a and c/a.
+  static constexpr std::array<const char*, 2> ratios{"b/a", "c/a"};
+  static constexpr const char* rule = "1 >= b/a >= c/a > 0";
+  static bool valid(std::span<const double> r) { return r[0] <= 1.0 && r[1] <= r[0] && r[1] > 0.0; }
+  // The thinnest half-thickness c, the flattest point (the Gaussian radius a b / c at the c
+  // pole) and the volume 4/3 pi a b c, each over the sphere's of radius a.
+  static ShapeScales scales(std::span<const double> r) { return {r[1], r[0] / r[1], r[0] * r[1]}; }
+  static void add(ParticleStore& p, GlobalId id, double a, std::span<const double> r, double density,
+                  const Eigen::Quaterniond& orientation, const GrainMotion& m) {
+    p.add_ellipsoid(id, {Vec3(a, a * r[0], a * r[1]), density, orientation}, m);
+  }
+  static void ratios_of(const ParticleStore& p, std::size_t i, std::span<double> out) {
+    const Vec3& ax = p.semi_axes[i];
+    out[0] = ax.y() / ax.x();
+    out[1] = ax.z() / ax.x();
   }
 };
 

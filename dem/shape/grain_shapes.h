@@ -74,4 +74,14 @@ decltype(auto) visit_shape(ShapeKind k, F&& f) {
   return visit_shape(k, std::forward<F>(f), GrainShapes{});
 }
 
+// Calls f.template operator()<S>() for every shape S of the table, in its order.
+template <class F, class... S>
+void for_each_shape(F&& f, ShapeList<S...> /*list*/) {
+  (f.template operator()<S>(), ...);
+}
+template <class F>
+void for_each_shape(F&& f) {
+  for_each_shape(std::forward<F>(f), GrainShapes{});
+}
+
 }  // namespace upgrain::dem::shapes

@@ -16,4 +16,13 @@ struct DescriptionColumn {
   const char* doc;                           // what the three numbers are, with their unit
 };
 
+// How thin, flat and light a shape is for its size a (its largest dimension), from its ratios in
+// a scene's mix (dem/scene/grain_shape.h): what the time step's limits take of it
+// (dem/time_step.cc, docs/ellipsoids.md). A sphere is 1, 1, 1.
+struct ShapeScales {
+  double thinnest = 1.0;  // the smallest half-thickness over a (an ellipsoid's c/a)
+  double flattest = 1.0;  // the largest radius of curvature over a (an ellipsoid's b/c, at its c pole)
+  double volume = 1.0;    // the volume over a sphere's of radius a (an ellipsoid's b c / a^2)
+};
+
 }  // namespace upgrain::dem::shapes

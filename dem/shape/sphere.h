@@ -1,8 +1,10 @@
 #pragma once
 // The sphere: a grain of one radius, without orientation (its rotation is a kick of omega,
 // docs/integrator.md). Its contacts: dem/contact/geometry/pair_geometries.h.
+#include <Eigen/Geometry>
 #include <array>
 #include <cstddef>
+#include <span>
 
 #include "dem/core/particle_store.h"
 #include "dem/shape/shape_description.h"
@@ -21,6 +23,17 @@ struct Sphere {
   static bool contains(const ParticleStore& p, std::size_t i, const Vec3& q) {
     return (q - p.x[i]).squaredNorm() <= p.radius[i] * p.radius[i];
   }
+
+  // In a scene's mix (dem/scene/grain_shape.h): its size is its radius, and nothing else.
+  static constexpr std::array<const char*, 0> ratios{};
+  static constexpr const char* rule = "";
+  static bool valid(std::span<const double> /*ratios*/) { return true; }
+  static ShapeScales scales(std::span<const double> /*ratios*/) { return {}; }
+  static void add(ParticleStore& p, GlobalId id, double a, std::span<const double> /*ratios*/, double density,
+                  const Eigen::Quaterniond& /*orientation*/, const GrainMotion& m) {
+    p.add_sphere(id, a, density, m.x, m.v, m.omega);
+  }
+  static void ratios_of(const ParticleStore& /*p*/, std::size_t /*i*/, std::span<double> /*out*/) {}
 };
 
 }  // namespace upgrain::dem::shapes

@@ -37,7 +37,8 @@ inline dem::SceneConfig paper_bed_scene(long count) {
 inline dem::SceneConfig paper_ellipsoid_bed_scene(long count) {
   dem::SceneConfig s = paper_bed_scene(count);
   s.particles.gradation = {{1.0e-3, 0.0}, {2.5e-3, 1.0}};
-  s.particles.shapes = {{1.0, 1.0, 1.0}, {0.8, 0.6, 1.0}, {0.8, 0.4, 1.0}, {0.6, 0.4, 1.0}};
+  s.particles.shapes = {dem::ellipsoid_grain(1.0, 1.0, 1.0), dem::ellipsoid_grain(0.8, 0.6, 1.0),
+                        dem::ellipsoid_grain(0.8, 0.4, 1.0), dem::ellipsoid_grain(0.6, 0.4, 1.0)};
   // Mean grain volume: a of about 1.75 mm, the shapes' mean b c / a^2 of 0.51.
   const double grain = 4.0 / 3.0 * std::numbers::pi * std::pow(1.75e-3, 3) * 0.51;
   s.container.lx = s.container.ly = std::max(std::cbrt(count * grain / 0.6), 0.02);

@@ -168,7 +168,7 @@ TEST(HardBeds, WideSizeRatioOneToFiveEllipsoidsReachRestWithTheStepOfTheSmallest
   // 1:0.8:0.6 ellipsoids with major semi-axes 0.6-3 mm by mass.
   SceneConfig s = bed_scene(test::hard_size(60, 1000), 3e-3, test::hard_full_size() ? 0.04 : 0.018);
   s.particles.gradation = {{0.6e-3, 0.0}, {3e-3, 1.0}};
-  s.particles.shapes = {{0.8, 0.6, 1.0}};
+  s.particles.shapes = {ellipsoid_grain(0.8, 0.6, 1.0)};
   s.fill.method = FillMethod::random;
   SceneConfig smallest = s;
   smallest.particles.gradation.clear();
@@ -180,7 +180,7 @@ TEST(HardBeds, WideSizeRatioOneToFiveEllipsoidsReachRestWithTheStepOfTheSmallest
 
 TEST(HardBeds, NeedlesTenToOneReachRest) {
   SceneConfig s = bed_scene(test::hard_size(25, 300), 3e-3, test::hard_full_size() ? 0.04 : 0.018);
-  s.particles.shapes = {{0.1, 0.1, 1.0}};
+  s.particles.shapes = {ellipsoid_grain(0.1, 0.1, 1.0)};
   const BedRun b = deposit(s);
   expect_sound_bed(b, 0.05);
   // Held 1e5 steps: it stays at rest by the deposition's own criterion and no needle creeps.
@@ -194,7 +194,7 @@ TEST(HardBeds, NeedlesTenToOneReachRest) {
 
 TEST(HardBeds, DiscsTenToOneReachRest) {
   SceneConfig s = bed_scene(test::hard_size(25, 300), 3e-3, test::hard_full_size() ? 0.04 : 0.018);
-  s.particles.shapes = {{1.0, 0.1, 1.0}};
+  s.particles.shapes = {ellipsoid_grain(1.0, 0.1, 1.0)};
   const BedRun b = deposit(s);
   expect_sound_bed(b, 0.05);
   // Held 1e5 steps: it stays at rest by the deposition's own criterion and the bed does not

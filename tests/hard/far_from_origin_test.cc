@@ -115,7 +115,7 @@ TEST(HardFarFromOrigin, SphereStackShiftedBy1And100KmRestsWhereItDoesAtTheOrigin
 TEST(HardFarFromOrigin, EllipsoidStackShiftedBy1And100KmRestsWhereItDoesAtTheOrigin) {
   SceneConfig s = stack_scene();
   const double a = s.particles.radius, c = 0.6 * a;
-  s.particles.shapes = {{0.8, 0.6, 1.0}};
+  s.particles.shapes = {ellipsoid_grain(0.8, 0.6, 1.0)};
   s.time_step = 0.9 * estimate_time_step(s).safe_step;
   ParticleStore p;
   for (int k = 0; k < 3; ++k)  // flat, aligned, slightly apart

@@ -48,7 +48,7 @@ Impact floor_impact(bool ellipsoid, double speed, double fraction = 1.0) {
   s.particles.material = {2650.0, kStiff, 0.25};
   s.effects = {false, false, false, false, true, true};
   s.particles.radius = a;
-  if (ellipsoid) s.particles.shapes = {{0.8, 0.6, 1.0}};
+  if (ellipsoid) s.particles.shapes = {ellipsoid_grain(0.8, 0.6, 1.0)};
   s.time_step_rule.impact_speed = speed;
   const TimeStepEstimate ts = estimate_time_step(s);
   // The refusal accounts for the impact speed: the safe step is within 0.1 of the Hertz

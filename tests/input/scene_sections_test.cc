@@ -78,7 +78,7 @@ TEST(SceneSections, EntriesLandInTheirMembers) {
   ASSERT_EQ(in.scene.particles.gradation.size(), 2u);
   EXPECT_EQ(in.scene.particles.gradation[1].radius, 2e-3);
   ASSERT_EQ(in.scene.particles.shapes.size(), 2u);
-  EXPECT_DOUBLE_EQ(in.scene.particles.shapes[0].b_over_a, 0.8);
+  EXPECT_DOUBLE_EQ(in.scene.particles.shapes[0].ratios[0], 0.8);
   EXPECT_EQ(in.scene.particles.shapes[0].number_fraction, 2.0);
   EXPECT_EQ(in.scene.contact_law, "hooke");
   bool stiffness = false;

@@ -67,7 +67,7 @@ TEST(ParallelEllipsoids, DepositionOf200PaperEllipsoidsIsBitwiseIdentical) {
 // work): the mixed pairs take the shaped path, sphere pairs the sphere path.
 TEST(ParallelEllipsoids, MixedSpheresAndEllipsoidsAreBitwiseIdentical) {
   SceneConfig s = ellipsoid_scene(200);
-  s.particles.shapes = {{1.0, 1.0, 3.0}, {0.6, 0.4, 1.0}};
+  s.particles.shapes = {ellipsoid_grain(1.0, 1.0, 3.0), ellipsoid_grain(0.6, 0.4, 1.0)};
   const ParticleStore p = fill_container(s);
   long ellipsoids = 0;
   for (std::size_t i = 0; i < p.size(); ++i) ellipsoids += p.is_ellipsoid(i) ? 1 : 0;

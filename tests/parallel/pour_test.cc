@@ -19,7 +19,7 @@ SceneConfig pour_scene(bool ellipsoids) {
   s.container.lx = s.container.ly = 0.02;
   s.particles.radius = 1e-3;
   s.particles.gradation = {{0.7e-3, 0.0}, {1e-3, 1.0}};
-  if (ellipsoids) s.particles.shapes = {{1.0, 1.0, 1.0}, {0.8, 0.6, 1.0}};
+  if (ellipsoids) s.particles.shapes = {ellipsoid_grain(1.0, 1.0, 1.0), ellipsoid_grain(0.8, 0.6, 1.0)};
   s.fill.bottom_gap = 0.0005;
   s.fill.velocity = Vec3::Zero();
   s.fill.velocity_jitter = 0.0;

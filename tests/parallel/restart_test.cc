@@ -151,7 +151,7 @@ TEST(Restart, EllipsoidsAndAMixContinueBitwise) {
   s.fill.velocity = Vec3(0, 0, -1.0);
   s.fill.velocity_jitter = 0.5;
   expect_restart_is_bitwise(s, 16000, 3000, "120 paper ellipsoids");
-  s.particles.shapes = {{1.0, 1.0, 3.0}, {0.6, 0.4, 1.0}};
+  s.particles.shapes = {ellipsoid_grain(1.0, 1.0, 3.0), ellipsoid_grain(0.6, 0.4, 1.0)};
   expect_restart_is_bitwise(s, 16000, 3000, "120 spheres and flat ellipsoids", false);
 }
 

@@ -157,7 +157,7 @@ TEST(Summation, FastOnManyRanksMatchesFastOnOneToRoundOff) {
 // ellipsoid_test.cc: to 1e-10 of the fields' scales).
 TEST(Summation, FastEllipsoidsOnManyRanksMatchFastOnOneToRoundOff) {
   SceneConfig s = test::patch_scene();
-  s.particles.shapes = {{1.0, 1.0, 1.0}, {1.0, 0.8, 0.6}};
+  s.particles.shapes = {ellipsoid_grain(1.0, 1.0, 1.0), ellipsoid_grain(1.0, 0.8, 0.6)};
   const ParticleStore p = fill_container(s);
   ASSERT_TRUE(p.has_shapes());
   constexpr int kSteps = 1000;

@@ -98,7 +98,7 @@ TEST(EllipsoidHardCases, ThinDiscLandsOnItsFaceWithoutGainingEnergy) {
   s.effects = {true, true, true, true, true, true};
   s.damping_ratio = 0.5;
   s.container.lx = s.container.ly = 0.1;
-  s.time_step = safe_step(s, a, {1.0, 0.1, 1.0}, 0.5);
+  s.time_step = safe_step(s, a, ellipsoid_grain(1.0, 0.1, 1.0), 0.5);
   ParticleStore p;
   p.add_ellipsoid(0, {Vec3(a, a, c), 2650, tilt(0.7, Vec3(1, 0.3, 0))},
                   {Vec3(0.05, 0.05, a + 2e-3), Vec3::Zero(), Vec3::Zero()});
@@ -140,7 +140,7 @@ TEST(EllipsoidHardCases, ThinDiscWithRollingResistanceComesToRestOnItsFace) {
   s.effects = {true, true, true, true, true, true, true};
   s.damping_ratio = 0.5;
   s.container.lx = s.container.ly = 0.1;
-  s.time_step = safe_step(s, a, {1.0, 0.1, 1.0}, 0.5);
+  s.time_step = safe_step(s, a, ellipsoid_grain(1.0, 0.1, 1.0), 0.5);
   ParticleStore p;
   p.add_ellipsoid(0, {Vec3(a, a, c), 2650, tilt(0.7, Vec3(1, 0.3, 0))},
                   {Vec3(0.05, 0.05, a + 2e-3), Vec3::Zero(), Vec3::Zero()});
@@ -191,7 +191,8 @@ TEST(EllipsoidHardCases, TenToOneGrainsTipToTipAndFaceToFace) {
     const double reach = k.axes.dot(k.direction);
     const double v = 0.5;
     s.time_step =
-        0.1 * safe_step(s, k.axes.x(), {k.axes.y() / k.axes.x(), k.axes.z() / k.axes.x(), 1.0}, 2 * v);
+        0.1 * safe_step(s, k.axes.x(), ellipsoid_grain(k.axes.y() / k.axes.x(), k.axes.z() / k.axes.x(), 1.0),
+                        2 * v);
     ParticleStore p;
     // A common orientation tilted away from the world axes (the solver works in any frame),
     // 1.5 m from the origin.
@@ -229,7 +230,7 @@ TEST(EllipsoidHardCases, OffCentreTenToOneImpactKeepsMomenta) {
   s.effects.rotation = true;
   const Vec3 needle(5e-3, 0.5e-3, 0.5e-3), disc(5e-3, 5e-3, 0.5e-3);
   const double v = 1.0;
-  s.time_step = 0.5 * safe_step(s, 5e-3, {1.0, 0.1, 1.0}, 2 * v);
+  s.time_step = 0.5 * safe_step(s, 5e-3, ellipsoid_grain(1.0, 0.1, 1.0), 2 * v);
   ParticleStore p;
   p.add_ellipsoid(0, {disc, 2650, tilt(0.2, Vec3(1, 1, 0))}, {Vec3(0, 0, 0), Vec3::Zero(), Vec3(0, 0, 20)});
   // The needle points down (its x axis along -z), 3 mm off the disc's axis, slightly tilted.
@@ -269,7 +270,7 @@ TEST(EllipsoidHardCases, ImpactAtTenMetresPerSecondStaysStable) {
     s.particles.material.youngs_modulus = 5e9;
     s.effects = {false, true, true, true, true, true};
     s.damping_ratio = 0.3;
-    s.time_step = safe_step(s, axes.x(), {0.6, 0.4, 1.0}, 10.0);
+    s.time_step = safe_step(s, axes.x(), ellipsoid_grain(0.6, 0.4, 1.0), 10.0);
     ParticleStore p;
     std::vector<PlaneWall> walls;
     const Eigen::Quaterniond q0 = tilt(1.1, Vec3(0.3, -1, 0.7));

@@ -86,7 +86,8 @@ TEST(ConstrainedCollapse, EllipsoidsCollapseToo) {
   SceneConfig s = collapse_scene();
   s.particles.count = 150;
   s.particles.gradation = {{1.0e-3, 0.0}, {2.5e-3, 1.0}};
-  s.particles.shapes = {{1.0, 1.0, 1.0}, {0.8, 0.6, 1.0}, {0.8, 0.4, 1.0}, {0.6, 0.4, 1.0}};
+  s.particles.shapes = {ellipsoid_grain(1.0, 1.0, 1.0), ellipsoid_grain(0.8, 0.6, 1.0),
+                        ellipsoid_grain(0.8, 0.4, 1.0), ellipsoid_grain(0.6, 0.4, 1.0)};
   s.container.gate_open_time = 0.2;
   s.time_step = 0.9 * estimate_time_step(s).safe_step;
   Simulation sim(s, fill_container(s));

@@ -77,7 +77,7 @@ TEST(EffectChoice, EllipsoidsRotateWithoutFriction) {
   SceneConfig s;
   s.friction = 0.0;
   for (double& mu : s.container.friction) mu = 0.0;
-  s.particles.shapes = {GrainShape{0.8, 0.6, 1.0}};
+  s.particles.shapes = {ellipsoid_grain(0.8, 0.6, 1.0)};
   const ChosenEffects c = choose_effects(s, {}, {});
   EXPECT_TRUE(c.set.rotation);
   EXPECT_NE(entry(c, "rotation").reason.find("ellipsoids"), std::string::npos);

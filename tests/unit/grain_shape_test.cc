@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <sstream>
 
 #include "dem/analysis/bed_state.h"
 #include "dem/core/error.h"
@@ -74,7 +75,8 @@ TEST(EllipsoidGrain, RefusesSemiAxesOutOfOrder) {
 
 TEST(GrainShapes, FractionsOrientationsAndValidation) {
   std::mt19937_64 rng(5);
-  const std::vector<GrainShape> mix = {{1.0, 1.0, 1.0}, {0.8, 0.6, 1.0}, {0.6, 0.4, 2.0}};
+  const std::vector<GrainShape> mix = {ellipsoid_grain(1.0, 1.0, 1.0), ellipsoid_grain(0.8, 0.6, 1.0),
+                                       ellipsoid_grain(0.6, 0.4, 2.0)};
   const std::vector<int> shape = assign_shapes(mix, 1001, rng);
   long count[3] = {0, 0, 0};
   for (int k : shape) ++count[k];
@@ -90,14 +92,65 @@ TEST(GrainShapes, FractionsOrientationsAndValidation) {
     mean += q * Vec3::UnitZ();
   }
   EXPECT_LT((mean / n).norm(), 4.0 / std::sqrt(static_cast<double>(n)));
-  EXPECT_THROW(validate_shapes({{1.0, 1.0, 1.0}, {0.4, 0.6, 1.0}}), Error);
-  EXPECT_THROW(validate_shapes({{0.8, 0.6, 0.0}}), Error);
+  EXPECT_THROW(validate_shapes({ellipsoid_grain(1.0, 1.0, 1.0), ellipsoid_grain(0.4, 0.6, 1.0)}), Error);
+  EXPECT_THROW(validate_shapes({ellipsoid_grain(0.8, 0.6, 0.0)}), Error);
   EXPECT_NO_THROW(validate_shapes(mix));
   try {
-    validate_shapes({{1.0, 1.0, 1.0}, {0.4, 0.6, 1.0}});
+    validate_shapes({ellipsoid_grain(1.0, 1.0, 1.0), ellipsoid_grain(0.4, 0.6, 1.0)});
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("shape 2"), std::string::npos) << e.what();
   }
+}
+
+// A scene's mix goes through the shape table: the text reads back as written, a name picks the
+// row, equal dimensions are the sphere, and each row's scales and stored ratios are its own.
+TEST(GrainShapes, TheMixIsReadWrittenAndScaledThroughTheShapeTable) {
+  const auto text = [](const GrainShape& g) {
+    return format_grain_shape(g, [](double v) {
+      std::ostringstream s;
+      s << v;
+      return s.str();
+    });
+  };
+  const GrainShape e = read_grain_shape(" 10:8:6@2");
+  EXPECT_EQ(e.kind, ShapeKind::ellipsoid);
+  EXPECT_DOUBLE_EQ(e.ratios[0], 0.8);
+  EXPECT_DOUBLE_EQ(e.ratios[1], 0.6);
+  EXPECT_EQ(e.number_fraction, 2.0);
+  EXPECT_EQ(text(e), "1:0.8:0.6");
+  EXPECT_EQ(read_grain_shape("ellipsoid 1:0.8:0.6").ratios, e.ratios);
+  EXPECT_TRUE(read_grain_shape("2:2:2").is_sphere());
+  EXPECT_TRUE(read_grain_shape("sphere 3").is_sphere());
+  EXPECT_EQ(text(read_grain_shape("sphere 3")), "1:1:1");
+  EXPECT_THROW(read_grain_shape("1:0.8"), Error);
+  EXPECT_THROW(read_grain_shape("sphere 1:1"), Error);
+  try {
+    (void)read_grain_shape("cube 1:1:1");
+    ADD_FAILURE() << "an unknown shape was read";
+  } catch (const Error& err) {
+    EXPECT_NE(std::string(err.what()).find("no shape is named 'cube' (the shapes: sphere, ellipsoid)"),
+              std::string::npos)
+        << err.what();
+  }
+  const ShapeScales k = scales(e);
+  EXPECT_DOUBLE_EQ(k.thinnest, 0.6);
+  EXPECT_DOUBLE_EQ(k.flattest, 0.8 / 0.6);
+  EXPECT_DOUBLE_EQ(k.volume, 0.8 * 0.6);
+  EXPECT_EQ(scales(GrainShape{}).volume, 1.0);
+  EXPECT_EQ(shape_nouns({GrainShape{}, e}), "ellipsoids");
+  EXPECT_EQ(shape_nouns({GrainShape{}}), "");
+  // add_grain makes the grain of its row; grain_shape_of reads its ratios back.
+  ParticleStore p;
+  add_grain(p, GrainShape{}, 1, 2e-3, 2500, Eigen::Quaterniond::Identity(),
+            {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
+  add_grain(p, e, 2, 2e-3, 2500, Eigen::Quaterniond::Identity(), {Vec3::Ones(), Vec3::Zero(), Vec3::Zero()});
+  ASSERT_TRUE(p.has_shapes());
+  EXPECT_EQ(p.kind(0), ShapeKind::sphere);
+  EXPECT_EQ(p.kind(1), ShapeKind::ellipsoid);
+  EXPECT_EQ(p.semi_axes[1], Vec3(2e-3, 2e-3 * 0.8, 2e-3 * 0.6));
+  EXPECT_TRUE(grain_shape_of(p, 0).is_sphere());
+  EXPECT_NEAR(grain_shape_of(p, 1).ratios[0], 0.8, 1e-15);
+  EXPECT_NEAR(grain_shape_of(p, 1).ratios[1], 0.6, 1e-15);
 }
 
 TEST(GrainShapes, AFillPlacesTheSameCentresWhateverTheShapes) {
@@ -106,7 +159,8 @@ TEST(GrainShapes, AFillPlacesTheSameCentresWhateverTheShapes) {
   s.particles.gradation = {{1e-3, 0.0}, {2.5e-3, 1.0}};
   s.container.lx = s.container.ly = 0.03;
   const ParticleStore spheres = fill_container(s);
-  s.particles.shapes = {{1.0, 1.0, 1.0}, {0.8, 0.6, 1.0}, {0.8, 0.4, 1.0}, {0.6, 0.4, 1.0}};
+  s.particles.shapes = {ellipsoid_grain(1.0, 1.0, 1.0), ellipsoid_grain(0.8, 0.6, 1.0),
+                        ellipsoid_grain(0.8, 0.4, 1.0), ellipsoid_grain(0.6, 0.4, 1.0)};
   const ParticleStore mixed = fill_container(s);
   ASSERT_TRUE(mixed.has_shapes());
   long ellipsoids = 0;

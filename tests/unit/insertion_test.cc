@@ -110,7 +110,7 @@ TEST(Insertion, AFullInletPlacesAPrefixAndABlockedOneNothing) {
 TEST(Insertion, PlanFollowsTheGradationAndShapesAndIsReproducible) {
   SceneConfig s = pour_scene();
   s.particles.gradation = {{0.8e-3, 0.0}, {1.2e-3, 1.0}};
-  s.particles.shapes = {{1.0, 1.0, 2.0}, {0.8, 0.6, 1.0}};
+  s.particles.shapes = {ellipsoid_grain(1.0, 1.0, 2.0), ellipsoid_grain(0.8, 0.6, 1.0)};
   const PourPlan a = plan_pour(s), b = plan_pour(s);
   ASSERT_EQ(a.radius.size(), 300u);
   EXPECT_EQ(a.radius, b.radius);
@@ -126,8 +126,8 @@ TEST(Insertion, PlanFollowsTheGradationAndShapesAndIsReproducible) {
   const std::size_t k = 5;
   const double r = a.radius[k];
   const GrainShape g = s.particles.shapes[static_cast<std::size_t>(a.shape[k])];
-  const double m =
-      s.particles.material.density * 4.0 / 3.0 * std::numbers::pi * r * r * r * g.b_over_a * g.c_over_a;
+  const double b_c = g.is_sphere() ? 1.0 : g.ratios[0] * g.ratios[1];  // b/a c/a
+  const double m = s.particles.material.density * 4.0 / 3.0 * std::numbers::pi * r * r * r * b_c;
   EXPECT_NEAR(a.cumulative_mass[k] - a.cumulative_mass[k - 1], m, 1e-12 * m);
   // The fill's stream is not the pour's: adding a pour leaves the initial grains alone, and
   // another seed gives another pour.

@@ -36,34 +36,18 @@ std::vector<dem::GradationPoint> parse_gradation(const std::string& text) {
   return curve;
 }
 
-// "1:0.8:0.6@0.5, 1:0.6:0.4" -> shapes with aspect ratios and number fractions.
+// "1:0.8:0.6@0.5, 1:0.6:0.4" -> shapes, each read by its row of the shape table.
 std::vector<dem::GrainShape> parse_shapes(const std::string& text) {
   std::vector<dem::GrainShape> shapes;
   std::istringstream in(text);
   std::string item;
   while (std::getline(in, item, ',')) {
     if (item.find_first_not_of(" \t") == std::string::npos) continue;
-    const auto at = item.find('@');
-    std::string ratios = item.substr(0, at);
-    for (char& c : ratios)
-      if (c == ':') c = ' ';
-    std::istringstream r(ratios);
-    double a = 0.0;
-    dem::GrainShape shape;
-    std::string rest;
-    bool ok = static_cast<bool>(r >> a >> shape.b_over_a >> shape.c_over_a) && !(r >> rest) && a > 0.0;
-    if (ok && at != std::string::npos) {
-      std::istringstream f(item.substr(at + 1));
-      ok = static_cast<bool>(f >> shape.number_fraction) && !(f >> rest);
+    try {
+      shapes.push_back(dem::read_grain_shape(item));
+    } catch (const Error& e) {
+      throw Error(std::string("Particles/shapes: ") + e.what());
     }
-    if (!ok)
-      throw Error("Particles/shapes: cannot read the shape '" + item +
-                  "'; write aspect ratios 'a:b:c' with an optional '@fraction', separated by commas, "
-                  "e.g. '1:0.8:0.6, 1:0.6:0.4@2'");
-    // Ratios to a (a:b:c may be given in any unit, e.g. 10:8:6).
-    shape.b_over_a /= a;
-    shape.c_over_a /= a;
-    shapes.push_back(shape);
   }
   return shapes;
 }
@@ -101,8 +85,7 @@ Entry shapes(std::string doc) {
           [](SceneInput& in) {
             std::vector<std::string> items;
             for (const dem::GrainShape& s : in.scene.particles.shapes)
-              items.push_back("1:" + format_real(s.b_over_a) + ":" + format_real(s.c_over_a) + "@" +
-                              format_real(s.number_fraction));
+              items.push_back(dem::format_grain_shape(s, format_real) + "@" + format_real(s.number_fraction));
             return join(items);
           }};
 }

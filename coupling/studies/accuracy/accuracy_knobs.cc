@@ -17,7 +17,7 @@ std::string number(double v) {
   return b;
 }
 
-bool has_ellipsoids(const SceneInput& in) { return dem::has_ellipsoids(in.scene.particles.shapes); }
+bool has_shapes(const SceneInput& in) { return dem::has_shapes(in.scene.particles.shapes); }
 
 KnobSetting setting(std::string knob, std::string label, double value, bool is_default) {
   KnobSetting k;
@@ -137,15 +137,15 @@ std::vector<KnobSetting> knob_settings(const SceneInput& base, const AccuracyOpt
     }
   }
   if (chosen("shape")) {
-    if (!has_ellipsoids(base)) {
+    if (!has_shapes(base)) {
       skipped.push_back("shape: the scene has spheres only");
     } else {
-      // Spheres of the mix's mean grain volume: the major semi-axis scaled by the number-weighted
-      // mean of cbrt(b/a c/a).
+      // Spheres of the mix's mean grain volume: the size scaled by the number-weighted mean of
+      // the cube root of each shape's volume over its size's sphere (an ellipsoid's b/a c/a).
       double weight = 0.0, factor = 0.0;
       for (const dem::GrainShape& g : s.particles.shapes) {
         weight += g.number_fraction;
-        factor += g.number_fraction * std::cbrt(g.b_over_a * g.c_over_a);
+        factor += g.number_fraction * std::cbrt(dem::scales(g).volume);
       }
       factor /= weight;
       KnobSetting own = setting("shape", "the scene's shapes", 1.0, true);
@@ -183,7 +183,7 @@ std::vector<KnobSetting> knob_settings(const SceneInput& base, const AccuracyOpt
   // The ellipsoid contact solver's stopping rules (dem/contact/contact_solver_settings.h).
   const dem::ContactSolverSettings& solver = s.contact_solver;
   if (chosen("solver tolerance")) {
-    if (!has_ellipsoids(base)) {
+    if (!has_shapes(base)) {
       skipped.push_back("solver tolerance: the scene has spheres only (no contact solver)");
     } else {
       nonempty(o.solver_tolerances, "solver tolerances");
@@ -199,7 +199,7 @@ std::vector<KnobSetting> knob_settings(const SceneInput& base, const AccuracyOpt
     }
   }
   if (chosen("solver iterations")) {
-    if (!has_ellipsoids(base)) {
+    if (!has_shapes(base)) {
       skipped.push_back("solver iterations: the scene has spheres only (no contact solver)");
     } else {
       nonempty(o.solver_iteration_caps, "solver iteration caps");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <utility>
 #include <vector>
@@ -19,10 +20,17 @@ ContactSolverError contact_solver_error(const dem::SceneConfig& scene,
                                         double depth_over_c, double warm_angle) {
   const std::vector<dem::GrainShape>& shapes = scene.particles.shapes;
   std::vector<std::pair<dem::Vec3, dem::Vec3>> kinds;
+  // The semi-axes over a of each shape the reference constructs: the ellipsoid's, and the
+  // sphere's as the ellipsoid of equal axes (another shape's contacts have references of their own).
+  auto axes = [](const dem::GrainShape& g) -> std::optional<dem::Vec3> {
+    if (g.is_sphere()) return dem::Vec3::Ones();
+    if (g.kind == dem::ShapeKind::ellipsoid) return dem::Vec3(1.0, g.ratios[0], g.ratios[1]);
+    return std::nullopt;
+  };
   for (std::size_t i = 0; i < shapes.size(); ++i)
     for (std::size_t j = i; j < shapes.size(); ++j)
-      if (!(shapes[i].is_sphere() && shapes[j].is_sphere()))
-        kinds.emplace_back(shapes[i].semi_axes(1.0), shapes[j].semi_axes(1.0));
+      if (!(shapes[i].is_sphere() && shapes[j].is_sphere()) && axes(shapes[i]) && axes(shapes[j]))
+        kinds.emplace_back(*axes(shapes[i]), *axes(shapes[j]));
   ContactSolverError e;
   if (kinds.empty() || pairs < 1) return e;
   std::mt19937_64 rng(20261203);
