@@ -41,7 +41,7 @@ struct SceneInput {
   // The built-in default scene (docs/parameters.md): each entry's default is the initialiser of
   // the member it fills, but where a scene file's default differs from the plain default of the
   // engine's or the run's structs, which code that drives them uses. Those are given here once:
-  // about 2,000 spheres in a 4.5 cm square box, with Young's modulus lowered from the paper's
+  // about 2,000 spheres in a 4.5 cm square box, with Young's modulus lowered from Yan and Regueiro's
   // tens of GPa (Yan and Regueiro, docs/stress.md) to 5 GPa so that the default study takes
   // minutes; a scene's run stops at rest and relaxes the bed before its final stress, and writes
   // every grid-stress formula.

@@ -110,16 +110,16 @@ ChosenEffects choose_effects(const SceneConfig& s, const EffectSwitches& sw, con
 
   if (rolling_on && !set.rotation)
     throw Error("Effects/rolling resistance needs Effects/rotation = true (it acts on the spins)");
-  set.rolling_resistance =
-      add({"rolling resistance", sw.rolling_resistance, false,
-           "not part of the paper's law: on only when set (Effects/rolling resistance = true)", false});
+  set.rolling_resistance = add(
+      {"rolling resistance", sw.rolling_resistance, false,
+       "not part of Yan and Regueiro's law: on only when set (Effects/rolling resistance = true)", false});
   if (sw.twisting_resistance == EffectSwitch::on && !set.rolling_resistance)
     throw Error(
         "Effects/twisting resistance needs Effects/rolling resistance = true (the twisting spring is a part "
         "of the rolling resistance's springs)");
-  set.twisting_resistance =
-      add({"twisting resistance", sw.twisting_resistance, false,
-           "not part of the paper's law: on only when set (Effects/twisting resistance = true)", false});
+  set.twisting_resistance = add(
+      {"twisting resistance", sw.twisting_resistance, false,
+       "not part of Yan and Regueiro's law: on only when set (Effects/twisting resistance = true)", false});
   return out;
 }
 

@@ -42,15 +42,16 @@ Section effects_section() {
        effect("energy tracking", &dem::EffectSwitches::energy_tracking,
               "Accumulate elastic energy and dissipation per contact for the energy balance. auto: on "
               "when Output/energy balance is true."),
-       effect("rolling resistance", &dem::EffectSwitches::rolling_resistance,
-              "Rolling resistance at every contact: elastic-plastic spring-dashpot (Iwashita and Oda "
-              "1998; Ai et al. 2011, model C), |M_r| <= mu_r R* F_n. Not part of the paper's law: auto is"
-              " off. Needs rotation."),
+       effect(
+           "rolling resistance", &dem::EffectSwitches::rolling_resistance,
+           "Rolling resistance at every contact: elastic-plastic spring-dashpot (Iwashita and Oda "
+           "1998; Ai et al. 2011, model C), |M_r| <= mu_r R* F_n. Not part of Yan and Regueiro's law: auto is"
+           " off. Needs rotation."),
        effect("twisting resistance", &dem::EffectSwitches::twisting_resistance,
               "Twisting resistance at every contact: Hertz–Mindlin torsion of the contact circle (Lubkin "
               "1951; Johnson 1985, 7.4), stiffness 16/3 G a^3, full slip at 3 pi/16 mu a F_n, with the "
               "rolling dashpot's damping ratio. Stops grains spinning about a contact normal (needles, "
-              "discs). Not part of the paper's law: auto is off. Needs rolling resistance.")},
+              "discs). Not part of Yan and Regueiro's law: auto is off. Needs rolling resistance.")},
       nullptr};
 }
 

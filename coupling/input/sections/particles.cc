@@ -103,7 +103,8 @@ Section particles_section() {
                  "'1.0e-3:0, 1.5e-3:0.4, 2.5e-3:1'. Empty: monodisperse."),
        shapes("Grain shapes as comma-separated aspect ratios 1:b/a:c/a, each with an optional number "
               "fraction after '@' (equal shares without), e.g. '1:1:1, 1:0.8:0.6, 1:0.8:0.4, 1:0.6:0.4' "
-              "(the paper's four). Empty: spheres. The radius (or gradation) is each grain's major "
+              "(Yan and Regueiro's four, docs/ellipsoids.md). Empty: spheres. The radius (or gradation) is "
+              "each grain's major "
               "semi-axis a; orientations are uniformly random."),
        text("initial packing", at(&SceneInput::initial_packing), "-",
             "Start from the grains of this file instead of a fill: a text table (CSV or whitespace; "
@@ -113,7 +114,7 @@ Section particles_section() {
             "the Fill section are then not used; the grains take this section's material. Empty: fill "
             "the container (docs/input.md)."),
        real("density", particles(&dem::ParticleSpec::material, &dem::Material::density), 1.0, 1e5, "kg/m^3",
-            "Grain density (specific gravity 2.65 in the paper)."),
+            "Grain density (specific gravity 2.65 in Yan and Regueiro's beds, docs/stress.md)."),
        real("youngs modulus", particles(&dem::ParticleSpec::material, &dem::Material::youngs_modulus), 1e3,
             1e13, "Pa", "Young's modulus of the grains and walls."),
        real("poisson ratio", particles(&dem::ParticleSpec::material, &dem::Material::poisson_ratio), 0.0,

@@ -73,7 +73,8 @@ Section accuracy_section() {
                "Ellipsoid contact solver iteration caps to try (Contact/solver iterations)."),
        numbers("relaxation tolerances", accuracy(&AccuracyOptions::relaxation_tolerances), "-",
                "FIRE tolerances to try (Study/relaxation tolerance)."),
-       grids("Stress grids to try, cells along x y z, separated by ';' (the paper's grid-size study)."),
+       grids("Stress grids to try, cells along x y z, separated by ';' (Yan and Regueiro's grid-size study, "
+             "docs/stress.md)."),
        numbers("fem degrees", accuracy(&AccuracyOptions::fem_degrees), "-",
                "Polynomial degrees of the continuum to try against its analytic solution."),
        numbers("fem refinements", accuracy(&AccuracyOptions::fem_refinements), "-",

@@ -237,7 +237,8 @@ void comparison_section(std::ostringstream& m, const StudyRecord& s) {
        "K0; "
        "walls with friction carry part of the weight (Janssen's effect), most near the walls, which spreads "
        "each "
-       "level; the DEM bed adds the packing's own unevenness (the paper's microstructural effect).\n\n";
+       "level; the DEM bed adds the packing's own unevenness (Yan and Regueiro's microstructural effect, "
+       "docs/stress.md).\n\n";
 }
 
 // The coarse-grained fields against the column on rollers, on its mesh (docs/coarse-graining.md).

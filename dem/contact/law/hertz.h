@@ -22,7 +22,8 @@ namespace upgrain::dem {
 struct HertzNormal {
   static constexpr const char* name = "hertz-mindlin";
   static constexpr const char* description =
-      "Hertz normal force and Mindlin tangential stiffness from the grains' E and nu (the paper's law).";
+      "Hertz normal force and Mindlin tangential stiffness from the grains' E and nu (Yan and Regueiro's "
+      "law).";
   static constexpr bool needs_history = false;
   static constexpr bool needs_rotation = false;
   // Its constants: the effective moduli of the contact, from the grains' E and nu (Particles
