@@ -111,7 +111,8 @@ class SceneRun {
     }
     if (output) history_.scene_source = output->checkpoint.source;
     files_.record_series(sim);
-    allocating("a snapshot (every grain's state, gathered on rank 0)", [&] { files_.write_snapshot(sim); });
+    allocating("a snapshot (each rank's rows of the state; a force network's gathered on rank 0)",
+               [&] { files_.write_snapshot(sim); });
     keep_replay_start();
     // Grid stress needs the contacts of a force evaluation, which are recorded on request
     // before the step that computes them (Simulation::request_contacts()).
@@ -152,7 +153,7 @@ class SceneRun {
       }
       if (files_.enabled() && (schedule_.snapshot_due(s) || r.stopped_at_rest)) {
         if (!series_now) files_.record_series(sim_);
-        allocating("a snapshot (every grain's state, gathered on rank 0)",
+        allocating("a snapshot (each rank's rows of the state; a force network's gathered on rank 0)",
                    [&] { files_.write_snapshot(sim_); });
         if (!r.stopped_at_rest) keep_replay_start();
       }

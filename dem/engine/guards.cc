@@ -78,8 +78,13 @@ std::string lost_particles(long count, long expected, long step) {
 
 std::string inconsistent_state(const ParticleStore& sorted, long expected_count, double mass,
                                double expected_mass, long step) {
-  const long n = static_cast<long>(sorted.size());
-  const bool unique = std::adjacent_find(sorted.id.begin(), sorted.id.end()) == sorted.id.end();
+  return inconsistent_state(static_cast<long>(sorted.size()),
+                            std::adjacent_find(sorted.id.begin(), sorted.id.end()) == sorted.id.end(),
+                            expected_count, mass, expected_mass, step);
+}
+
+std::string inconsistent_state(long n, bool unique, long expected_count, double mass, double expected_mass,
+                               long step) {
   if (n == expected_count && unique && mass == expected_mass) return {};
   std::ostringstream m;
   m.precision(17);

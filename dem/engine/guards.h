@@ -40,5 +40,9 @@ std::string lost_particles(long count, long expected, long step);
 // reference (summed in id order, so the same bits at every output).
 std::string inconsistent_state(const ParticleStore& sorted, long expected_count, double mass,
                                double expected_mass, long step);
+// The same from its figures: `count` particles, `unique` when every id appears once (for the
+// slices of Simulation::whole_state_slice(): each slice holds exactly its rows' ids).
+std::string inconsistent_state(long count, bool unique, long expected_count, double mass,
+                               double expected_mass, long step);
 
 }  // namespace upgrain::dem

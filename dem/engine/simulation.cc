@@ -527,48 +527,88 @@ const ParticleStore& Simulation::whole_state() {
 
 namespace {
 
-// The owned particles of every rank on rank 0, sorted by global id: `pack` makes a record
-// of one particle (with .gid, or .state.gid), `append` adds one to the result.
-template <typename Record, typename Pack, typename Append>
-ParticleStore gather_by_id(int n_owned, MPI_Comm comm, Pack pack, Append append) {
+struct ShapedStateRecord {
+  StateRecord state;
+  ShapeRecord shape;
+};
+
+GlobalId record_id(const StateRecord& r) { return r.gid; }
+GlobalId record_id(const ShapedStateRecord& r) { return r.state.gid; }
+
+// The records `collect` brings to this rank from the owned particles of every rank, sorted by
+// global id: `pack` makes a record of one particle, `append` adds one to the result.
+template <typename Record, typename Pack, typename Append, typename Collect>
+ParticleStore collected_by_id(int n_owned, Pack pack, Append append, Collect collect) {
   std::vector<Record> mine;
   mine.reserve(static_cast<std::size_t>(n_owned));
   for (int i = 0; i < n_owned; ++i) mine.push_back(pack(static_cast<std::size_t>(i)));
-  std::vector<Record> all = gather_to_root(mine, comm);
-  auto gid = [](const Record& r) {
-    if constexpr (requires { r.gid; })
-      return r.gid;
-    else
-      return r.state.gid;
-  };
-  std::sort(all.begin(), all.end(), [&](const Record& a, const Record& b) { return gid(a) < gid(b); });
+  std::vector<Record> all = collect(mine);
+  std::vector<Record>().swap(mine);
+  std::sort(all.begin(), all.end(),
+            [&](const Record& a, const Record& b) { return record_id(a) < record_id(b); });
   ParticleStore out;
   out.reserve(all.size());
   for (const Record& r : all) append(out, r);
   return out;
 }
 
-struct ShapedStateRecord {
-  StateRecord state;
-  ShapeRecord shape;
-};
-
 }  // namespace
 
-ParticleStore Simulation::gather_sorted_by_id() const {
+template <class Collect>
+ParticleStore Simulation::collect_by_id(Collect collect) const {
   if (shapes_)
-    return gather_by_id<ShapedStateRecord>(
-        n_owned_, comm(),
+    return collected_by_id<ShapedStateRecord>(
+        n_owned_,
         [&](std::size_t i) {
           return ShapedStateRecord{pack_state(p_, i), pack_shape(p_, i)};
         },
         [](ParticleStore& out, const ShapedStateRecord& r) {
           append_state(out, r.state);
           append_shape(out, r.shape);
-        });
-  return gather_by_id<StateRecord>(
-      n_owned_, comm(), [&](std::size_t i) { return pack_state(p_, i); },
-      [](ParticleStore& out, const StateRecord& r) { append_state(out, r); });
+        },
+        collect);
+  return collected_by_id<StateRecord>(
+      n_owned_, [&](std::size_t i) { return pack_state(p_, i); },
+      [](ParticleStore& out, const StateRecord& r) { append_state(out, r); }, collect);
+}
+
+ParticleStore Simulation::gather_sorted_by_id() const {
+  return collect_by_id([&](const auto& mine) { return gather_to_root(mine, comm()); });
+}
+
+IdSlice Simulation::whole_state_slice() {
+  int size = 1;
+  MPI_Comm_size(comm(), &size);
+  IdSlice s;
+  s.total_rows = n_global_;
+  s.shapes = shapes_;
+  s.first_row = first_row(n_global_, rank(), size);
+  const long end = first_row(n_global_, rank() + 1, size);
+  s.grains = collect_by_id([&](const auto& mine) {
+    return send_to_ranks(mine, comm(),
+                         [&](const auto& r) { return row_owner(record_id(r), n_global_, size); });
+  });
+  // Every grain once: this rank's rows hold exactly the ids first_row .. end - 1.
+  long misplaced = static_cast<long>(s.grains.size()) == end - s.first_row ? 0 : 1;
+  for (std::size_t k = 0; k < s.grains.size() && misplaced == 0; ++k)
+    if (s.grains.id[k] != s.first_row + static_cast<long>(k)) misplaced = 1;
+  // The mass in id order, continued from rank to rank: the sum whole_state() takes, bit for bit
+  // (a chain of size - 1 messages of one double, at output time only).
+  double mass = 0.0;
+  if (rank() > 0) MPI_Recv(&mass, 1, MPI_DOUBLE, rank() - 1, 0, comm(), MPI_STATUS_IGNORE);
+  for (std::size_t k = 0; k < s.grains.size(); ++k) mass += s.grains.mass(k);
+  if (rank() + 1 < size) MPI_Send(&mass, 1, MPI_DOUBLE, rank() + 1, 0, comm());
+  if (size > 1 && rank() == size - 1) MPI_Send(&mass, 1, MPI_DOUBLE, 0, 1, comm());
+  if (size > 1 && is_root()) MPI_Recv(&mass, 1, MPI_DOUBLE, size - 1, 1, comm(), MPI_STATUS_IGNORE);
+  long counts[2] = {static_cast<long>(s.grains.size()), misplaced};
+  MPI_Reduce(is_root() ? MPI_IN_PLACE : counts, counts, 2, MPI_LONG, MPI_SUM, 0, comm());
+  std::string error;
+  if (is_root()) {
+    if (reference_mass_ < 0.0) reference_mass_ = mass;
+    error = inconsistent_state(counts[0], counts[1] == 0, n_global_, mass, reference_mass_, step_);
+  }
+  throw_if_any(comm(), error);
+  return s;
 }
 
 std::vector<int> Simulation::gather_owners_sorted_by_id() const {

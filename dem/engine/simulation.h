@@ -60,6 +60,14 @@ inline constexpr double kRunawayOverlapRatio = 0.25;
 // order 1e100 inside the domain, and no contact can form (distance() stays finite).
 inline constexpr double kRemovedWallDistance = 1e100;
 
+// A rank's rows of an id-sorted whole (Simulation::whole_state_slice()).
+struct IdSlice {
+  ParticleStore grains;  // rows first_row .. first_row + grains.size() - 1, sorted by id
+  long first_row = 0;
+  long total_rows = 0;  // the whole's
+  bool shapes = false;  // the scene's grains have shapes (also when this slice is empty)
+};
+
 class Simulation {
  public:
   // The particles of rank 0 are the scene (other ranks may pass the same or an empty store);
@@ -116,6 +124,13 @@ class Simulation {
   // The same, checked (guards.h: no particle lost or doubled, the mass unchanged since the
   // first call) and kept until the next call or step; the reference is valid on rank 0.
   [[nodiscard]] const ParticleStore& whole_state();
+  // This rank's rows of the whole state sorted by id, for output that every rank writes its
+  // share of (docs/parallel.md, "Output"): the grains of ids first_row(n, r, P) ..
+  // first_row(n, r + 1, P) - 1 (exchange.h), sent by their owners (one all-to-all), sorted by
+  // id. Checked as whole_state() is, with the same mass summed in id order (continued from
+  // rank to rank) and the same reference: a slice that does not hold exactly its rows' ids
+  // stops the run on every rank. No rank holds more than its share. Collective.
+  [[nodiscard]] IdSlice whole_state_slice();
   // The rank that owns each particle, in the order of gather_sorted_by_id() (its compute
   // grid: the block that held its centroid at the last migration), on rank 0.
   [[nodiscard]] std::vector<int> gather_owners_sorted_by_id() const;
@@ -323,6 +338,9 @@ class Simulation {
   EnergyBalance e0_;
   ContactSolverStats solver_stats_;  // this rank's, cumulative
   StepTimings timings_;
+  // The owned grains of every rank that `collect` brings here, sorted by id.
+  template <class Collect>
+  [[nodiscard]] ParticleStore collect_by_id(Collect collect) const;
   ParticleStore gathered_;        // whole_state()
   double reference_mass_ = -1.0;  // of the first whole_state() (rank 0)
 };

@@ -1,6 +1,7 @@
 #include "dem/files/atomic_file.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -56,6 +57,31 @@ void write_bytes(const std::filesystem::path& path, const void* data, std::size_
   const int e = errno;
   if (::close(fd) != 0 || !synced)
     throw Error("cannot write " + name + ": " + std::strerror(synced ? errno : e));
+}
+
+void reserve_bytes(const std::filesystem::path& path, std::size_t n, const std::string& name) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw Error("cannot write " + name + ": " + std::strerror(errno));
+  int e = 0;
+  if (n > 0 && ::fallocate(fd, FALLOC_FL_KEEP_SIZE, 0, static_cast<off_t>(n)) != 0 && errno != EOPNOTSUPP)
+    e = errno;
+  ::close(fd);
+  if (e != 0) throw Error("cannot write " + name + ": " + std::strerror(e));
+}
+
+void sync_reserved(const std::filesystem::path& path, std::size_t n, const std::string& name) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd < 0) throw Error("cannot write " + name + ": " + std::strerror(errno));
+  struct stat st {};
+  bool ok = ::fstat(fd, &st) == 0;
+  // The blocks reserved past the end are freed (a hole beyond the end keeps the size).
+  if (ok && static_cast<std::size_t>(st.st_size) < n)
+    ok = ::fallocate(fd, FALLOC_FL_PUNCH_HOLE | FALLOC_FL_KEEP_SIZE, st.st_size,
+                     static_cast<off_t>(n) - st.st_size) == 0 ||
+         errno == EOPNOTSUPP;
+  ok = ok && ::fsync(fd) == 0;
+  const int e = errno;
+  if (::close(fd) != 0 || !ok) throw Error("cannot write " + name + ": " + std::strerror(ok ? errno : e));
 }
 
 void write_text_atomically(const std::filesystem::path& path, const std::string& text) {

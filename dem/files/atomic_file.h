@@ -30,6 +30,15 @@ class AtomicFile {
 // upgrain::Error "cannot write <name>: <reason>" (a full disk: "No space left on device").
 void write_bytes(const std::filesystem::path& path, const void* data, std::size_t n, const std::string& name);
 
+// Creates `path` (empty) and reserves `n` bytes of the disk for it past its end (fallocate with
+// FALLOC_FL_KEEP_SIZE: its size stays 0), so that a full disk or a size limit shows here, as
+// "cannot write <name>: <reason>", before a writer that cannot report them cleanly (parallel
+// HDF5) writes into it. A file system without fallocate reserves nothing.
+void reserve_bytes(const std::filesystem::path& path, std::size_t n, const std::string& name);
+// Once the file is written: syncs it to the disk and hands back what reserve_bytes() reserved
+// past its end; throws "cannot write <name>: <reason>".
+void sync_reserved(const std::filesystem::path& path, std::size_t n, const std::string& name);
+
 // Writes `text` to `path` atomically.
 void write_text_atomically(const std::filesystem::path& path, const std::string& text);
 

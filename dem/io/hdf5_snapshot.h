@@ -1,6 +1,8 @@
 #pragma once
 // Particle snapshots in HDF5 (one file per output step), particles sorted by global id so
 // that files do not depend on the internal order (or, later, on the rank count).
+#include <mpi.h>
+
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -26,6 +28,23 @@ struct SnapshotInfo {
 // (N x 9: Q diag(a, b, c) Q^T, row-major)}; radius is then the bounding radius a.
 // A periodic cell's scene (`images`, docs/periodic.md) adds /particles/image (N x 3 int32: the
 // crossings of each axis, unwrapped position = position + image L).
+//
+// Every rank of `comm` writes its rows into the one file with collective MPI-IO (parallel HDF5,
+// hyperslab selections): `p` holds rows where.first .. where.first + p.size() - 1 of the
+// where.total grains sorted by id (Simulation::whole_state_slice()), and no rank holds more.
+// The walls and attributes are the same on every rank (rank 0 writes the walls' rows). The
+// data sets' bytes do not depend on how the rows are divided, and neither do the file's
+// (docs/output.md, "Snapshots"). Collective; an error is thrown on every rank.
+struct SnapshotRows {
+  long first = 0;
+  long total = 0;
+  bool images = false;  // a periodic cell's image counters
+  bool shapes = false;  // the ellipsoid data sets (the scene's, also on a rank without grains)
+};
+void write_snapshot(MPI_Comm comm, const std::filesystem::path& path, const ParticleStore& p,
+                    const SnapshotRows& where, const std::vector<PlaneWall>& walls,
+                    const std::vector<Vec3>& wall_force, double time, long step);
+// The same for a whole store on one process (any order: it is sorted by id first).
 void write_snapshot(const std::filesystem::path& path, const ParticleStore& p,
                     const std::vector<PlaneWall>& walls, const std::vector<Vec3>& wall_force, double time,
                     long step, bool images = false);

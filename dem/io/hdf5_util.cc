@@ -1,9 +1,11 @@
 #include "dem/io/hdf5_util.h"
 
 #include <algorithm>
+#include <optional>
 
 #include "dem/core/error.h"
 #include "dem/files/atomic_file.h"
+#include "dem/parallel/exchange.h"
 
 namespace upgrain::dem::io::hdf5 {
 
@@ -81,6 +83,92 @@ hid_t create_group(hid_t parent, const std::string& name) {
   const hid_t g = H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, properties, H5P_DEFAULT);
   if (g < 0) throw Error("HDF5: cannot create group " + name);
   return g;
+}
+
+hid_t create_shared_file(MPI_Comm comm, const std::filesystem::path& path) {
+  Handle access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "create a file access property list");
+  if (H5Pset_fapl_mpio(access, comm, MPI_INFO_NULL) < 0 || H5Pset_all_coll_metadata_ops(access, true) < 0 ||
+      H5Pset_coll_metadata_write(access, true) < 0)
+    throw Error("HDF5: cannot select the MPI-IO file driver");
+  const hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access);
+  if (f < 0) throw Error("HDF5: cannot create " + path.string());
+  return f;
+}
+
+void write_shared_file(MPI_Comm comm, const std::filesystem::path& path, std::size_t bytes,
+                       const std::function<void(hid_t)>& fill) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  std::optional<AtomicFile> target;  // rank 0
+  std::string temporary, error;
+  if (rank == 0) {
+    try {
+      target.emplace(path);
+      reserve_bytes(target->temporary_path(), bytes, path.string());
+      temporary = target->temporary_path().string();
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  }
+  throw_if_any(comm, error);
+  int length = static_cast<int>(temporary.size());
+  MPI_Bcast(&length, 1, MPI_INT, 0, comm);
+  temporary.resize(static_cast<std::size_t>(length));
+  MPI_Bcast(temporary.data(), length, MPI_CHAR, 0, comm);
+  {
+    Handle file(create_shared_file(comm, temporary), H5Fclose, "create " + path.string());
+    fill(file);
+    // Every cached piece of metadata to the file before it is closed, and a failure seen by all.
+    int flushed = H5Fflush(file, H5F_SCOPE_GLOBAL) >= 0 ? 1 : 0;
+    MPI_Allreduce(MPI_IN_PLACE, &flushed, 1, MPI_INT, MPI_MIN, comm);
+    if (flushed == 0) throw Error("HDF5: cannot write " + path.string());
+  }
+  if (rank == 0) {
+    try {
+      sync_reserved(temporary, bytes, path.string());
+      target->commit();
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  }
+  throw_if_any(comm, error);
+}
+
+void write_rows(MPI_Comm comm, hid_t group, const char* name, const void* data, const DatasetLayout& layout,
+                hsize_t first, hsize_t count) {
+  const int rank = layout.cols == 1 ? 1 : 2;
+  const hsize_t dims[2] = {layout.rows, layout.cols};
+  Handle space(H5Screate_simple(rank, dims, nullptr), H5Sclose, "create a dataspace");
+  Handle properties(untimed(H5P_DATASET_CREATE), H5Pclose, "create a property list");
+  // Parallel HDF5 allocates a data set when it is made; every row is then written once, so
+  // no fill value is written before.
+  if (H5Pset_alloc_time(properties, H5D_ALLOC_TIME_EARLY) < 0 ||
+      H5Pset_fill_time(properties, H5D_FILL_TIME_NEVER) < 0)
+    throw Error("HDF5: cannot set the allocation of dataset " + std::string(name));
+  Handle set(H5Dcreate2(group, name, layout.file_type, space, H5P_DEFAULT, properties, H5P_DEFAULT), H5Dclose,
+             std::string("create dataset ") + name);
+  const hsize_t start[2] = {first, 0};
+  const hsize_t mine[2] = {count, layout.cols};
+  Handle memory(H5Screate_simple(rank, count > 0 ? mine : dims, nullptr), H5Sclose, "create a dataspace");
+  bool ok = true;
+  if (count > 0)
+    ok = H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, mine, nullptr) >= 0;
+  else
+    ok = H5Sselect_none(space) >= 0 && H5Sselect_none(memory) >= 0;
+  Handle transfer(H5Pcreate(H5P_DATASET_XFER), H5Pclose, "create a transfer property list");
+  ok = ok && H5Pset_dxpl_mpio(transfer, H5FD_MPIO_COLLECTIVE) >= 0;
+  // Every rank takes part in the collective write, also one whose selection failed (with none).
+  if (!ok) {
+    H5Sselect_none(space);
+    H5Sselect_none(memory);
+  }
+  // HDF5 refuses a null buffer even for an empty selection.
+  const double nothing = 0.0;
+  ok = H5Dwrite(set, layout.memory_type, memory, space, transfer, data != nullptr ? data : &nothing) >= 0 &&
+       ok;
+  int all = ok ? 1 : 0;
+  MPI_Allreduce(MPI_IN_PLACE, &all, 1, MPI_INT, MPI_MIN, comm);
+  if (all == 0) throw Error(std::string("HDF5: cannot write dataset ") + name);
 }
 
 hid_t create_file(const std::filesystem::path& path, hsize_t user_block) {

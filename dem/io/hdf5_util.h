@@ -2,9 +2,11 @@
 // Small RAII and write helpers over the HDF5 C API, shared by the snapshot and grid-stress
 // writers. Errors become upgrain::Error naming what could not be done.
 #include <hdf5.h>
+#include <mpi.h>
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include <vector>
@@ -73,6 +75,29 @@ hid_t create_group(hid_t parent, const std::string& name);
 // Fields of vectors and tensors as rows of 3 and 9 doubles (tensors row-major, T_ij at 3 i + j).
 void write_vectors(hid_t group, const char* name, const std::vector<Vec3>& v);
 void write_tensors(hid_t group, const char* name, const std::vector<Mat3>& t);
+// A new file at `path` (an AtomicFile's temporary name) that every rank of `comm` writes its
+// share of (HDF5's MPI-IO driver; metadata read and written collectively, so every rank holds
+// the same and the file's bytes do not depend on which rank wrote them). Collective.
+hid_t create_shared_file(MPI_Comm comm, const std::filesystem::path& path);
+// Writes the shared file `path` atomically (dem/files/atomic_file.h): rank 0 names its
+// temporary file and reserves `bytes` of the disk for it (a full disk or an unwritable folder
+// ends here, before HDF5 writes, in one line naming `path`), every rank fills it with `fill`
+// (collective HDF5 calls), and once it is closed rank 0 syncs it and gives it its final name.
+// An error on rank 0 or in `fill` on every rank is thrown on every rank. Collective.
+void write_shared_file(MPI_Comm comm, const std::filesystem::path& path, std::size_t bytes,
+                       const std::function<void(hid_t)>& fill);
+// Rows first .. first + count - 1 of a data set of layout.rows rows, each rank of `comm`
+// giving its own rows (in order) in one collective H5Dwrite: a hyperslab of the file's rows, or
+// none. The data set is allocated when it is made, without fill values (every row is
+// written). Throws upgrain::Error on every rank when HDF5 fails on any. Collective.
+void write_rows(MPI_Comm comm, hid_t group, const char* name, const void* data, const DatasetLayout& layout,
+                hsize_t first, hsize_t count);
+template <class T>
+void write_rows(MPI_Comm comm, hid_t group, const char* name, const T* data, hsize_t rows, hsize_t cols,
+                hsize_t first, hsize_t count) {
+  write_rows(comm, group, name, static_cast<const void*>(data),
+             DatasetLayout{ElementType<T>::memory(), ElementType<T>::file(), rows, cols}, first, count);
+}
 // A new file for `path` (an AtomicFile's temporary name), built in memory by HDF5's core driver
 // without a backing store: the library itself never writes to the disk, so a full disk or a
 // write error cannot leave it holding a half-closed file (HDF5 1.10 then crashes when it

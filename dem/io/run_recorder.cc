@@ -71,11 +71,19 @@ void RunRecorder::record_walls(double time, long step, const std::vector<PlaneWa
 
 void RunRecorder::write_snapshot(const ParticleStore& p, const std::vector<PlaneWall>& walls,
                                  const std::vector<Vec3>& wall_forces, double time, long step, bool images) {
+  const std::filesystem::path rel = snapshot_name(step);
+  io::write_snapshot(folder_ / rel, p, walls, wall_forces, time, step, images);
+  add_snapshot({rel.string(), time, step, static_cast<long>(p.size()), p.has_shapes()});
+}
+
+std::filesystem::path RunRecorder::snapshot_name(long step) {
   char name[64];
   std::snprintf(name, sizeof name, "particles_%09ld.h5", step);
-  const std::filesystem::path rel = std::filesystem::path("snapshots") / name;
-  io::write_snapshot(folder_ / rel, p, walls, wall_forces, time, step, images);
-  snapshots_.push_back({rel.string(), time, step, static_cast<long>(p.size()), p.has_shapes()});
+  return std::filesystem::path("snapshots") / name;
+}
+
+void RunRecorder::add_snapshot(const SnapshotInfo& s) {
+  snapshots_.push_back(s);
   flush();
 }
 

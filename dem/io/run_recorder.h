@@ -26,6 +26,11 @@ class RunRecorder {
                      const StepDiagnostics& d);
   void write_snapshot(const ParticleStore& p, const std::vector<PlaneWall>& walls,
                       const std::vector<Vec3>& wall_forces, double time, long step, bool images = false);
+  // A snapshot's name relative to the folder (snapshots/particles_<step>.h5): what every rank
+  // writes into collectively (write_snapshot(MPI_Comm, ...)) before rank 0 lists it here.
+  [[nodiscard]] static std::filesystem::path snapshot_name(long step);
+  // Lists a snapshot written (particles.xdmf rewritten, the series appended).
+  void add_snapshot(const SnapshotInfo& s);
   // One row of walls.csv per wall in the scene (not removed), at a time-series row: where the
   // wall is and how fast it moves, and the force the particles exert on it (wall_forces). The
   // displacement is from the wall's point at its first row.

@@ -78,6 +78,59 @@ std::vector<T> gather_to_root(const std::vector<T>& mine, MPI_Comm comm, int roo
   return all;
 }
 
+// The rows of an id-sorted whole of `total` records split evenly over `size` ranks: rank r
+// holds rows [first_row(total, r, size), first_row(total, r + 1, size)).
+inline long first_row(long total, int rank, int size) {
+  return static_cast<long>(static_cast<long long>(total) * rank / size);
+}
+// The rank whose rows hold row `row` (the largest r with first_row(r) <= row); a row outside
+// [0, total) goes to the first or the last rank (whose check then finds it out of place).
+inline int row_owner(long row, long total, int size) {
+  if (total <= 0 || row < 0) return 0;
+  if (row >= total) return size - 1;
+  return static_cast<int>(((static_cast<long long>(row) + 1) * size - 1) / total);
+}
+
+// Sends every record of `mine` to rank destination(record) and returns what this rank
+// received, by sending rank (each rank's records in their order in `mine`): one MPI_Alltoall
+// of the counts and one MPI_Alltoallv of the records, as bytes. Collective.
+template <class T, class Destination>
+std::vector<T> send_to_ranks(const std::vector<T>& mine, MPI_Comm comm, Destination destination) {
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  std::vector<int> to(mine.size());
+  std::vector<long> count(static_cast<std::size_t>(size), 0);
+  for (std::size_t k = 0; k < mine.size(); ++k)
+    ++count[static_cast<std::size_t>(to[k] = destination(mine[k]))];
+  std::vector<int> send_bytes(static_cast<std::size_t>(size)), send_at(static_cast<std::size_t>(size));
+  std::vector<long> next(static_cast<std::size_t>(size));
+  long at = 0;
+  for (std::size_t r = 0; r < count.size(); ++r) {
+    if (count[r] * static_cast<long>(sizeof(T)) > 2147483647L ||
+        at * static_cast<long>(sizeof(T)) > 2147483647L)
+      throw Error("parallel exchange: message above 2 GB");
+    send_bytes[r] = static_cast<int>(count[r] * static_cast<long>(sizeof(T)));
+    send_at[r] = static_cast<int>(at * static_cast<long>(sizeof(T)));
+    next[r] = at;
+    at += count[r];
+  }
+  std::vector<T> out(mine.size());
+  for (std::size_t k = 0; k < mine.size(); ++k)
+    out[static_cast<std::size_t>(next[static_cast<std::size_t>(to[k])]++)] = mine[k];
+  std::vector<int> recv_bytes(static_cast<std::size_t>(size)), recv_at(static_cast<std::size_t>(size));
+  MPI_Alltoall(send_bytes.data(), 1, MPI_INT, recv_bytes.data(), 1, MPI_INT, comm);
+  long total = 0;
+  for (std::size_t r = 0; r < recv_bytes.size(); ++r) {
+    recv_at[r] = static_cast<int>(total);
+    total += recv_bytes[r];
+    if (total > 2147483647L) throw Error("parallel exchange: message above 2 GB");
+  }
+  std::vector<T> in(static_cast<std::size_t>(total) / sizeof(T));
+  MPI_Alltoallv(out.data(), send_bytes.data(), send_at.data(), MPI_BYTE, in.data(), recv_bytes.data(),
+                recv_at.data(), MPI_BYTE, comm);
+  return in;
+}
+
 // Makes an error collective: every rank calls it; if any rank passes a non-empty message,
 // the lowest such rank's message is thrown as upgrain::CollectiveError on every rank, so no
 // rank is left waiting in a later message and the driver prints it once.
