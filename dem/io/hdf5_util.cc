@@ -147,6 +147,10 @@ void write_rows(MPI_Comm comm, hid_t group, const char* name, const void* data, 
     throw Error("HDF5: cannot set the allocation of dataset " + std::string(name));
   Handle set(H5Dcreate2(group, name, layout.file_type, space, H5P_DEFAULT, properties, H5P_DEFAULT), H5Dclose,
              std::string("create dataset ") + name);
+  // A data set of no rows (a snapshot before a pour's first grain) is complete when made: every
+  // rank knows the row count, so all skip the write together (a collective write of nothing
+  // fails in MPI-IO).
+  if (layout.rows == 0) return;
   const hsize_t start[2] = {first, 0};
   const hsize_t mine[2] = {count, layout.cols};
   Handle memory(H5Screate_simple(rank, count > 0 ? mine : dims, nullptr), H5Sclose, "create a dataspace");
