@@ -60,10 +60,10 @@ template <class F, class... S>
 decltype(auto) visit_shape(ShapeKind k, F&& f, ShapeList<S...> /*list*/) {
   using R = decltype(f.template operator()<Sphere>());
   if constexpr (std::is_void_v<R>) {
-    ((S::kind == k ? (f.template operator()<S>(), true) : false) || ...);
+    (void)((S::kind == k ? (f.template operator()<S>(), true) : false) || ...);
   } else {
     R r{};
-    ((S::kind == k ? (r = f.template operator()<S>(), true) : false) || ...);
+    (void)((S::kind == k ? (r = f.template operator()<S>(), true) : false) || ...);
     return r;
   }
 }
