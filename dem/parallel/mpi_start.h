@@ -29,8 +29,8 @@ inline void remove_singleton_session_base() {
 
 // MPI-IO through ROMIO: Open MPI 4.1.4's own MPI-IO (OMPIO, its default, with fcoll/vulcan)
 // writes wrong bytes into parallel HDF5 files now and then (seen here in one or two of the seven
-// snapshots of a 200-grain run on 4 ranks; open-mpi/ompi issue 12718, fixed after 4.1.6). The snapshots are
-// written collectively (dem/io/hdf5_snapshot.h). The user's own choice wins.
+// snapshots of a 200-grain run on 4 ranks; Open MPI bug report github.com/open-mpi/ompi/issues/12718, fixed
+// after 4.1.6). The snapshots are written collectively (dem/io/hdf5_snapshot.h). The user's own choice wins.
 inline void prefer_romio() { setenv("OMPI_MCA_io", "romio321", 0); }
 
 inline void prefer_isolated_singleton() {

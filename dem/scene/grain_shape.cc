@@ -15,12 +15,6 @@ namespace upgrain::dem {
 
 namespace {
 
-// The row of kind k of the shape table, as f.template operator()<S>().
-template <class F>
-decltype(auto) on_row(ShapeKind k, F&& f) {
-  return shapes::visit_shape(k, std::forward<F>(f));
-}
-
 // The kind whose row is named `name`, if any.
 bool kind_named(const std::string& name, ShapeKind& kind) {
   bool found = false;
@@ -42,7 +36,7 @@ std::string ostream_number(double v) {
 }  // namespace
 
 std::size_t ratio_count(ShapeKind k) {
-  return on_row(k, []<class S>() { return std::size(S::ratios); });
+  return shapes::visit_shape(k, []<class S>() { return std::size(S::ratios); });
 }
 
 std::span<const double> GrainShape::dimensions() const { return {ratios.data(), ratio_count(kind)}; }
@@ -68,15 +62,16 @@ GrainShape read_grain_shape(const std::string& item) {
   words >> first;
   ShapeKind kind = ShapeKind::ellipsoid;
   std::string numbers = first;
-  std::string known;
-  shapes::for_each_shape([&]<class S>() {
-    if (!known.empty()) known += ", ";
-    known += S::name;
-  });
   const bool named = !first.empty() && std::isalpha(static_cast<unsigned char>(first[0]));
-  if (named && !kind_named(first, kind))
+  if (named && !kind_named(first, kind)) {
+    std::string known;
+    shapes::for_each_shape([&]<class S>() {
+      if (!known.empty()) known += ", ";
+      known += S::name;
+    });
     throw Error("cannot read the shape '" + item + "': no shape is named '" + first +
                 "' (the shapes: " + known + ")");
+  }
   if (named) words >> numbers;
   std::string rest;
   bool ok = !numbers.empty() && !(words >> rest);
@@ -109,7 +104,7 @@ std::string format_grain_shape(const GrainShape& s, const std::function<std::str
   if (s.is_sphere()) return "1:1:1";
   std::string text;
   if (s.kind != ShapeKind::ellipsoid) {
-    text = on_row(s.kind, []<class S>() { return std::string(S::name); });
+    text = shapes::visit_shape(s.kind, []<class S>() { return std::string(S::name); });
     text += ' ';
   }
   text += '1';
@@ -123,9 +118,9 @@ std::string format_grain_shape(const GrainShape& s, const std::function<std::str
 void validate_shapes(const std::vector<GrainShape>& shapes) {
   for (std::size_t k = 0; k < shapes.size(); ++k) {
     const GrainShape& s = shapes[k];
-    const bool valid = on_row(s.kind, [&]<class S>() { return S::valid(s.dimensions()); });
+    const bool valid = shapes::visit_shape(s.kind, [&]<class S>() { return S::valid(s.dimensions()); });
     if (!valid || !(s.number_fraction > 0.0 && std::isfinite(s.number_fraction))) {
-      const std::string rule = on_row(s.kind, []<class S>() { return std::string(S::rule); });
+      const std::string rule = shapes::visit_shape(s.kind, []<class S>() { return std::string(S::rule); });
       std::ostringstream m;
       m << "shape " << k + 1 << " (" << format_grain_shape(s, ostream_number) << ", fraction "
         << s.number_fraction << ") needs " << rule << (rule.empty() ? "" : " and ") << "a positive fraction";
@@ -152,19 +147,21 @@ std::string shape_nouns(const std::vector<GrainShape>& shapes) {
 }
 
 ShapeScales scales(const GrainShape& s) {
-  return on_row(s.kind, [&]<class S>() { return S::scales(s.dimensions()); });
+  return shapes::visit_shape(s.kind, [&]<class S>() { return S::scales(s.dimensions()); });
 }
 
 void add_grain(ParticleStore& p, const GrainShape& s, GlobalId id, double a, double density,
                const Eigen::Quaterniond& orientation, const GrainMotion& motion) {
-  on_row(s.kind, [&]<class S>() { S::add(p, id, a, s.dimensions(), density, orientation, motion); });
+  shapes::visit_shape(s.kind,
+                      [&]<class S>() { S::add(p, id, a, s.dimensions(), density, orientation, motion); });
 }
 
 GrainShape grain_shape_of(const ParticleStore& p, std::size_t i) {
   GrainShape s;
   s.kind = p.kind(i);
-  on_row(s.kind,
-         [&]<class S>() { S::ratios_of(p, i, std::span<double>(s.ratios.data(), std::size(S::ratios))); });
+  shapes::visit_shape(s.kind, [&]<class S>() {
+    S::ratios_of(p, i, std::span<double>(s.ratios.data(), std::size(S::ratios)));
+  });
   return s;
 }
 
