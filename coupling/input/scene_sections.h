@@ -26,6 +26,7 @@ Section particles_section();
 Section contact_section();
 Section container_section();
 Section lid_section();
+Section cell_section();
 Section fill_section();
 Section insertion_section();
 Section output_section();

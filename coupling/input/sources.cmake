@@ -11,6 +11,7 @@ set(UPGRAIN_INPUT_SOURCES
   coupling/input/sections/effects.cc
   coupling/input/sections/particles.cc
   coupling/input/sections/contact.cc
+  coupling/input/sections/cell.cc
   coupling/input/sections/container.cc
   coupling/input/sections/lid.cc
   coupling/input/sections/fill.cc

@@ -37,6 +37,10 @@ struct PeriodicCell {
   Box box;  // [lo, hi) along every axis; its faces on the grid along the periodic axes
   std::array<bool, 3> periodic{false, false, false};
   Vec3 quantum = Vec3::Zero();  // the grid of positions along each periodic axis (0: bounded)
+  // The diagonal of the cell's velocity gradient L = h' h^-1 (1/s; zero for a fixed cell): the
+  // mean flow is L x, and an image n cells away moves at L h n more than its grain
+  // (docs/periodic.md, "A cell that deforms").
+  Vec3 rate = Vec3::Zero();
 
   [[nodiscard]] bool any() const { return periodic[0] || periodic[1] || periodic[2]; }
   [[nodiscard]] double length(int d) const { return box.hi[d] - box.lo[d]; }
@@ -48,11 +52,15 @@ inline double on_grid(double x, double quantum) { return quantum * std::nearbyin
 
 // The cell of `box` with these periodic axes: the quantum of each periodic axis, and the box's
 // faces along it moved onto its grid (by half a quantum at most).
-inline PeriodicCell make_periodic_cell(const Box& box, const std::array<bool, 3>& periodic) {
-  PeriodicCell c{box, periodic, Vec3::Zero()};
+// `growth`: the grid is sized for a cell up to that many times larger (a cell that deforms may
+// grow up to it; a fixed cell passes 1, its grid then as fine as can be).
+inline PeriodicCell make_periodic_cell(const Box& box, const std::array<bool, 3>& periodic,
+                                       double growth = 1.0) {
+  PeriodicCell c{box, periodic, Vec3::Zero(), Vec3::Zero()};
   for (int a = 0; a < 3; ++a) {
     if (!periodic[a]) continue;
-    const double m = 4.0 * std::max({std::abs(box.lo[a]), std::abs(box.hi[a]), box.hi[a] - box.lo[a]});
+    const double m =
+        4.0 * growth * std::max({std::abs(box.lo[a]), std::abs(box.hi[a]), box.hi[a] - box.lo[a]});
     // 2^e >= m, and q = 2^(e - 52): every multiple of q below 2^53 q = 2^(e+1) >= 2 m is a
     // double, and so is the sum or difference of two coordinates below m.
     c.quantum[a] = std::ldexp(1.0, std::ilogb(m) + 1 - 52);
@@ -60,6 +68,17 @@ inline PeriodicCell make_periodic_cell(const Box& box, const std::array<bool, 3>
     c.box.hi[a] = on_grid(box.hi[a], c.quantum[a]);
   }
   return c;
+}
+
+// Whether the cell's grid still holds the box (lo, hi): every coordinate within 2^50 quanta,
+// the bound make_periodic_cell() sized it for (4 max(|lo|, |hi|, L) <= 2^52 q).
+inline bool grid_holds(const PeriodicCell& cell, const Box& box) {
+  for (int a = 0; a < 3; ++a) {
+    if (!cell.periodic[a]) continue;
+    const double limit = std::ldexp(cell.quantum[a], 50);
+    if (std::max({std::abs(box.lo[a]), std::abs(box.hi[a]), box.hi[a] - box.lo[a]}) > limit) return false;
+  }
+  return true;
 }
 
 // x onto the grid along the periodic axes (after every drift).
@@ -103,6 +122,16 @@ inline void wrap(const PeriodicCell& cell, Vec3& x, ImageCount& image) {
       --image[a];
     }
   }
+}
+
+// wrap() for a grain of absolute velocity v in a deforming cell: the mean flow at its new place
+// differs from the old by L (x_new - x_old), and so does its velocity (its peculiar velocity
+// v - L x is kept).
+inline void wrap(const PeriodicCell& cell, Vec3& x, ImageCount& image, Vec3& v) {
+  const Vec3 before = x;
+  wrap(cell, x, image);
+  for (int a = 0; a < 3; ++a)
+    if (cell.rate[a] != 0.0 && x[a] != before[a]) v[a] += cell.rate[a] * (x[a] - before[a]);
 }
 
 // The unwrapped position x + image L: continuous across the wraps.

@@ -30,12 +30,16 @@ struct EnergyBalance {
   // Cumulative work of moving walls on the grains (sum of F . v_wall dt): energy put in, with a
   // minus sign in the balance.
   double work_by_walls = 0.0;
+  // Cumulative work of a deforming periodic cell on the grains (V sigma : L dt, docs/periodic.md,
+  // "A cell that deforms"): energy put in, with a minus sign in the balance. The kinetic energy
+  // of such a cell is the peculiar one, of v - L x.
+  double work_by_cell = 0.0;
 
   [[nodiscard]] double kinetic() const { return kinetic_translational + kinetic_rotational; }
   [[nodiscard]] double total() const {
     return kinetic() + potential + elastic_normal + elastic_tangential + dissipated_damping +
            dissipated_friction + removed_by_relaxation - tangential_stiffness_change + elastic_rolling +
-           dissipated_rolling - rolling_stiffness_change - work_by_walls;
+           dissipated_rolling - rolling_stiffness_change - work_by_walls - work_by_cell;
   }
 };
 
@@ -44,7 +48,8 @@ struct EnergyBalance {
 // the balance error of docs/integrator.md.
 inline double balance_error(const EnergyBalance& e0, const EnergyBalance& e) {
   const double reference = e0.kinetic() + std::abs(e0.potential - e.potential) + e0.elastic_normal +
-                           e0.elastic_tangential + std::abs(e.work_by_walls - e0.work_by_walls);
+                           e0.elastic_tangential + std::abs(e.work_by_walls - e0.work_by_walls) +
+                           std::abs(e.work_by_cell - e0.work_by_cell);
   // Not tracked (NaN channels): unknown, not zero.
   if (!std::isfinite(reference) || !std::isfinite(e.total()) || !std::isfinite(e0.total()))
     return std::numeric_limits<double>::quiet_NaN();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <span>
 #include <utility>
@@ -11,6 +12,7 @@
 #include "dem/core/error.h"
 #include "dem/core/out_of_memory.h"
 #include "dem/engine/guards.h"
+#include "dem/engine/particle_sums.h"
 #include "dem/motion/grain_rotation.h"
 #include "dem/parallel/exchange.h"
 #include "dem/parallel/parallel_stress.h"
@@ -169,8 +171,14 @@ Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, std::v
   all = {};
   shapes_in = {};
   n_owned_ = static_cast<int>(p_.size());
+  // A deforming cell: the scene's velocities are peculiar, the grains move with the mean flow
+  // L x besides (SLLOD's absolute velocities, cell_motion.h).
+  if (deforming_)
+    for (int i = 0; i < n_owned_; ++i) p_.v[i] += cell_l_.diagonal().cwiseProduct(p_.x[i]);
   rebuild();
+  if (deforming_) record_next_ = true;
   evaluate_forces();
+  if (deforming_) follow_cell_stress();
   // The force loop books a moving wall's work for the step that brought it to the evaluation
   // and for the next one, half each; there was no step before the first.
   if (walls_move_ && scene_.effects.energy_tracking) {
@@ -206,7 +214,30 @@ void Simulation::set_up(long count, double max_radius, bool shapes, const Box& b
   range_ = 2.0 * max_radius_ + skin_;
   // The scene's periodic axes, and any the options add (a test's own box).
   for (int d = 0; d < 3; ++d) options_.periodic[d] = options.periodic[d] || scene_.container.periodic[d];
+  // A deforming cell (docs/periodic.md, "A cell that deforms"): along periodic axes, no pour and
+  // no gravity along a deforming axis; its grid sized for its growth. The blocks' planes follow
+  // the cell in fractional coordinates between the load balance's moves.
+  deforming_ = scene_.cell.any();
+  if (deforming_) {
+    for (int d = 0; d < 3; ++d) {
+      if (scene_.cell.axis[d].mode == CellAxisMode::fixed) continue;
+      const std::string axis(1, "xyz"[d]);
+      if (!options_.periodic[d])
+        throw Error("a deforming cell: the axis " + axis +
+                    " deforms but is not periodic (Container/periodic axes)");
+      if (g_[d] != 0.0)
+        throw Error("a deforming cell: gravity has a component along the deforming axis " + axis);
+    }
+    if (scene_.insertion.enabled())
+      throw Error("a deforming cell: insertion during the run is not available");
+    options_.cell_growth = scene_.cell.max_growth;
+    cell_l_ = initial_velocity_gradient(scene_.cell);
+  }
   domain_ = std::make_unique<Domain>(comm, box, range_, shapes_, options_);
+  if (deforming_) {
+    domain_->deform_cell(domain_->decomposition().cell().box, cell_l_.diagonal());
+    cell_at_build_ = domain_->decomposition().cell().box;
+  }
   lists_ = std::make_unique<VerletList>(
       max_radius_, skin_, summation_ == Summation::deterministic ? PairOrder::global_id : PairOrder::local);
 }
@@ -219,20 +250,48 @@ void Simulation::step() {
   // Velocity Verlet, first half kick and drift (Allen and Tildesley 2017, eq. 3.19), with the
   // Verlet list's displacement check in the same pass, then the rotational half.
   const std::vector<Vec3>& x_built = lists_->positions_at_build();
-  const double limit2 = lists_->rebuild_displacement2();
+  double limit2 = lists_->rebuild_displacement2();
   bool moved = false;
   const PeriodicCell& cell = domain_->decomposition().cell();
   const bool periodic = cell.any();
+  // A deforming cell: its faces move with the mean flow this step, and a pair across a face
+  // comes closer by up to the change of the cell's lengths since the lists were built, which
+  // the grains' own displacements must leave room for (verlet_list.h: two grains of a pair may
+  // move half a skin each).
+  const Vec3 rate = cell_l_.diagonal();
+  const Vec3 decay = (-half * rate).array().exp().matrix();
+  Box next_cell;
+  if (deforming_) {
+    next_cell = advanced_cell_box(cell, cell_l_, dt_);
+    const double change = ((next_cell.hi - next_cell.lo) - (cell_at_build_.hi - cell_at_build_.lo)).norm();
+    const double room = std::sqrt(limit2) - 0.5 * change;
+    moved = !(room > 0.0);
+    limit2 = room > 0.0 ? room * room : 0.0;
+  }
   for (int i = 0; i < n; ++i) {
-    p_.v[i] += half * (p_.force[i] * p_.inv_mass[i] + g_);
-    p_.x[i] += dt_ * p_.v[i];
-    // Along a periodic axis, onto the cell's grid: its images are then exact (periodic_cell.h).
-    if (periodic) snap(cell, p_.x[i]);
+    if (deforming_) {
+      // SLLOD (cell_motion.h): the peculiar velocity u = v - L x takes F/m - L u, its -L u
+      // exactly over the half step (u e^(-L dt/2)) before this half kick and after the second,
+      // a symmetric splitting; the drift is by the absolute velocity, and the mean flow's
+      // velocity follows the grain to its new place.
+      const Vec3 u = decay.cwiseProduct(p_.v[i] - rate.cwiseProduct(p_.x[i]));
+      p_.v[i] = u + half * (p_.force[i] * p_.inv_mass[i] + g_) + rate.cwiseProduct(p_.x[i]);
+      const Vec3 before = p_.x[i];
+      p_.x[i] += dt_ * p_.v[i];
+      snap(cell, p_.x[i]);
+      p_.v[i] += rate.cwiseProduct(p_.x[i] - before);
+    } else {
+      p_.v[i] += half * (p_.force[i] * p_.inv_mass[i] + g_);
+      p_.x[i] += dt_ * p_.v[i];
+      // Along a periodic axis, onto the cell's grid: its images are then exact (periodic_cell.h).
+      if (periodic) snap(cell, p_.x[i]);
+    }
     // Written so that a non-finite position counts as moved: the rebuild's guard then names
     // the particle at once (a NaN compares false, and would otherwise never rebuild).
     moved = moved || !((p_.x[i] - x_built[i]).squaredNorm() <= limit2);
   }
   if (rotation_) rotation_first_half(p_, static_cast<std::size_t>(n), half, dt_);
+  if (deforming_) domain_->deform_cell(next_cell, rate);
   // Grains inserted before this step: the same half kick and drift (their force is zero: they
   // touch nothing), joined to the others by this step's rebuild (insert()).
   for (std::size_t i = 0; i < arrivals_.size(); ++i) {
@@ -293,6 +352,8 @@ void Simulation::step() {
   } else if (domain_->has_ghosts())
     domain_->refresh_ghosts(p_);
   const Clock::time_point t3 = Clock::now();
+  // The cell's stress needs this evaluation's contacts.
+  if (deforming_) record_next_ = true;
   evaluate_forces();
   const Clock::time_point t4 = Clock::now();
   // Fast summation: the ghosts' shares go home (LAMMPS's reverse communication).
@@ -307,8 +368,15 @@ void Simulation::step() {
   }
   const Clock::time_point t5 = Clock::now();
   // Second half kick with the new forces.
-  for (int i = 0; i < n_owned_; ++i) p_.v[i] += half * (p_.force[i] * p_.inv_mass[i] + g_);
+  if (deforming_)
+    for (int i = 0; i < n_owned_; ++i) {
+      const Vec3 u = p_.v[i] - rate.cwiseProduct(p_.x[i]) + half * (p_.force[i] * p_.inv_mass[i] + g_);
+      p_.v[i] = decay.cwiseProduct(u) + rate.cwiseProduct(p_.x[i]);
+    }
+  else
+    for (int i = 0; i < n_owned_; ++i) p_.v[i] += half * (p_.force[i] * p_.inv_mass[i] + g_);
   if (rotation_) rotation_second_half(p_, static_cast<std::size_t>(n_owned_), half);
+  if (deforming_) follow_cell_stress();
   ++step_;
   last_overlap_step_ = step_;  // the evaluation was of this step's positions, at time()
   const Clock::time_point t6 = Clock::now();
@@ -363,6 +431,7 @@ void Simulation::rebuild() try {
   lists_->build(p_, n_owned_, walls_);
   wall_points_at_build_.clear();
   for (const PlaneWall& w : walls_) wall_points_at_build_.push_back(w.point);
+  cell_at_build_ = domain_->decomposition().cell().box;
   history_.restore(lists_->pairs(), lists_->walls(), p_.id, records);
   if (dissipation_per_grain())
     dissipation_share_.assign(static_cast<std::size_t>(n_owned_), DissipatedEnergy{});
@@ -697,7 +766,9 @@ EnergyBalance Simulation::energy() const {
   auto terms = [&](int i, double* e) {
     const auto k = static_cast<std::size_t>(i);
     const double m = p_.mass(k);
-    e[0] = 0.5 * m * p_.v[i].squaredNorm();
+    e[0] = 0.5 * m *
+           (deforming_ ? (p_.v[i] - cell_l_.diagonal().cwiseProduct(p_.x[i])).squaredNorm()
+                       : p_.v[i].squaredNorm());
     e[1] = rotation_ ? p_.rotational_energy(k) : 0.0;
     // The unwrapped position (periodic_cell.h): a grain that crosses a periodic face along
     // gravity (an incline) keeps a continuous potential energy.
@@ -762,6 +833,7 @@ EnergyBalance Simulation::energy() const {
     b.dissipated_damping -= ahead.damping;
   }
   b.removed_by_relaxation = removed_by_relaxation_;
+  b.work_by_cell = cell_work_;
   if (!scene_.effects.energy_tracking) {
     // Not tracked: the contacts' channels are unknown, not zero, and so are the total and the
     // balance error; kinetic and potential energy (the at-rest test) stay.
@@ -772,6 +844,50 @@ EnergyBalance Simulation::energy() const {
       *c = unknown;
   }
   return b;
+}
+
+void Simulation::follow_cell_stress() {
+  // The Love-Weber average over the cell: the grid stress of one grid cell that is the
+  // periodic cell (its images in their grains' cell, each pair once with its minimum-image
+  // branch: dem/parallel/parallel_stress.h), Weber's formula.
+  const Box& box = decomposition().cell().box;
+  RegularGrid grid;
+  grid.lo = box.lo;
+  grid.hi = box.hi;
+  const double volume = grid.cell_volume();
+  Mat3 sigma = grid_stress(grid)[StressFormula::weber][0];
+  // The kinetic part, of the peculiar velocities, summed as the summation asks.
+  const Vec3 rate = cell_l_.diagonal();
+  ParticleSums kinetic(summation_, 6, n_owned_);
+  for (int i = 0; i < n_owned_; ++i) {
+    const Vec3 u = p_.v[i] - rate.cwiseProduct(p_.x[i]);
+    const Mat3 t = p_.mass(static_cast<std::size_t>(i)) * u * u.transpose();
+    for (int k = 0, a = 0; a < 3; ++a)
+      for (int b = a; b < 3; ++b) kinetic.add(k++, i, t(a, b));
+  }
+  const std::vector<double> k = kinetic.totals(comm());
+  for (int n = 0, a = 0; a < 3; ++a)
+    for (int b = a; b < 3; ++b, ++n) {
+      sigma(a, b) -= k[static_cast<std::size_t>(n)] / volume;
+      sigma(b, a) = sigma(a, b);
+    }
+  // The cell's work over the step by the trapezoidal rule, with the L of the step: the
+  // power V sigma : L at its two ends (docs/periodic.md, "The cell's work").
+  const Mat3 sigma_volume = volume * sigma;
+  if (cell_stress_known_)
+    cell_work_ += 0.5 * dt_ * ((cell_stress_volume_ + sigma_volume).cwiseProduct(cell_l_)).sum();
+  cell_stress_known_ = true;
+  cell_stress_volume_ = sigma_volume;
+  cell_stress_ = sigma;
+  set_cell_velocity_gradient(updated_velocity_gradient(scene_.cell, cell_l_, sigma));
+}
+
+void Simulation::set_cell_velocity_gradient(const Mat3& l) {
+  if (l == cell_l_) return;
+  const Vec3 change = (l - cell_l_).diagonal();
+  for (int i = 0; i < n_owned_; ++i) p_.v[i] += change.cwiseProduct(p_.x[i]);
+  cell_l_ = l;
+  domain_->deform_cell(decomposition().cell().box, cell_l_.diagonal());
 }
 
 std::vector<Vec3> Simulation::wall_forces() const { return wall_loads().force; }

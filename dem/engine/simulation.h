@@ -201,6 +201,20 @@ class Simulation {
   [[nodiscard]] GridStress grid_stress(const RegularGrid& grid) const;
   [[nodiscard]] ComputeGridStress compute_grid_stress() const;
 
+  // --- A deforming periodic cell (docs/periodic.md, "A cell that deforms"; SceneConfig::cell).
+  [[nodiscard]] bool cell_deforms() const { return deforming_; }
+  // The cell matrix h (its lengths on the diagonal) and the corner it is spanned from.
+  [[nodiscard]] Mat3 cell_matrix() const { return dem::cell_matrix(decomposition().cell().box); }
+  // The velocity gradient L of the coming step (h' = L h; the servo's after the last
+  // evaluation).
+  [[nodiscard]] const Mat3& cell_velocity_gradient() const { return cell_l_; }
+  // The cell's stress at the end of the last step, tension positive: the Love-Weber average
+  // (1/V) sum f (x) l over the contacts (minimum-image branches, each pair once) plus the
+  // kinetic part -(1/V) sum m u (x) u of the peculiar velocities u = v - L x. The same on every
+  // rank; deterministic summation: the same bits on any rank count. Zero unless the cell
+  // deforms.
+  [[nodiscard]] const Mat3& cell_stress() const { return cell_stress_; }
+
   // --- Energy (docs/integrator.md), the same on every rank.
   [[nodiscard]] EnergyBalance energy() const;
   [[nodiscard]] const EnergyBalance& initial_energy() const { return e0_; }
@@ -259,6 +273,21 @@ class Simulation {
 
   SceneConfig scene_;
   EngineOptions options_;
+  // A deforming periodic cell: its velocity gradient (the diagonal in use), its box at the last
+  // rebuild (the lists' validity), its stress and V sigma at the last evaluation, and the
+  // cumulative work (the same bits on every rank).
+  bool deforming_ = false;
+  Mat3 cell_l_ = Mat3::Zero();
+  Box cell_at_build_;
+  Mat3 cell_stress_ = Mat3::Zero();
+  Mat3 cell_stress_volume_ = Mat3::Zero();
+  double cell_work_ = 0.0;
+  bool cell_stress_known_ = false;  // an evaluation before: the work's trapezoid has its first end
+  // Sets the cell's stress after an evaluation (collective) and, with a servo, the next L.
+  void follow_cell_stress();
+  // L changes to `l`: the grains keep their peculiar velocities (v += (l - L) x), the cell
+  // takes the new rate.
+  void set_cell_velocity_gradient(const Mat3& l);
   std::vector<PlaneWall> walls_;
   std::vector<Vec3> wall_points_at_build_;  // the walls' points when the lists were last built
   bool walls_move_ = false;                 // some wall has a velocity

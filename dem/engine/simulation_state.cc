@@ -164,6 +164,10 @@ std::size_t index_of(const ParticleStore& sorted, GlobalId gid) {
 EngineState Simulation::capture_state() const {
   // Between two steps, never between an insertion and the step that joins it (insert()).
   if (arrivals_pending_) throw Error("capture_state: grains inserted and not yet stepped");
+  if (deforming_)
+    throw Error(
+        "capture_state: a checkpoint of a deforming periodic cell (its h, L and servo) is not available yet "
+        "(docs/periodic.md, \"Not done yet\")");
   EngineState s;
   // Per particle, gathered by id.
   const std::vector<Vec3>& x_built = lists_->positions_at_build();

@@ -9,6 +9,22 @@
 
 namespace upgrain::dem {
 
+namespace {
+
+// Minimum image (Allen and Tildesley 2017, sec. 1.6.2): with the cell longer than twice the
+// interaction range, a grain is in range of at most one image of any other.
+void check_periodic_length(int d, double length, double min_block) {
+  if (length > 2.0 * min_block) return;
+  std::ostringstream m;
+  m << "periodic cell: the periodic axis "
+    << "xyz"[d] << " is " << length << " m long, not longer than twice the interaction range " << min_block
+    << " m (largest diameter + skin); make the cell longer along "
+    << "xyz"[d] << " or the grains smaller";
+  throw Error(m.str());
+}
+
+}  // namespace
+
 std::array<int, 3> choose_blocks(int ranks, const Box& box, double min_block) {
   const Vec3 l = box.hi - box.lo;
   std::array<int, 3> best{0, 0, 0};
@@ -42,23 +58,15 @@ std::array<int, 3> choose_blocks(int ranks, const Box& box, double min_block) {
 }
 
 Decomposition::Decomposition(MPI_Comm comm, const Box& box, double min_block, std::array<int, 3> blocks,
-                             std::array<bool, 3> periodic)
-    : box_(box), cell_(make_periodic_cell(box, periodic)), min_block_(min_block) {
+                             std::array<bool, 3> periodic, double growth)
+    : box_(box), cell_(make_periodic_cell(box, periodic, growth)), min_block_(min_block) {
   box_ = cell_.box;  // the faces of the periodic axes on their grid
   MPI_Comm_size(comm, &size_);
   for (int d = 0; d < 3; ++d) {
     // Minimum image (Allen and Tildesley 2017, sec. 1.6.2): with the cell longer than twice the
     // interaction range, a grain is in range of at most one image of any other, so each pair
     // is one pair, and a ghost layer never reaches a second image.
-    if (periodic[d] && !(box.hi[d] - box.lo[d] > 2.0 * min_block)) {
-      std::ostringstream m;
-      m << "periodic cell: the periodic axis "
-        << "xyz"[d] << " is " << box.hi[d] - box.lo[d]
-        << " m long, not longer than twice the interaction range " << min_block
-        << " m (largest diameter + skin); make the cell longer along "
-        << "xyz"[d] << " or the grains smaller";
-      throw Error(m.str());
-    }
+    if (periodic[d]) check_periodic_length(d, box.hi[d] - box.lo[d], min_block);
   }
   if (blocks[0] <= 0 || blocks[1] <= 0 || blocks[2] <= 0) blocks = choose_blocks(size_, box_, min_block);
   const Vec3 l = box_.hi - box_.lo;
@@ -130,6 +138,32 @@ void Decomposition::set_cuts(int d, const std::vector<double>& cuts) {
   }
   if (m.tellp() != 0) throw Error(m.str());
   for (int k = 0; k < n; ++k) planes_[d][static_cast<std::size_t>(k + 1)] = cuts[k];
+  update_block();
+}
+
+void Decomposition::deform(const Box& cell_box, const Vec3& rate) {
+  if (!grid_holds(cell_, cell_box)) {
+    std::ostringstream m;
+    m << "periodic cell: the deforming cell " << cell_box.hi - cell_box.lo
+      << " m has grown past what its position grid holds (twice its first size along an axis, "
+         "docs/periodic.md, \"Exact images\")";
+    throw Error(m.str());
+  }
+  for (int d = 0; d < 3; ++d) {
+    if (!cell_.periodic[d]) continue;
+    const double lo = cell_box.lo[d], hi = cell_box.hi[d];
+    check_periodic_length(d, hi - lo, min_block_);
+    const double old_lo = box_.lo[d], scale = (hi - lo) / (box_.hi[d] - old_lo);
+    std::vector<double>& p = planes_[d];
+    for (std::size_t k = 1; k + 1 < p.size(); ++k) p[k] = lo + (p[k] - old_lo) * scale;
+    p.front() = lo;
+    p.back() = hi;
+    box_.lo[d] = cell_.box.lo[d] = lo;
+    box_.hi[d] = cell_.box.hi[d] = hi;
+    if (image_shift_[d][0] != 0.0) image_shift_[d][0] = hi - lo;
+    if (image_shift_[d][1] != 0.0) image_shift_[d][1] = lo - hi;
+    cell_.rate[d] = rate[d];
+  }
   update_block();
 }
 

@@ -38,6 +38,9 @@ struct DomainOptions {
   bool balance_at_start = true;
   // The axes along which the box is a periodic cell (docs/periodic.md); bounded by default.
   std::array<bool, 3> periodic{false, false, false};
+  // How much larger than the box the periodic cell may grow (a deforming cell): its position
+  // grid is sized for it (make_periodic_cell()).
+  double cell_growth = 1.0;
 };
 
 // The load balance so far (identical on every rank): the number of rebalances, the step of
@@ -70,6 +73,9 @@ class Domain {
   Domain(MPI_Comm comm, const Box& box, double range, bool shapes, const DomainOptions& options);
 
   [[nodiscard]] const Decomposition& decomposition() const { return *decomp_; }
+  // The periodic cell moves (Decomposition::deform()); the ghosts take the new shifts and
+  // image velocities at the next refresh. Every rank alike.
+  void deform_cell(const Box& cell_box, const Vec3& rate) { decomp_->deform(cell_box, rate); }
   [[nodiscard]] MPI_Comm comm() const { return decomp_->comm(); }
   [[nodiscard]] int rank() const { return decomp_->rank(); }
   [[nodiscard]] int size() const { return decomp_->size(); }

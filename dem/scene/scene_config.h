@@ -9,6 +9,7 @@
 #include "dem/boundary/container.h"
 #include "dem/contact/contact_solver_settings.h"
 #include "dem/contact/law/law_parameter.h"  // NamedValue
+#include "dem/core/cell_motion.h"
 #include "dem/core/effect_set.h"
 #include "dem/core/material.h"
 #include "dem/core/particle_store.h"
@@ -87,6 +88,8 @@ struct TimeStepRule {
 struct SceneConfig {
   ParticleSpec particles;
   BoxContainer container;
+  // How the periodic cell deforms (docs/periodic.md, "A cell that deforms"); fixed by default.
+  CellMotion cell;
   FillSpec fill;
   InsertionSpec insertion;
   EffectSet effects;

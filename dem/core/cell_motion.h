@@ -1,0 +1,102 @@
+#pragma once
+// How a periodic cell deforms (docs/periodic.md, "A cell that deforms"): its matrix h (the
+// three edge vectors as columns; diagonal while the cell is orthorhombic) moves by a velocity
+// gradient L, h' = L h. Each diagonal component of L is prescribed (a strain rate) or set by
+// a servo to bring the cell's stress to a target (isotropic and triaxial compression). The
+// off-diagonal components (shear, Lees and Edwards 1972) are the next step: the modes set the
+// diagonal only (docs/periodic.md, "How the design extends to shear").
+//
+// The mean flow is L x, and the grains' equations are SLLOD's (Evans and Morriss 1990,
+// Statistical Mechanics of Nonequilibrium Liquids, sec. 6.3), written for absolute velocities
+// v = u + L x (u the peculiar velocity): x' = v, u' = F/m - L u. A grain with u = 0 and no
+// force stays on the affine field x(t) = F(t) x(0), F = h(t) h(0)^-1.
+//
+// Plain values and functions, tested with numbers (tests/unit/cell_motion_test.cc); the
+// engine (dem/engine/simulation.cc) calls them every step.
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "dem/core/box.h"
+#include "dem/core/periodic_cell.h"
+#include "dem/core/types.h"
+
+namespace upgrain::dem {
+
+// How one diagonal component of L is set.
+enum class CellAxisMode {
+  fixed,  // L_dd = 0
+  rate,   // L_dd prescribed (1/s; < 0 compresses)
+  servo,  // L_dd = gain (p_dd - target), bounded by max_rate: p = -sigma (compression positive)
+};
+
+struct CellAxisControl {
+  CellAxisMode mode = CellAxisMode::fixed;
+  double rate = 0.0;             // rate: L_dd (1/s)
+  double target_pressure = 0.0;  // servo: the target of -sigma_dd (Pa)
+  double gain = 0.0;             // servo: 1/(Pa s)
+  double max_rate = 0.0;         // servo: the bound on |L_dd| (1/s)
+};
+
+struct CellMotion {
+  std::array<CellAxisControl, 3> axis{};
+  // The cell may grow up to this factor along an axis: its position grid is sized for it
+  // (periodic_cell.h, make_periodic_cell()), and the engine refuses growth past it.
+  double max_growth = 2.0;
+
+  [[nodiscard]] bool any() const {
+    return std::any_of(axis.begin(), axis.end(),
+                       [](const CellAxisControl& a) { return a.mode != CellAxisMode::fixed; });
+  }
+};
+
+// The state of a deforming cell between two steps, what a checkpoint keeps: h (its diagonal
+// the lengths; the off-diagonal tilt zero in this step), the corner it is spanned from, and L.
+struct CellState {
+  Mat3 h = Mat3::Zero();
+  Vec3 origin = Vec3::Zero();
+  Mat3 velocity_gradient = Mat3::Zero();
+};
+
+// The velocity gradient of the first step: the prescribed rates, the servos at rest.
+inline Mat3 initial_velocity_gradient(const CellMotion& m) {
+  Mat3 l = Mat3::Zero();
+  for (int d = 0; d < 3; ++d)
+    if (m.axis[d].mode == CellAxisMode::rate) l(d, d) = m.axis[d].rate;
+  return l;
+}
+
+// The servo's L_dd for the cell stress sigma (tension positive, docs/stress.md): proportional
+// to the pressure's excess over the target (a cell pressed too hard expands), bounded by
+// max_rate, as Yade's PeriTriaxController bounds its strain rate.
+inline double servo_rate(const CellAxisControl& c, double sigma_dd) {
+  const double l = c.gain * (-sigma_dd - c.target_pressure);
+  return std::clamp(l, -c.max_rate, c.max_rate);
+}
+
+// The velocity gradient after an evaluation of the cell stress `sigma`: the servo axes' rates
+// updated, the others kept.
+inline Mat3 updated_velocity_gradient(const CellMotion& m, const Mat3& current, const Mat3& sigma) {
+  Mat3 l = current;
+  for (int d = 0; d < 3; ++d)
+    if (m.axis[d].mode == CellAxisMode::servo) l(d, d) = servo_rate(m.axis[d], sigma(d, d));
+  return l;
+}
+
+// One step of h' = L h for a diagonal L, on the cell's position grid: each face's coordinate
+// x goes to x + dt L x, the map the grains of the mean flow take (x + dt L x, then onto the
+// grid), so that a grain on the affine field stays on it with the faces.
+inline Box advanced_cell_box(const PeriodicCell& cell, const Mat3& l, double dt) {
+  Box b = cell.box;
+  for (int d = 0; d < 3; ++d) {
+    if (!cell.periodic[d] || l(d, d) == 0.0) continue;
+    b.lo[d] = on_grid(b.lo[d] + dt * l(d, d) * b.lo[d], cell.quantum[d]);
+    b.hi[d] = on_grid(b.hi[d] + dt * l(d, d) * b.hi[d], cell.quantum[d]);
+  }
+  return b;
+}
+
+// The cell matrix of an orthorhombic cell: its lengths on the diagonal.
+inline Mat3 cell_matrix(const Box& box) { return (box.hi - box.lo).asDiagonal(); }
+
+}  // namespace upgrain::dem
