@@ -125,11 +125,6 @@ void validate_cell(const SceneInput& in, const std::string& where) {
       continue;
     throw Error(m.str());
   }
-  if (in.output.checkpoint.interval > 0.0 || in.output.checkpoint.wall_interval > 0.0)
-    throw Error(
-        where +
-        "Checkpoint/interval with a deforming cell (Cell/mode): its checkpoints (h, L, the servo) are "
-        "not available yet (docs/periodic.md, \"Not done yet\"); set the checkpoint intervals to 0");
 }
 
 // Container/collapse against the entries of the other scene: the gate belongs to the

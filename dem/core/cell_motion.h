@@ -7,9 +7,9 @@
 // diagonal only (docs/periodic.md, "How the design extends to shear").
 //
 // The mean flow is L x, and the grains' equations are SLLOD's (Evans and Morriss 1990,
-// Statistical Mechanics of Nonequilibrium Liquids, sec. 6.3), written for absolute velocities
-// v = u + L x (u the peculiar velocity): x' = v, u' = F/m - L u. A grain with u = 0 and no
-// force stays on the affine field x(t) = F(t) x(0), F = h(t) h(0)^-1.
+// Statistical Mechanics of Nonequilibrium Liquids, sec. 6.3), for the peculiar velocity u (the
+// grain's motion relative to the mean flow, what the store holds): x' = u + L x, u' = F/m - L u.
+// A grain with u = 0 and no force stays on the affine field x(t) = F(t) x(0), F = h(t) h(0)^-1.
 //
 // Plain values and functions, tested with numbers (tests/unit/cell_motion_test.cc); the
 // engine (dem/engine/simulation.cc) calls them every step.

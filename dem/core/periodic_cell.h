@@ -37,10 +37,6 @@ struct PeriodicCell {
   Box box;  // [lo, hi) along every axis; its faces on the grid along the periodic axes
   std::array<bool, 3> periodic{false, false, false};
   Vec3 quantum = Vec3::Zero();  // the grid of positions along each periodic axis (0: bounded)
-  // The diagonal of the cell's velocity gradient L = h' h^-1 (1/s; zero for a fixed cell): the
-  // mean flow is L x, and an image n cells away moves at L h n more than its grain
-  // (docs/periodic.md, "A cell that deforms").
-  Vec3 rate = Vec3::Zero();
 
   [[nodiscard]] bool any() const { return periodic[0] || periodic[1] || periodic[2]; }
   [[nodiscard]] double length(int d) const { return box.hi[d] - box.lo[d]; }
@@ -56,7 +52,7 @@ inline double on_grid(double x, double quantum) { return quantum * std::nearbyin
 // grow up to it; a fixed cell passes 1, its grid then as fine as can be).
 inline PeriodicCell make_periodic_cell(const Box& box, const std::array<bool, 3>& periodic,
                                        double growth = 1.0) {
-  PeriodicCell c{box, periodic, Vec3::Zero(), Vec3::Zero()};
+  PeriodicCell c{box, periodic, Vec3::Zero()};
   for (int a = 0; a < 3; ++a) {
     if (!periodic[a]) continue;
     const double m =
@@ -122,16 +118,6 @@ inline void wrap(const PeriodicCell& cell, Vec3& x, ImageCount& image) {
       --image[a];
     }
   }
-}
-
-// wrap() for a grain of absolute velocity v in a deforming cell: the mean flow at its new place
-// differs from the old by L (x_new - x_old), and so does its velocity (its peculiar velocity
-// v - L x is kept).
-inline void wrap(const PeriodicCell& cell, Vec3& x, ImageCount& image, Vec3& v) {
-  const Vec3 before = x;
-  wrap(cell, x, image);
-  for (int a = 0; a < 3; ++a)
-    if (cell.rate[a] != 0.0 && x[a] != before[a]) v[a] += cell.rate[a] * (x[a] - before[a]);
 }
 
 // The unwrapped position x + image L: continuous across the wraps.

@@ -16,7 +16,8 @@
 //  - every contact history, separation budgets of ellipsoid pairs included;
 //  - the walls (removed ones far behind their plane), the step, the rebuild count, the guard's
 //    last overlap, the initial energy, gravity, and the exact sums of the dissipation;
-//  - the blocks' planes and the load balance's progress, taken again on the same blocks.
+//  - the blocks' planes and the load balance's progress, taken again on the same blocks;
+//  - a deforming cell's state (CellRecord).
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -31,6 +32,46 @@
 #include "dem/parallel/exact_sum.h"
 
 namespace upgrain::dem {
+
+// A deforming periodic cell between two steps (docs/periodic.md, "A cell that deforms"): its
+// present box is the decomposition's (DomainState::box).
+struct CellRecord {
+  bool deforming = false;
+  Box start;     // the box its position grid was sized from (make_periodic_cell()): the quantum
+  Box at_build;  // the cell at the last list build: the rebuild check, the lists' image shifts
+  Mat3 velocity_gradient = Mat3::Zero();  // L of the next step (the servo's state)
+  Mat3 stress = Mat3::Zero();             // the last evaluation's cell stress
+  Mat3 stress_volume = Mat3::Zero();      // times its volume: the first end of the work's trapezoid
+  bool stress_known = false;
+  double work = 0.0;  // the cell's work so far
+
+  // As one row of numbers (checkpoint files and the state's bytes), and back.
+  static constexpr int kValues = 1 + 12 + 27 + 2;
+  [[nodiscard]] std::array<double, kValues> values() const {
+    std::array<double, kValues> v{};
+    std::size_t k = 0;
+    v[k++] = deforming ? 1.0 : 0.0;
+    for (const Vec3* x : {&start.lo, &start.hi, &at_build.lo, &at_build.hi})
+      for (int d = 0; d < 3; ++d) v[k++] = (*x)[d];
+    for (const Mat3* m : {&velocity_gradient, &stress, &stress_volume})
+      for (int i = 0; i < 9; ++i) v[k++] = m->data()[i];
+    v[k++] = stress_known ? 1.0 : 0.0;
+    v[k++] = work;
+    return v;
+  }
+  static CellRecord from_values(const std::array<double, kValues>& v) {
+    CellRecord c;
+    std::size_t k = 0;
+    c.deforming = v[k++] != 0.0;
+    for (Vec3* x : {&c.start.lo, &c.start.hi, &c.at_build.lo, &c.at_build.hi})
+      for (int d = 0; d < 3; ++d) (*x)[d] = v[k++];
+    for (Mat3* m : {&c.velocity_gradient, &c.stress, &c.stress_volume})
+      for (int i = 0; i < 9; ++i) m->data()[i] = v[k++];
+    c.stress_known = v[k++] != 0.0;
+    c.work = v[k++];
+    return c;
+  }
+};
 
 struct EngineState {
   static constexpr int kVersion = 2;  // 2: moving walls, the work of walls
@@ -67,6 +108,7 @@ struct EngineState {
   ContactSolverStats solver_stats;  // over every rank
   double reference_mass = -1.0;     // of the first checked gather (the lost-particle guard)
   DomainState domain;
+  CellRecord cell;
 };
 
 }  // namespace upgrain::dem

@@ -82,6 +82,12 @@ struct ForceInput {
   const LawConstants* law = nullptr;  // the constants of the law the loop was compiled for
   RollingParameters rolling;          // scenes with rolling resistance
   double dt = 0.0;
+  // A deforming periodic cell: the diagonal of its velocity gradient L (null otherwise). The
+  // store then holds peculiar velocities u = v - L x (SLLOD), and a contact's relative velocity
+  // takes the mean flow's L (x_i - x_j) besides; the branch x_j - x_i is exact on the cell's
+  // grid, so the two sides of a pair across a face see the same bits (docs/periodic.md, "A
+  // cell that deforms").
+  const Vec3* mean_flow = nullptr;
   // Ellipsoid scenes: every local grain posed once per evaluation, and this rank's contact
   // solver counters, cumulative.
   GrainPoses* posed = nullptr;

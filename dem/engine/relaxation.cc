@@ -35,6 +35,8 @@ RelaxationResult equilibrium_residual(const Simulation& sim) {
 }
 
 RelaxationResult relax_to_equilibrium(Simulation& sim, const RelaxationOptions& o) {
+  // In the cell where the run stopped: a deforming one is held still meanwhile.
+  sim.hold_cell(true);
   const Vec3 g = sim.gravity();
   const bool rotation = sim.integrates_rotation();
   double alpha = o.alpha_start;
@@ -112,6 +114,7 @@ RelaxationResult relax_to_equilibrium(Simulation& sim, const RelaxationOptions& 
   }
   if (!r.converged)
     r.converged = r.max_force_residual < o.force_tolerance && r.max_torque_residual < o.force_tolerance;
+  sim.hold_cell(false);
   return r;
 }
 

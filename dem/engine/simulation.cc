@@ -171,10 +171,6 @@ Simulation::Simulation(const SceneConfig& scene, ParticleStore particles, std::v
   all = {};
   shapes_in = {};
   n_owned_ = static_cast<int>(p_.size());
-  // A deforming cell: the scene's velocities are peculiar, the grains move with the mean flow
-  // L x besides (SLLOD's absolute velocities, cell_motion.h).
-  if (deforming_)
-    for (int i = 0; i < n_owned_; ++i) p_.v[i] += cell_l_.diagonal().cwiseProduct(p_.x[i]);
   rebuild();
   if (deforming_) record_next_ = true;
   evaluate_forces();
@@ -232,10 +228,12 @@ void Simulation::set_up(long count, double max_radius, bool shapes, const Box& b
       throw Error("a deforming cell: insertion during the run is not available");
     options_.cell_growth = scene_.cell.max_growth;
     cell_l_ = initial_velocity_gradient(scene_.cell);
+    cell_start_ = box;
+    cell_rate_ = cell_l_.diagonal();
   }
   domain_ = std::make_unique<Domain>(comm, box, range_, shapes_, options_);
   if (deforming_) {
-    domain_->deform_cell(domain_->decomposition().cell().box, cell_l_.diagonal());
+    domain_->deform_cell(domain_->decomposition().cell().box);
     cell_at_build_ = domain_->decomposition().cell().box;
   }
   lists_ = std::make_unique<VerletList>(
@@ -270,16 +268,12 @@ void Simulation::step() {
   }
   for (int i = 0; i < n; ++i) {
     if (deforming_) {
-      // SLLOD (cell_motion.h): the peculiar velocity u = v - L x takes F/m - L u, its -L u
+      // SLLOD (cell_motion.h): the stored peculiar velocity u takes F/m - L u, its -L u
       // exactly over the half step (u e^(-L dt/2)) before this half kick and after the second,
-      // a symmetric splitting; the drift is by the absolute velocity, and the mean flow's
-      // velocity follows the grain to its new place.
-      const Vec3 u = decay.cwiseProduct(p_.v[i] - rate.cwiseProduct(p_.x[i]));
-      p_.v[i] = u + half * (p_.force[i] * p_.inv_mass[i] + g_) + rate.cwiseProduct(p_.x[i]);
-      const Vec3 before = p_.x[i];
-      p_.x[i] += dt_ * p_.v[i];
+      // a symmetric splitting; the drift is by the absolute velocity u + L x.
+      p_.v[i] = decay.cwiseProduct(p_.v[i]) + half * (p_.force[i] * p_.inv_mass[i] + g_);
+      p_.x[i] += dt_ * (p_.v[i] + rate.cwiseProduct(p_.x[i]));
       snap(cell, p_.x[i]);
-      p_.v[i] += rate.cwiseProduct(p_.x[i] - before);
     } else {
       p_.v[i] += half * (p_.force[i] * p_.inv_mass[i] + g_);
       p_.x[i] += dt_ * p_.v[i];
@@ -291,7 +285,7 @@ void Simulation::step() {
     moved = moved || !((p_.x[i] - x_built[i]).squaredNorm() <= limit2);
   }
   if (rotation_) rotation_first_half(p_, static_cast<std::size_t>(n), half, dt_);
-  if (deforming_) domain_->deform_cell(next_cell, rate);
+  if (deforming_) domain_->deform_cell(next_cell);
   // Grains inserted before this step: the same half kick and drift (their force is zero: they
   // touch nothing), joined to the others by this step's rebuild (insert()).
   for (std::size_t i = 0; i < arrivals_.size(); ++i) {
@@ -369,10 +363,8 @@ void Simulation::step() {
   const Clock::time_point t5 = Clock::now();
   // Second half kick with the new forces.
   if (deforming_)
-    for (int i = 0; i < n_owned_; ++i) {
-      const Vec3 u = p_.v[i] - rate.cwiseProduct(p_.x[i]) + half * (p_.force[i] * p_.inv_mass[i] + g_);
-      p_.v[i] = decay.cwiseProduct(u) + rate.cwiseProduct(p_.x[i]);
-    }
+    for (int i = 0; i < n_owned_; ++i)
+      p_.v[i] = decay.cwiseProduct(p_.v[i] + half * (p_.force[i] * p_.inv_mass[i] + g_));
   else
     for (int i = 0; i < n_owned_; ++i) p_.v[i] += half * (p_.force[i] * p_.inv_mass[i] + g_);
   if (rotation_) rotation_second_half(p_, static_cast<std::size_t>(n_owned_), half);
@@ -455,6 +447,7 @@ void Simulation::evaluate_forces() {
   in.law = &law_constants_;
   in.rolling = rolling_;
   in.dt = dt_;
+  if (deforming_) in.mean_flow = &cell_rate_;
   in.posed = &posed_;
   in.solver_settings = scene_.contact_solver;
   in.solver_stats = &solver_stats_;
@@ -766,9 +759,7 @@ EnergyBalance Simulation::energy() const {
   auto terms = [&](int i, double* e) {
     const auto k = static_cast<std::size_t>(i);
     const double m = p_.mass(k);
-    e[0] = 0.5 * m *
-           (deforming_ ? (p_.v[i] - cell_l_.diagonal().cwiseProduct(p_.x[i])).squaredNorm()
-                       : p_.v[i].squaredNorm());
+    e[0] = 0.5 * m * p_.v[i].squaredNorm();  // a deforming cell's: peculiar (cell_motion.h)
     e[1] = rotation_ ? p_.rotational_energy(k) : 0.0;
     // The unwrapped position (periodic_cell.h): a grain that crosses a periodic face along
     // gravity (an incline) keeps a continuous potential energy.
@@ -857,10 +848,9 @@ void Simulation::follow_cell_stress() {
   const double volume = grid.cell_volume();
   Mat3 sigma = grid_stress(grid)[StressFormula::weber][0];
   // The kinetic part, of the peculiar velocities, summed as the summation asks.
-  const Vec3 rate = cell_l_.diagonal();
   ParticleSums kinetic(summation_, 6, n_owned_);
   for (int i = 0; i < n_owned_; ++i) {
-    const Vec3 u = p_.v[i] - rate.cwiseProduct(p_.x[i]);
+    const Vec3& u = p_.v[i];
     const Mat3 t = p_.mass(static_cast<std::size_t>(i)) * u * u.transpose();
     for (int k = 0, a = 0; a < 3; ++a)
       for (int b = a; b < 3; ++b) kinetic.add(k++, i, t(a, b));
@@ -879,15 +869,20 @@ void Simulation::follow_cell_stress() {
   cell_stress_known_ = true;
   cell_stress_volume_ = sigma_volume;
   cell_stress_ = sigma;
-  set_cell_velocity_gradient(updated_velocity_gradient(scene_.cell, cell_l_, sigma));
+  if (!cell_held_) set_cell_velocity_gradient(updated_velocity_gradient(scene_.cell, cell_l_, sigma));
+}
+
+void Simulation::hold_cell(bool held) {
+  if (!deforming_ || held == cell_held_) return;
+  if (held) cell_l_before_hold_ = cell_l_;
+  set_cell_velocity_gradient(held ? Mat3::Zero() : cell_l_before_hold_);
+  cell_held_ = held;
 }
 
 void Simulation::set_cell_velocity_gradient(const Mat3& l) {
   if (l == cell_l_) return;
-  const Vec3 change = (l - cell_l_).diagonal();
-  for (int i = 0; i < n_owned_; ++i) p_.v[i] += change.cwiseProduct(p_.x[i]);
   cell_l_ = l;
-  domain_->deform_cell(decomposition().cell().box, cell_l_.diagonal());
+  cell_rate_ = cell_l_.diagonal();
 }
 
 std::vector<Vec3> Simulation::wall_forces() const { return wall_loads().force; }

@@ -208,6 +208,10 @@ class Simulation {
   // The velocity gradient L of the coming step (h' = L h; the servo's after the last
   // evaluation).
   [[nodiscard]] const Mat3& cell_velocity_gradient() const { return cell_l_; }
+  // A deforming cell held still (L = 0, the servos off) or let go again with the L it had: a
+  // relaxation to equilibrium (relaxation.h) runs in the cell where the run stopped. Every
+  // rank alike; nothing for a fixed cell.
+  void hold_cell(bool held);
   // The cell's stress at the end of the last step, tension positive: the Love-Weber average
   // (1/V) sum f (x) l over the contacts (minimum-image branches, each pair once) plus the
   // kinetic part -(1/V) sum m u (x) u of the peculiar velocities u = v - L x. The same on every
@@ -278,6 +282,8 @@ class Simulation {
   // cumulative work (the same bits on every rank).
   bool deforming_ = false;
   Mat3 cell_l_ = Mat3::Zero();
+  Vec3 cell_rate_ = Vec3::Zero();  // its diagonal, what the force loop reads (ForceInput::mean_flow)
+  Box cell_start_;                 // the box its grid was sized from (a checkpoint's CellRecord::start)
   Box cell_at_build_;
   Mat3 cell_stress_ = Mat3::Zero();
   Mat3 cell_stress_volume_ = Mat3::Zero();
@@ -288,6 +294,8 @@ class Simulation {
   // L changes to `l`: the grains keep their peculiar velocities (v += (l - L) x), the cell
   // takes the new rate.
   void set_cell_velocity_gradient(const Mat3& l);
+  bool cell_held_ = false;
+  Mat3 cell_l_before_hold_ = Mat3::Zero();
   std::vector<PlaneWall> walls_;
   std::vector<Vec3> wall_points_at_build_;  // the walls' points when the lists were last built
   bool walls_move_ = false;                 // some wall has a velocity

@@ -88,6 +88,7 @@ std::vector<char> to_bytes(const EngineState& s) {
   for (const std::vector<double>& p : s.domain.planes) w.put(p);
   w.put(s.domain.balance);
   w.put(s.domain.next_balance_step);
+  w.put(s.cell.values());
   return std::move(w.bytes());
 }
 
@@ -148,6 +149,9 @@ EngineState from_bytes(const std::vector<char>& bytes) {
   for (std::vector<double>& p : s.domain.planes) r.get(p);
   r.get(s.domain.balance);
   r.get(s.domain.next_balance_step);
+  std::array<double, CellRecord::kValues> cell{};
+  r.get(cell);
+  s.cell = CellRecord::from_values(cell);
   return s;
 }
 
@@ -164,10 +168,6 @@ std::size_t index_of(const ParticleStore& sorted, GlobalId gid) {
 EngineState Simulation::capture_state() const {
   // Between two steps, never between an insertion and the step that joins it (insert()).
   if (arrivals_pending_) throw Error("capture_state: grains inserted and not yet stepped");
-  if (deforming_)
-    throw Error(
-        "capture_state: a checkpoint of a deforming periodic cell (its h, L and servo) is not available yet "
-        "(docs/periodic.md, \"Not done yet\")");
   EngineState s;
   // Per particle, gathered by id.
   const std::vector<Vec3>& x_built = lists_->positions_at_build();
@@ -233,6 +233,9 @@ EngineState Simulation::capture_state() const {
   s.solver_stats = stats;
   s.reference_mass = reference_mass_;
   s.domain = domain_->state();
+  if (deforming_)
+    s.cell = {true,         cell_start_,         cell_at_build_,     cell_l_,
+              cell_stress_, cell_stress_volume_, cell_stress_known_, cell_work_};
   return s;
 }
 
@@ -269,9 +272,11 @@ Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_roo
   double max_radius = 0.0;
   for (double r : s.particles.radius) max_radius = std::max(max_radius, r);
   EngineOptions o = options;
-  o.box = s.domain.box;
+  // A deforming cell's grid is sized from its first box, and the decomposition then follows it
+  // to the present one.
+  o.box = s.cell.deforming ? s.cell.start : s.domain.box;
   o.balance_at_start = false;
-  set_up(static_cast<long>(s.particles.size()), max_radius, s.particles.has_shapes(), s.domain.box, comm, o);
+  set_up(static_cast<long>(s.particles.size()), max_radius, s.particles.has_shapes(), *o.box, comm, o);
   if (domain_->decomposition().cell().periodic != s.domain.periodic) {
     auto axes = [](const std::array<bool, 3>& p) {
       std::string a;
@@ -282,8 +287,14 @@ Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_roo
     throw Error("restore: the state's periodic axes (" + axes(s.domain.periodic) + ") are not the scene's (" +
                 axes(domain_->decomposition().cell().periodic) + ")");
   }
+  if (deforming_ != s.cell.deforming)
+    throw Error(std::string("restore: the scene's cell ") + (deforming_ ? "deforms" : "does not deform") +
+                " (Cell), the state's " + (s.cell.deforming ? "does" : "does not"));
+  if (deforming_) domain_->deform_cell(s.domain.box);
   // The grains are placed by where the lists were last built (below): the balance too.
   domain_->restore(s.domain, s.positions_at_build, s.step);
+  // A deforming cell: the lists are built in the cell they were built in, with its images.
+  if (deforming_) domain_->deform_cell(s.cell.at_build);
   // Spheres in a scene that pours ellipsoids (set_up): with their shapes, as in the run.
   if (shapes_) s.particles.ensure_shapes();
 
@@ -305,6 +316,16 @@ Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_roo
   for (std::size_t w = 0; w < walls_.size(); ++w) walls_at_build[w].point = wall_points_at_build_[w];
   lists_->build(p_, n_owned_, walls_at_build);
   history_.restore(lists_->pairs(), lists_->walls(), p_.id, s.history);
+  if (deforming_) {
+    domain_->deform_cell(s.domain.box);
+    cell_at_build_ = s.cell.at_build;
+    cell_l_ = s.cell.velocity_gradient;
+    cell_rate_ = cell_l_.diagonal();
+    cell_stress_ = s.cell.stress;
+    cell_stress_volume_ = s.cell.stress_volume;
+    cell_stress_known_ = s.cell.stress_known;
+    cell_work_ = s.cell.work;
+  }
   // Back to the positions of the state, and the ghosts with them.
   for (int i = 0; i < n_owned_; ++i) p_.x[i] = s.particles.x[index_of(s.particles, p_.id[i])];
   if (domain_->has_ghosts()) domain_->refresh_ghosts(p_);

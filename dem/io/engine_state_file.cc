@@ -200,6 +200,11 @@ void write_engine_state(hid_t parent, const std::string& group, const EngineStat
   write_history(g, s.history);
   write_walls(g, s);
   write_domain(g, s.domain);
+  // A deforming cell (docs/periodic.md, "A cell that deforms"): one row, CellRecord's order.
+  if (s.cell.deforming) {
+    const auto cell = s.cell.values();
+    write_dataset(g, "cell", cell.data(), cell.size());
+  }
 }
 
 EngineState read_engine_state(const hdf5::Reader& in, const std::string& group) {
@@ -236,6 +241,12 @@ EngineState read_engine_state(const hdf5::Reader& in, const std::string& group) 
               digits.begin() + (c + 1) * (ExactSum::kDigits + 1), s.dissipated[c].begin());
   const std::vector<std::int64_t> stats = in.read<std::int64_t>(group + "/solver_stats", H5T_NATIVE_INT64, 9);
   std::copy(stats.begin(), stats.end(), reinterpret_cast<std::int64_t*>(&s.solver_stats));
+  if (in.exists(group + "/cell")) {
+    const std::vector<double> v = in.read<double>(group + "/cell", H5T_NATIVE_DOUBLE, CellRecord::kValues);
+    std::array<double, CellRecord::kValues> values{};
+    std::copy(v.begin(), v.end(), values.begin());
+    s.cell = CellRecord::from_values(values);
+  }
 
   // Particles.
   const std::string pg = group + "/particles/";

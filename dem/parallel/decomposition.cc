@@ -141,7 +141,7 @@ void Decomposition::set_cuts(int d, const std::vector<double>& cuts) {
   update_block();
 }
 
-void Decomposition::deform(const Box& cell_box, const Vec3& rate) {
+void Decomposition::deform(const Box& cell_box) {
   if (!grid_holds(cell_, cell_box)) {
     std::ostringstream m;
     m << "periodic cell: the deforming cell " << cell_box.hi - cell_box.lo
@@ -158,11 +158,19 @@ void Decomposition::deform(const Box& cell_box, const Vec3& rate) {
     for (std::size_t k = 1; k + 1 < p.size(); ++k) p[k] = lo + (p[k] - old_lo) * scale;
     p.front() = lo;
     p.back() = hi;
+    for (std::size_t k = 0; k + 1 < p.size(); ++k) {
+      if (p[k + 1] - p[k] >= min_block_) continue;
+      std::ostringstream m;
+      m << "periodic cell: the deforming cell has shrunk so that a block along "
+        << "xyz"[d] << " is " << p[k + 1] - p[k] << " m thick, thinner than the interaction range "
+        << min_block_ << " m; run on fewer ranks along "
+        << "xyz"[d] << " (Parallel/blocks) or compress less";
+      throw Error(m.str());
+    }
     box_.lo[d] = cell_.box.lo[d] = lo;
     box_.hi[d] = cell_.box.hi[d] = hi;
     if (image_shift_[d][0] != 0.0) image_shift_[d][0] = hi - lo;
     if (image_shift_[d][1] != 0.0) image_shift_[d][1] = lo - hi;
-    cell_.rate[d] = rate[d];
   }
   update_block();
 }

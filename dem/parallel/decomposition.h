@@ -58,15 +58,13 @@ class Decomposition {
   // The shift a position takes when it crosses face `side` of this block along axis d into the
   // neighbour: +L (side 0) or -L (side 1) across a face of a periodic cell, else 0.
   [[nodiscard]] double image_shift(int d, int side) const { return image_shift_[d][side]; }
-  // The velocity an image takes with that shift in a deforming cell: L_dd times the shift (the
-  // mean flow's difference between the image and its grain); 0 in a fixed cell.
-  [[nodiscard]] double image_velocity(int d, int side) const { return cell_.rate[d] * image_shift_[d][side]; }
-  // The periodic cell moves to `cell_box` (its periodic faces on the grid) with the velocity
-  // gradient `rate` (its diagonal); the planes follow it, fixed in fractional coordinates, and
-  // the image shifts are the new lengths. Not collective, but every rank passes the same.
-  // Throws upgrain::Error when a periodic axis would not be longer than twice the interaction
-  // range, or the cell grows past what its position grid holds (grid_holds()).
-  void deform(const Box& cell_box, const Vec3& rate);
+  // The periodic cell moves to `cell_box` (its periodic faces on the grid); the planes follow
+  // it, fixed in fractional coordinates, and the image shifts are the new lengths. Not
+  // collective, but every rank passes the same. Throws upgrain::Error when a periodic axis
+  // would not be longer than twice the interaction range, a block would be thinner than the
+  // range (its ghosts would need a second neighbour), or the cell grows past what its position
+  // grid holds (grid_holds()).
+  void deform(const Box& cell_box);
   // The step (-1, 0 or +1) from this block's coordinate towards block coordinate c along d: the
   // shorter way round along a periodic axis.
   [[nodiscard]] int step_towards(int d, int c) const;

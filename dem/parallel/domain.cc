@@ -131,7 +131,7 @@ void Domain::migrate(ParticleStore& p, std::vector<ContactHistoryRecord>& record
   // Back into the periodic cell, counting the crossings (every rank, one rank included).
   const PeriodicCell& cell = dec.cell();
   if (cell.any())
-    for (int i = 0; i < n; ++i) wrap(cell, p.x[i], p.image[i], p.v[i]);
+    for (int i = 0; i < n; ++i) wrap(cell, p.x[i], p.image[i]);
   // How many blocks apart along axis d: the shorter way round a periodic axis.
   auto apart = [&](const std::array<int, 3>& c, int d) {
     const int k = std::abs(c[d] - me[d]);
@@ -282,13 +282,9 @@ void Domain::shift_images(std::vector<Record>& out, int d, int s) const {
   const double shift = decomp_->image_shift(d, s);
   if (shift == 0.0) return;
   const int count = shift > 0.0 ? -1 : 1;
-  // In a deforming cell the image also moves with the mean flow at its place (absolute
-  // velocities, docs/periodic.md, "A cell that deforms").
-  const double dv = decomp_->image_velocity(d, s);
   for (Record& r : out) {
     r.x[d] += shift;
     if constexpr (requires { r.image; }) r.image[d] += count;
-    if (dv != 0.0) r.v[d] += dv;
   }
 }
 

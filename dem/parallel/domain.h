@@ -73,9 +73,9 @@ class Domain {
   Domain(MPI_Comm comm, const Box& box, double range, bool shapes, const DomainOptions& options);
 
   [[nodiscard]] const Decomposition& decomposition() const { return *decomp_; }
-  // The periodic cell moves (Decomposition::deform()); the ghosts take the new shifts and
-  // image velocities at the next refresh. Every rank alike.
-  void deform_cell(const Box& cell_box, const Vec3& rate) { decomp_->deform(cell_box, rate); }
+  // The periodic cell moves (Decomposition::deform()); the ghosts take the new shifts at the
+  // next refresh. Every rank alike.
+  void deform_cell(const Box& cell_box) { decomp_->deform(cell_box); }
   [[nodiscard]] MPI_Comm comm() const { return decomp_->comm(); }
   [[nodiscard]] int rank() const { return decomp_->rank(); }
   [[nodiscard]] int size() const { return decomp_->size(); }

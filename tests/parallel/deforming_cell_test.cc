@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <set>
 
 #include "dem/boundary/container.h"
 #include "dem/core/error.h"
@@ -61,8 +62,8 @@ ParticleStore lattice(int n, double side, double r, double speed, std::mt19937_6
 // Grains that never touch, with no peculiar velocity, stay on the affine field x(t) = F(t) x(0),
 // F = h(t) h(0)^-1, to round-off: each step's drift and the cell's faces take the same map
 // x + dt L x onto the grid, so a grain is off F x(0) by the roundings of its steps, at most a
-// quantum each (q = 2^-52 of the grid's span), times the growth. Their velocities are the mean
-// flow L x.
+// quantum each (q = 2^-52 of the grid's span), times the growth. Their peculiar velocities (the
+// store's, relative to the mean flow L x) stay zero.
 TEST(DeformingCell, ContactFreeGasStaysOnTheAffineField) {
   const double side = 0.03;
   const SceneConfig s = gas_cell(side, Vec3(-4.0, -1.5, 2.5));
@@ -82,30 +83,28 @@ TEST(DeformingCell, ContactFreeGasStaysOnTheAffineField) {
   if (test::world_rank() != 0) return;
   const PeriodicCell& cell = sim.decomposition().cell();
   const double q = cell.quantum.maxCoeff();
-  const Mat3 l = sim.cell_velocity_gradient();
   double worst = 0.0, worst_v = 0.0;
   for (std::size_t i = 0; i < all.size(); ++i) {
     const Vec3 expected = f * p0.x[i];
     const Vec3 x = unwrapped(cell, all.x[i], all.image[i]);
     worst = std::max(worst, (x - expected).cwiseAbs().maxCoeff());
-    worst_v = std::max(worst_v, (all.v[i] - l * all.x[i]).cwiseAbs().maxCoeff());
+    worst_v = std::max(worst_v, all.v[i].cwiseAbs().maxCoeff());
   }
   EXPECT_LE(worst, 2.0 * steps * q) << "off the affine field by more than the roundings of the steps";
-  EXPECT_LE(worst_v, 4.0 * steps * q * 4.0) << "the velocity off the mean flow L x";
+  EXPECT_EQ(worst_v, 0.0) << "a peculiar velocity: the grain left the mean flow L x";
   EXPECT_GT(worst, 0.0);  // the comparison is not of a grain with itself
 }
 
-// A bed over a floor in a cell periodic along x and y, squeezed along both: the states are bitwise
-// those of one rank on any rank count, grains crossing the moving faces.
+// A bed over a floor in a cell periodic along x and y, squeezed along x at a prescribed rate and
+// along y by a servo to a lateral pressure of 150 Pa (its rate set from the cell's stress, kinetic
+// part included, every step): the
+// states are bitwise those of one rank on any rank count, grains crossing the moving faces.
 TEST(DeformingCell, CompressingPeriodicBedIsBitwiseIdenticalOnAnyRankCount) {
-  if (test::world_size() > 1)
-    GTEST_SKIP() << "not yet on more than one rank: on 2 and 3 ranks the states differ from one rank's in "
-                    "the last bits (docs/periodic.md, \"Not done yet\")";
   SceneConfig s = test::deposition_scene(300);
   s.container.periodic = {true, true, false};
   s.fill.velocity = Vec3(0.5, -0.4, -0.5);
   s.cell.axis[0] = {CellAxisMode::rate, -3.0};
-  s.cell.axis[1] = {CellAxisMode::rate, -2.0};
+  s.cell.axis[1] = {CellAxisMode::servo, 0.0, 150.0, 0.01, 2.0};
   const ParticleStore fill = fill_container(s);
   const std::vector<PlaneWall> walls = make_open_box(s.container);
   // The load balance moves the planes at its rebuilds; between them they follow the cell.
@@ -113,7 +112,12 @@ TEST(DeformingCell, CompressingPeriodicBedIsBitwiseIdenticalOnAnyRankCount) {
   balanced.balance_interval = 300;
   test::expect_rank_independent(s, fill, walls, balanced, {}, 1500);
   Simulation sim(s, fill, walls, MPI_COMM_WORLD, balanced);
-  sim.run(1500);
+  std::set<double> servo_rates;
+  for (int k = 0; k < 1500; ++k) {
+    sim.step();
+    servo_rates.insert(sim.cell_velocity_gradient()(1, 1));
+  }
+  EXPECT_GT(servo_rates.size(), 100u) << "the servo set L_yy from the cell's stress";
   EXPECT_LT(sim.cell_matrix()(0, 0), 0.03 * std::exp(-3.0 * 0.015) + 1e-9);
   EXPECT_GT(sim.diagnostics().particle_contacts, 50);
   const ParticleStore all = sim.gather_sorted_by_id();
@@ -130,9 +134,9 @@ TEST(DeformingCell, CompressingPeriodicBedIsBitwiseIdenticalOnAnyRankCount) {
 // stress is within 2 % of the target, and the packing's solid fraction is that of a jammed
 // frictional packing (above 0.5).
 TEST(DeformingCell, ServoBringsAPackingToItsTargetPressure) {
-  if (test::world_size() > 1)
-    GTEST_SKIP() << "not yet on more than one rank: on 2 ranks the run did not end within 5 minutes (a hang "
-                    "or a slowdown not yet found) (docs/periodic.md, \"Not done yet\")";
+  // 32,000 steps: the physics is checked once, on one rank (the same figures on 2, 4 and 8 when
+  // measured); a servo's rank independence is CompressingPeriodicBed's.
+  if (test::world_size() > 1) GTEST_SKIP() << "one rank's test";
   const double side = 0.015, r = 0.9e-3, target = 2e4;
   SceneConfig s = gas_cell(side, Vec3::Zero());
   s.time_step = 4e-6;
@@ -151,9 +155,10 @@ TEST(DeformingCell, ServoBringsAPackingToItsTargetPressure) {
   for (int d = 0; d < 3; ++d) EXPECT_NEAR(mean[d], target, 0.02 * target) << "axis " << d;
   const Mat3 h = sim.cell_matrix();
   const double phi = 216 * 4.0 / 3.0 * M_PI * r * r * r / h.determinant();
+  const long contacts = sim.diagnostics().particle_contacts;  // collective: on every rank
   if (test::world_rank() == 0)
     std::printf("servo: mean -sigma %.1f %.1f %.1f Pa (target %.0f), phi %.4f, contacts %ld\n", mean[0],
-                mean[1], mean[2], target, phi, sim.diagnostics().particle_contacts);
+                mean[1], mean[2], target, phi, contacts);
   EXPECT_GT(phi, 0.5);
   EXPECT_LT(phi, 0.74);
 }

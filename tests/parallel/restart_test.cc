@@ -27,6 +27,7 @@ struct Outcome {
   EnergyBalance energy;
   std::vector<Vec3> wall_forces;
   StepDiagnostics diagnostics;
+  Mat3 cell, velocity_gradient, cell_stress;  // a deforming cell's
 };
 
 Outcome outcome(Simulation& sim) {
@@ -35,6 +36,9 @@ Outcome outcome(Simulation& sim) {
   o.energy = sim.energy();
   o.wall_forces = sim.wall_forces();
   o.diagnostics = sim.diagnostics();
+  o.cell = sim.cell_matrix();
+  o.velocity_gradient = sim.cell_velocity_gradient();
+  o.cell_stress = sim.cell_stress();
   return o;
 }
 
@@ -52,9 +56,13 @@ void expect_same(const Outcome& a, const Outcome& b, const std::string& what) {
         {x.dissipated_friction, y.dissipated_friction, "friction"},
         {x.tangential_stiffness_change, y.tangential_stiffness_change, "stiffness change"},
         {x.dissipated_rolling, y.dissipated_rolling, "rolling"},
-        {x.work_by_walls, y.work_by_walls, "walls' work"}})
+        {x.work_by_walls, y.work_by_walls, "walls' work"},
+        {x.work_by_cell, y.work_by_cell, "cell's work"}})
     EXPECT_EQ(u, v) << what << ": " << name << " energy";
   EXPECT_EQ(a.wall_forces, b.wall_forces) << what;
+  EXPECT_EQ(a.cell, b.cell) << what;
+  EXPECT_EQ(a.velocity_gradient, b.velocity_gradient) << what;
+  EXPECT_EQ(a.cell_stress, b.cell_stress) << what;
   EXPECT_EQ(a.diagnostics.particle_contacts, b.diagnostics.particle_contacts) << what;
   EXPECT_EQ(a.diagnostics.wall_contacts, b.diagnostics.wall_contacts) << what;
   EXPECT_EQ(a.diagnostics.neighbor_builds, b.diagnostics.neighbor_builds) << what;
@@ -135,6 +143,18 @@ TEST(Restart, PeriodicBedContinuesBitwise) {
   s.container.periodic = {true, true, false};
   s.fill.velocity = Vec3(0.4, -0.3, -0.5);
   expect_restart_is_bitwise(s, 1500, 1000, "240 spheres, periodic x and y");
+}
+
+// A cell that deforms (docs/periodic.md, "A cell that deforms"), squeezed along x at a rate and
+// along y by a servo: its box, its box at the last list build, L (the servo's state), its stress
+// and its work travel in the state, and the run goes on with the bits of the one not interrupted.
+TEST(Restart, DeformingCellContinuesBitwise) {
+  SceneConfig s = test::deposition_scene(240);
+  s.container.periodic = {true, true, false};
+  s.fill.velocity = Vec3(0.4, -0.3, -0.5);
+  s.cell.axis[0] = {CellAxisMode::rate, -3.0};
+  s.cell.axis[1] = {CellAxisMode::servo, 0.0, 150.0, 0.01, 2.0};
+  expect_restart_is_bitwise(s, 1500, 1000, "240 spheres in a deforming cell");
 }
 
 TEST(Restart, RollingResistanceContinuesBitwise) {

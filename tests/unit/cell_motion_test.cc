@@ -58,21 +58,3 @@ TEST(CellMotion, FacesTakeTheMeanFlowsMapOnTheGrid) {
   EXPECT_FALSE(grid_holds(cell, grown));
   EXPECT_EQ(cell_matrix(b), Vec3(0.03, 0.03, 0.05).asDiagonal().toDenseMatrix());
 }
-
-// A grain wrapped through a face of a deforming cell keeps its peculiar velocity v - L x.
-TEST(CellMotion, WrapKeepsThePeculiarVelocity) {
-  Box b;
-  b.lo = Vec3::Zero();
-  b.hi = Vec3(0.04, 0.04, 0.04);
-  PeriodicCell cell = make_periodic_cell(b, {true, true, true}, 2.0);
-  cell.rate = Vec3(-2.0, 0.5, 0.0);
-  Vec3 x(0.041, -0.001, 0.02), v(0.1, 0.2, 0.3);
-  const Vec3 u = v - cell.rate.cwiseProduct(x);
-  ImageCount n{0, 0, 0};
-  wrap(cell, x, n, v);
-  EXPECT_EQ(n[0], 1);
-  EXPECT_EQ(n[1], -1);
-  const Vec3 u_after = v - cell.rate.cwiseProduct(x);
-  EXPECT_NEAR((u_after - u).norm(), 0.0, 1e-15);
-  EXPECT_NE(v[0], 0.1);
-}
