@@ -6,7 +6,8 @@
 //                                        time `steps` steps (default 2000) from the file with
 //                                        the given summation (deterministic, the default, or
 //                                        fast) and print particle-steps/s, contacts per
-//                                        particle and peak memory per particle
+//                                        particle and peak memory per particle; under callgrind
+//                                        the timed steps are a profile file of their own (`.1`)
 //   bench_dense_bed stress bed.data OUT [steps [evaluations]]
 //                                        cost of grid stress per contact and its share of a
 //                                        run that evaluates it every 1,000 steps
@@ -27,6 +28,7 @@
 
 #include <memory>
 
+#include "bench/callgrind_marks.h"
 #include "bench/dense_bed_scene.h"
 #include "dem/engine/simulation.h"
 #include "dem/io/grid_stress_output.h"
@@ -146,9 +148,11 @@ int run(const std::string& path, long steps, Summation summation, bool periodic)
   std::unique_ptr<Simulation> sim = load_bed(path, summation, periodic);
   if (!sim) return 1;
   const auto n = static_cast<long>(sim->owned());  // owned grains: a periodic cell adds images
+  UPGRAIN_ZERO_STATS();  // a profile holds the timed steps only (the lists are built before)
   const auto t0 = std::chrono::steady_clock::now();
   sim->run(steps);
   const double secs = seconds_since(t0);
+  UPGRAIN_DUMP_STATS("steps");
   const auto d2 = sim->diagnostics();
   std::printf(
       "upgrain summation %s%s particles %ld steps %ld seconds %.4f particle_steps_per_second %.4e "
