@@ -257,7 +257,7 @@ void Simulation::step() {
   // the grains' own displacements must leave room for (verlet_list.h: two grains of a pair may
   // move half a skin each).
   const Vec3 rate = cell_l_.diagonal();
-  const Vec3 decay = (-half * rate).array().exp().matrix();
+  const Vec3 decay = deforming_ ? Vec3((-half * rate).array().exp().matrix()) : Vec3::Ones();
   Box next_cell;
   if (deforming_) {
     next_cell = advanced_cell_box(cell, cell_l_, dt_);

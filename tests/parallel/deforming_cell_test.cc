@@ -96,15 +96,10 @@ TEST(DeformingCell, ContactFreeGasStaysOnTheAffineField) {
 }
 
 // A bed over a floor in a cell periodic along x and y, squeezed along x at a prescribed rate and
-// along y by a servo to a lateral pressure of 150 Pa (its rate set from the cell's stress, kinetic
-// part included, every step): the
-// states are bitwise those of one rank on any rank count, grains crossing the moving faces.
+// along y by a servo (test::compressing_cell_scene()): the states are bitwise those of one rank
+// on any rank count, grains crossing the moving faces.
 TEST(DeformingCell, CompressingPeriodicBedIsBitwiseIdenticalOnAnyRankCount) {
-  SceneConfig s = test::deposition_scene(300);
-  s.container.periodic = {true, true, false};
-  s.fill.velocity = Vec3(0.5, -0.4, -0.5);
-  s.cell.axis[0] = {CellAxisMode::rate, -3.0};
-  s.cell.axis[1] = {CellAxisMode::servo, 0.0, 150.0, 0.01, 2.0};
+  const SceneConfig s = test::compressing_cell_scene(300, Vec3(0.5, -0.4, -0.5));
   const ParticleStore fill = fill_container(s);
   const std::vector<PlaneWall> walls = make_open_box(s.container);
   // The load balance moves the planes at its rebuilds; between them they follow the cell.

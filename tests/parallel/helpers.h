@@ -136,4 +136,16 @@ inline dem::SceneConfig deposition_scene(long count) {
   return s;
 }
 
+// deposition_scene() in a cell periodic along x and y that deforms (docs/periodic.md, "A cell
+// that deforms"): squeezed along x at -3 /s, and along y by a servo to a lateral pressure of
+// 150 Pa (kinetic part included), its rate set from the cell's stress every step.
+inline dem::SceneConfig compressing_cell_scene(long count, const dem::Vec3& throw_velocity) {
+  dem::SceneConfig s = deposition_scene(count);
+  s.container.periodic = {true, true, false};
+  s.fill.velocity = throw_velocity;
+  s.cell.axis[0] = {dem::CellAxisMode::rate, -3.0};
+  s.cell.axis[1] = {dem::CellAxisMode::servo, 0.0, 150.0, 0.01, 2.0};
+  return s;
+}
+
 }  // namespace upgrain::test

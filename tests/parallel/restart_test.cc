@@ -149,12 +149,8 @@ TEST(Restart, PeriodicBedContinuesBitwise) {
 // along y by a servo: its box, its box at the last list build, L (the servo's state), its stress
 // and its work travel in the state, and the run goes on with the bits of the one not interrupted.
 TEST(Restart, DeformingCellContinuesBitwise) {
-  SceneConfig s = test::deposition_scene(240);
-  s.container.periodic = {true, true, false};
-  s.fill.velocity = Vec3(0.4, -0.3, -0.5);
-  s.cell.axis[0] = {CellAxisMode::rate, -3.0};
-  s.cell.axis[1] = {CellAxisMode::servo, 0.0, 150.0, 0.01, 2.0};
-  expect_restart_is_bitwise(s, 1500, 1000, "240 spheres in a deforming cell");
+  expect_restart_is_bitwise(test::compressing_cell_scene(240, Vec3(0.4, -0.3, -0.5)), 1500, 1000,
+                            "240 spheres in a deforming cell");
 }
 
 TEST(Restart, RollingResistanceContinuesBitwise) {
