@@ -2,9 +2,9 @@
 // How a periodic cell deforms (docs/periodic.md, "A cell that deforms"): its matrix h (the
 // three edge vectors as columns; diagonal while the cell is orthorhombic) moves by a velocity
 // gradient L, h' = L h. Each diagonal component of L is prescribed (a strain rate) or set by
-// a servo to bring the cell's stress to a target (isotropic and triaxial compression). The
-// off-diagonal components (shear, Lees and Edwards 1972) are the next step: the modes set the
-// diagonal only (docs/periodic.md, "How the design extends to shear").
+// a servo to bring the cell's stress to a target (isotropic and triaxial compression). One
+// off-diagonal component L(s, g) may be prescribed, a shear rate (simple shear, with the cell's
+// images in the Lees-Edwards form of periodic_cell.h: ShearImages).
 //
 // The mean flow is L x, and the grains' equations are SLLOD's (Evans and Morriss 1990,
 // Statistical Mechanics of Nonequilibrium Liquids, sec. 6.3), for the peculiar velocity u (the
@@ -38,15 +38,26 @@ struct CellAxisControl {
   double max_rate = 0.0;         // servo: the bound on |L_dd| (1/s)
 };
 
+// A prescribed shear rate L(s, g) = d v_s / d x_g (1/s): the grains' mean flow slides along the
+// shear axis s with the gradient axis g.
+struct CellShearControl {
+  int shear = -1;  // s (-1: no shear)
+  int gradient = -1;
+  double rate = 0.0;
+
+  [[nodiscard]] bool any() const { return shear >= 0; }
+};
+
 struct CellMotion {
   std::array<CellAxisControl, 3> axis{};
+  CellShearControl shear;
   // The cell may grow up to this factor along an axis: its position grid is sized for it
   // (periodic_cell.h, make_periodic_cell()), and the engine refuses growth past it.
   double max_growth = 2.0;
 
   [[nodiscard]] bool any() const {
-    return std::any_of(axis.begin(), axis.end(),
-                       [](const CellAxisControl& a) { return a.mode != CellAxisMode::fixed; });
+    return shear.any() || std::any_of(axis.begin(), axis.end(),
+                                      [](const CellAxisControl& a) { return a.mode != CellAxisMode::fixed; });
   }
 };
 
@@ -63,6 +74,7 @@ inline Mat3 initial_velocity_gradient(const CellMotion& m) {
   Mat3 l = Mat3::Zero();
   for (int d = 0; d < 3; ++d)
     if (m.axis[d].mode == CellAxisMode::rate) l(d, d) = m.axis[d].rate;
+  if (m.shear.any()) l(m.shear.shear, m.shear.gradient) = m.shear.rate;
   return l;
 }
 
@@ -94,6 +106,37 @@ inline Box advanced_cell_box(const PeriodicCell& cell, const Mat3& l, double dt)
     b.hi[d] = on_grid(b.hi[d] + dt * l(d, d) * b.hi[d], cell.quantum[d]);
   }
   return b;
+}
+
+// One step of a sheared cell's tilt, h(s, g)' = L(s, s) h(s, g) + L(s, g) h(g, g) (the (s, g)
+// component of h' = L h, L having no other off-diagonal component), on the grid of s, with the
+// lengths of the step's start. In terms of the offset (the tilt less its turns, which the length
+// L_s carries with it as it changes at L(s, s)): offset' = offset + dt (L(s, s) offset + L(s, g) L_g).
+inline double advanced_offset(const PeriodicCell& cell, const Mat3& l, double dt) {
+  const ShearImages& le = cell.shear;
+  const int s = le.shear, g = le.gradient;
+  return on_grid(le.offset + dt * (l(s, s) * le.offset + l(s, g) * cell.length(g)), cell.quantum[s]);
+}
+
+// The offset brought back within half a length of zero by whole lengths L_s, counted in the
+// turns: the same lattice of images (periodic_cell.h). Exact: both are on the grid of s.
+inline ShearImages remapped(ShearImages le, double length_s) {
+  while (le.offset > 0.5 * length_s) {
+    le.offset -= length_s;
+    ++le.turns;
+  }
+  while (le.offset < -0.5 * length_s) {
+    le.offset += length_s;
+    --le.turns;
+  }
+  return le;
+}
+
+// The cell matrix: its lengths on the diagonal, a sheared cell's tilt h(s, g) besides.
+inline Mat3 cell_matrix(const PeriodicCell& cell) {
+  Mat3 h = (cell.box.hi - cell.box.lo).asDiagonal();
+  if (cell.shear.any()) h(cell.shear.shear, cell.shear.gradient) = cell.tilt();
+  return h;
 }
 
 // The cell matrix of an orthorhombic cell: its lengths on the diagonal.

@@ -227,6 +227,9 @@ void Simulation::set_up(long count, double max_radius, bool shapes, const Box& b
     }
     if (scene_.insertion.enabled())
       throw Error("a deforming cell: insertion during the run is not available");
+    // The sheared cell's images, its tilt and remap are in place (periodic_cell.h, cell_motion.h);
+    // the ghosts, the migration and the SLLOD step do not take them yet.
+    if (scene_.cell.shear.any()) throw Error("a sheared cell: not available in the engine yet");
     options_.cell_growth = scene_.cell.max_growth;
     cell_l_ = initial_velocity_gradient(scene_.cell);
     cell_start_ = box;

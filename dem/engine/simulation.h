@@ -204,7 +204,7 @@ class Simulation {
   // --- A deforming periodic cell (docs/periodic.md, "A cell that deforms"; SceneConfig::cell).
   [[nodiscard]] bool cell_deforms() const { return deforming_; }
   // The cell matrix h (its lengths on the diagonal) and the corner it is spanned from.
-  [[nodiscard]] Mat3 cell_matrix() const { return dem::cell_matrix(decomposition().cell().box); }
+  [[nodiscard]] Mat3 cell_matrix() const { return dem::cell_matrix(decomposition().cell()); }
   // The velocity gradient L of the coming step (h' = L h; the servo's after the last
   // evaluation).
   [[nodiscard]] const Mat3& cell_velocity_gradient() const { return cell_l_; }

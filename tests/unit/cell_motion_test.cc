@@ -58,3 +58,46 @@ TEST(CellMotion, FacesTakeTheMeanFlowsMapOnTheGrid) {
   EXPECT_FALSE(grid_holds(cell, grown));
   EXPECT_EQ(cell_matrix(b), Vec3(0.03, 0.03, 0.05).asDiagonal().toDenseMatrix());
 }
+
+// A sheared cell's tilt: h(s, g)' = L(s, s) h(s, g) + L(s, g) h(g, g) per step on the grid of s;
+// its remaps by whole lengths keep the tilt (offset + turns L_s) and the offset within half a
+// length; the shear rate enters L(s, g) and makes the motion non-trivial.
+TEST(CellMotion, ShearTiltFollowsTheVelocityGradientAndRemapsByWholeLengths) {
+  CellMotion m;
+  m.shear = {0, 2, 4.0};
+  EXPECT_TRUE(m.any());
+  const Mat3 l0 = initial_velocity_gradient(m);
+  EXPECT_EQ(l0(0, 2), 4.0);
+  EXPECT_EQ(l0(2, 0), 0.0);
+  Box b;
+  b.hi = Vec3(0.03, 0.02, 0.05);
+  PeriodicCell cell = make_periodic_cell(b, {true, true, true}, 2.0);
+  cell.shear.shear = 0;
+  cell.shear.gradient = 2;
+  Mat3 l = l0;
+  l(0, 0) = -2.0;  // the shear axis shortens as it shears
+  const double dt = 1e-4;
+  double expected = 0.0;
+  for (int k = 0; k < 1000; ++k) {
+    const double next = advanced_offset(cell, l, dt);
+    EXPECT_NEAR(next, cell.shear.offset + dt * (-2.0 * cell.shear.offset + 4.0 * 0.05), cell.quantum[0]);
+    EXPECT_EQ(next, on_grid(next, cell.quantum[0]));
+    expected += dt * (-2.0 * expected + 4.0 * 0.05);
+    cell.shear.offset = next;
+  }
+  EXPECT_NEAR(cell.shear.offset, expected, 1000 * cell.quantum[0]);
+  // h_sg(t) = (L_sg L_g / -L_ss)(1 - e^(L_ss t)) at t = 0.1 s, to the scheme's first order.
+  EXPECT_NEAR(cell.tilt(), 0.1 * (1.0 - std::exp(-0.2)), 2e-6);
+  // Past half a length: remapped by whole lengths, the tilt the same bits.
+  cell.shear.offset = on_grid(0.071, cell.quantum[0]);
+  const double tilt = cell.tilt();
+  const ShearImages r = remapped(cell.shear, cell.length(0));
+  EXPECT_EQ(r.turns, 2);
+  EXPECT_LE(std::abs(r.offset), 0.5 * cell.length(0));
+  PeriodicCell after = cell;
+  after.shear = r;
+  EXPECT_EQ(after.tilt(), tilt);
+  EXPECT_EQ(cell_matrix(after)(0, 2), tilt);
+  EXPECT_EQ(remapped(after.shear, cell.length(0)).turns, 2) << "nothing left to remap";
+  EXPECT_EQ(remapped(ShearImages{0, 2, on_grid(-0.02, cell.quantum[0]), 0}, 0.03).turns, -1);
+}

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <random>
 #include <string>
 
 #include "dem/core/error.h"
@@ -197,4 +199,75 @@ TEST(PeriodicCell, AxisNotLongerThanTwiceTheRangeIsRefused) {
   } catch (const upgrain::Error& e) {
     EXPECT_NE(std::string(e.what()).find("periodic axis x"), std::string::npos) << e.what();
   }
+}
+
+namespace {
+
+// A cube cell sheared along x with the gradient z (Lees-Edwards), its tilt offset + turns L.
+PeriodicCell sheared_cube(double l, double offset, std::int64_t turns) {
+  PeriodicCell c = cube_cell(l);
+  c.shear = {0, 2, on_grid(offset, c.quantum.x()), turns};
+  return c;
+}
+
+}  // namespace
+
+// The minimum image of a sheared cell is the nearest point of the lattice of images h n: short
+// separations moved by random lattice vectors (the tilt's turns included) come back exactly to
+// themselves, to round-off.
+TEST(PeriodicCell, ShearedMinimumImageIsTheNearestImageOfTheTiltedLattice) {
+  const double l = 0.04;
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (double offset : {0.0, 0.013, -0.0199, 0.02}) {
+    const PeriodicCell c = sheared_cube(l, offset, 3);
+    Mat3 h = Vec3::Constant(l).asDiagonal();
+    h(0, 2) = c.tilt();
+    for (int trial = 0; trial < 500; ++trial) {
+      const Vec3 d(0.2 * l * u(rng), 0.2 * l * u(rng), 0.2 * l * u(rng));
+      const Vec3 n(std::round(2.0 * u(rng)), std::round(2.0 * u(rng)), std::round(2.0 * u(rng)));
+      const Vec3 m = minimum_image(c, d + h * n);
+      ASSERT_LT((m - d).cwiseAbs().maxCoeff(), 1e-15) << "offset " << offset << ", n " << n.transpose();
+    }
+  }
+}
+
+// A grain that crosses the gradient axis's faces many times, through the shear axis's faces too,
+// with the tilt remapped between crossings: every wrap keeps its unwrapped position x + h n to
+// round-off (the unwrapped sums reach far past the cell, beyond its grid's exact range), the
+// position stays in the box, and a remap moves no unwrapped position.
+TEST(PeriodicCell, ShearedWrapKeepsTheUnwrappedPositionThroughCrossingsAndRemaps) {
+  const double l = 0.04;
+  PeriodicCell c = sheared_cube(l, 0.011, 0);
+  const double qx = c.quantum.x(), qz = c.quantum.z();
+  Vec3 x(on_grid(0.01, qx), on_grid(0.02, c.quantum.y()), on_grid(0.03, qz));
+  ImageCount n{0, 0, 0};
+  long crossings = 0;
+  for (int k = 0; k < 400; ++k) {
+    // A step on the grid, then the wrap: the unwrapped position is the step's.
+    x += Vec3(on_grid(0.0173, qx), 0.0, on_grid(k % 3 == 0 ? -0.009 : 0.0131, qz));
+    const Vec3 path = unwrapped(c, x, n);
+    // Each of the unwrapped sums rounds at most once, to half an ulp of the sum.
+    const double tolerance = 4.0 * 0x1p-53 * path.cwiseAbs().maxCoeff();
+    const ImageCount before = n;
+    wrap(c, x, n);
+    crossings += std::abs(n[2] - before[2]);
+    ASSERT_LE((unwrapped(c, x, n) - path).cwiseAbs().maxCoeff(), tolerance) << "step " << k;
+    ASSERT_GE(x.x(), c.box.lo.x());
+    ASSERT_LT(x.x(), c.box.hi.x());
+    ASSERT_GE(x.z(), c.box.lo.z());
+    ASSERT_LT(x.z(), c.box.hi.z());
+    // Every fifth step the tilt grows by a quarter length (the images move) and is remapped: the
+    // lattice is the same, and so is every unwrapped position.
+    if (k % 5 == 4) {
+      c.shear.offset += on_grid(0.25 * l, qx);
+      const Vec3 before_remap = unwrapped(c, x, n);
+      c.shear = remapped(c.shear, l);
+      ASSERT_LE(std::abs(c.shear.offset), 0.5 * l);
+      ASSERT_LE((unwrapped(c, x, n) - before_remap).cwiseAbs().maxCoeff(),
+                4.0 * 0x1p-53 * before_remap.cwiseAbs().maxCoeff());
+    }
+  }
+  EXPECT_GT(crossings, 50);
+  EXPECT_GT(c.shear.turns, 10);
 }
