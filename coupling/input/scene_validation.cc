@@ -96,6 +96,13 @@ void validate_cell(const SceneInput& in, const std::string& where) {
   const double d_max = 2.0 * s.particles.largest_radius();
   const double range = d_max + s.neighbor_skin * d_max;
   const double length[3] = {s.container.lx, s.container.ly, s.container.height};
+  if (const dem::CellShearControl& c = s.cell.shear; c.any()) {
+    const std::string name = std::string(1, "xyz"[c.shear()]) + "xyz"[c.gradient()];
+    for (int d : c.component)
+      if (!s.container.periodic[d])
+        throw Error(where + "Cell/shear component = " + name + " shears the cell across " + "xyz"[d] +
+                    ", which is not periodic: add it to Container/periodic axes");
+  }
   for (int d = 0; d < 3; ++d) {
     const dem::CellAxisControl& c = s.cell.axis[d];
     if (c.mode == dem::CellAxisMode::fixed) continue;

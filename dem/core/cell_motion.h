@@ -41,11 +41,12 @@ struct CellAxisControl {
 // A prescribed shear rate L(s, g) = d v_s / d x_g (1/s): the grains' mean flow slides along the
 // shear axis s with the gradient axis g.
 struct CellShearControl {
-  int shear = -1;  // s (-1: no shear)
-  int gradient = -1;
+  std::array<int, 2> component{-1, -1};  // {s, g}; {-1, -1}: no shear
   double rate = 0.0;
 
-  [[nodiscard]] bool any() const { return shear >= 0; }
+  [[nodiscard]] bool any() const { return component[0] >= 0; }
+  [[nodiscard]] int shear() const { return component[0]; }
+  [[nodiscard]] int gradient() const { return component[1]; }
 };
 
 struct CellMotion {
@@ -74,7 +75,7 @@ inline Mat3 initial_velocity_gradient(const CellMotion& m) {
   Mat3 l = Mat3::Zero();
   for (int d = 0; d < 3; ++d)
     if (m.axis[d].mode == CellAxisMode::rate) l(d, d) = m.axis[d].rate;
-  if (m.shear.any()) l(m.shear.shear, m.shear.gradient) = m.shear.rate;
+  if (m.shear.any()) l(m.shear.shear(), m.shear.gradient()) = m.shear.rate;
   return l;
 }
 
@@ -130,6 +131,59 @@ inline ShearImages remapped(ShearImages le, double length_s) {
     --le.turns;
   }
   return le;
+}
+
+// The mean flow L x of a deforming cell, for an L that is diagonal but for at most one component
+// L(shear, gradient): what the drift and the force loop's relative velocities take.
+struct MeanFlow {
+  Vec3 rate = Vec3::Zero();  // L's diagonal
+  int shear = 0, gradient = 0;
+  double shear_rate = 0.0;  // L(shear, gradient)
+
+  [[nodiscard]] Vec3 of(const Vec3& x) const {
+    Vec3 v = rate.cwiseProduct(x);
+    if (shear_rate != 0.0) v[shear] += shear_rate * x[gradient];
+    return v;
+  }
+};
+
+inline MeanFlow mean_flow(const Mat3& l, const CellShearControl& c) {
+  MeanFlow f;
+  f.rate = l.diagonal();
+  if (c.any()) {
+    f.shear = c.shear();
+    f.gradient = c.gradient();
+    f.shear_rate = l(c.shear(), c.gradient());
+  }
+  return f;
+}
+
+// exp(-L tau) for such an L, applied to a peculiar velocity: SLLOD's u' = -L u over tau, exactly.
+// The diagonal e^(-L_dd tau); the one off-diagonal component of the exponential of the 2 x 2 block
+// [[a, b], [0, c]] = -tau [[L_ss, L_sg], [0, L_gg]] is b e^c (e^(a - c) - 1) / (a - c) (b e^a when
+// a = c; Higham 2008, Functions of Matrices, sec. 4.6, the 2 x 2 triangular case).
+struct FlowDecay {
+  Vec3 diagonal = Vec3::Ones();
+  int shear = 0, gradient = 0;
+  double cross = 0.0;
+
+  [[nodiscard]] Vec3 operator()(const Vec3& u) const {
+    Vec3 w = diagonal.cwiseProduct(u);
+    if (cross != 0.0) w[shear] += cross * u[gradient];
+    return w;
+  }
+};
+
+inline FlowDecay flow_decay(const MeanFlow& f, double tau) {
+  FlowDecay d;
+  d.diagonal = (-tau * f.rate).array().exp().matrix();
+  d.shear = f.shear;
+  d.gradient = f.gradient;
+  if (f.shear_rate != 0.0) {
+    const double a = -tau * f.rate[f.shear], c = -tau * f.rate[f.gradient], b = -tau * f.shear_rate;
+    d.cross = b * std::exp(c) * (a == c ? 1.0 : std::expm1(a - c) / (a - c));
+  }
+  return d;
 }
 
 // The cell matrix: its lengths on the diagonal, a sheared cell's tilt h(s, g) besides.

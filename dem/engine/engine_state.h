@@ -44,6 +44,11 @@ struct CellRecord {
   Mat3 stress_volume = Mat3::Zero();      // times its volume: the first end of the work's trapezoid
   bool stress_known = false;
   double work = 0.0;  // the cell's work so far
+  // A sheared cell: its sliding images now (periodic_cell.h), and their offset at the last list
+  // build (the turns change only at a build). Kept apart from the row below (shear_values()), so
+  // that a cell that is not sheared keeps its checkpoint's layout.
+  ShearImages shear;
+  double offset_at_build = 0.0;
 
   // As one row of numbers (checkpoint files and the state's bytes), and back.
   static constexpr int kValues = 1 + 12 + 27 + 2;
@@ -58,6 +63,15 @@ struct CellRecord {
     v[k++] = stress_known ? 1.0 : 0.0;
     v[k++] = work;
     return v;
+  }
+  static constexpr int kShearValues = 5;
+  [[nodiscard]] std::array<double, kShearValues> shear_values() const {
+    return {static_cast<double>(shear.shear), static_cast<double>(shear.gradient), shear.offset,
+            static_cast<double>(shear.turns), offset_at_build};
+  }
+  void set_shear_values(const std::array<double, kShearValues>& v) {
+    shear = {static_cast<int>(v[0]), static_cast<int>(v[1]), v[2], static_cast<std::int64_t>(v[3])};
+    offset_at_build = v[4];
   }
   static CellRecord from_values(const std::array<double, kValues>& v) {
     CellRecord c;

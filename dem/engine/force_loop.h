@@ -23,6 +23,7 @@
 #include "dem/contact/geometry/pair_geometries.h"
 #include "dem/contact/grain_poses.h"
 #include "dem/contact/rolling_resistance.h"
+#include "dem/core/cell_motion.h"
 #include "dem/core/contact_history.h"
 #include "dem/core/material.h"
 #include "dem/core/pair_list.h"
@@ -82,12 +83,12 @@ struct ForceInput {
   const LawConstants* law = nullptr;  // the constants of the law the loop was compiled for
   RollingParameters rolling;          // scenes with rolling resistance
   double dt = 0.0;
-  // A deforming periodic cell: the diagonal of its velocity gradient L (null otherwise). The
-  // store then holds peculiar velocities u = v - L x (SLLOD), and a contact's relative velocity
-  // takes the mean flow's L (x_i - x_j) besides; the branch x_j - x_i is exact on the cell's
-  // grid, so the two sides of a pair across a face see the same bits (docs/periodic.md, "A
-  // cell that deforms").
-  const Vec3* mean_flow = nullptr;
+  // A deforming periodic cell: its velocity gradient L, diagonal but for at most one shear
+  // component (null otherwise). The store then holds peculiar velocities u = v - L x (SLLOD), and
+  // a contact's relative velocity takes the mean flow's L (x_j - x_i) besides; the branch
+  // x_j - x_i is exact on the cell's grid, so the two sides of a pair across a face see the same
+  // bits (docs/periodic.md, "A cell that deforms").
+  const MeanFlow* mean_flow = nullptr;
   // Ellipsoid scenes: every local grain posed once per evaluation, and this rank's contact
   // solver counters, cumulative.
   GrainPoses* posed = nullptr;

@@ -67,7 +67,7 @@ void compute(const ForceInput& in) {
   const std::size_t n = p.size();
   const int n_owned = in.n_owned;
   const bool mean_flow = in.mean_flow != nullptr;
-  const Vec3 flow_rate = mean_flow ? *in.mean_flow : Vec3::Zero();
+  const MeanFlow flow = mean_flow ? *in.mean_flow : MeanFlow{};
 
   for (std::size_t i = 0; i < n; ++i) {
     p.force[i].setZero();
@@ -136,7 +136,7 @@ void compute(const ForceInput& in) {
       }
       kin.lever_j = Vec3::Zero();
       kin.v_i = p.v[i];
-      if (mean_flow) kin.v_i += flow_rate.cwiseProduct(p.x[i]);  // absolute: u + L x
+      if (mean_flow) kin.v_i += flow.of(p.x[i]);  // absolute: u + L x
       kin.v_j = wall.velocity;  // a rigid translation: every point of the wall moves with it
       if constexpr (kRotation) {
         kin.omega_i = p.omega[i];
@@ -326,7 +326,7 @@ void compute(const ForceInput& in) {
           }
           kin.v_i = v[i];
           kin.v_j = v[j];
-          if (mean_flow) kin.v_j += flow_rate.cwiseProduct(x[j] - xi);
+          if (mean_flow) kin.v_j += flow.of(x[j] - xi);
           if constexpr (kRotation) {
             kin.omega_i = omega[i];
             kin.omega_j = omega[j];

@@ -227,18 +227,29 @@ void Simulation::set_up(long count, double max_radius, bool shapes, const Box& b
     }
     if (scene_.insertion.enabled())
       throw Error("a deforming cell: insertion during the run is not available");
-    // The sheared cell's images, its tilt and remap are in place (periodic_cell.h, cell_motion.h);
-    // the ghosts, the migration and the SLLOD step do not take them yet.
-    if (scene_.cell.shear.any()) throw Error("a sheared cell: not available in the engine yet");
+    // A sheared cell (Lees-Edwards images, docs/periodic.md, "Shear"): its shear axis in one block.
+    if (const CellShearControl& c = scene_.cell.shear; c.any()) {
+      for (int d : c.component) {
+        if (!options_.periodic[d])
+          throw Error(std::string("a sheared cell: the axis ") + "xyz"[d] +
+                      " is not periodic (Container/periodic axes)");
+        if (g_[d] != 0.0)
+          throw Error(std::string("a sheared cell: gravity has a component along its axis ") + "xyz"[d]);
+      }
+      if (c.shear() == c.gradient()) throw Error("a sheared cell: its shear and gradient axes are the same");
+      options_.unsplit_axis = c.shear();
+    }
     options_.cell_growth = scene_.cell.max_growth;
     cell_l_ = initial_velocity_gradient(scene_.cell);
     cell_start_ = box;
-    cell_rate_ = cell_l_.diagonal();
+    cell_flow_ = mean_flow(cell_l_, scene_.cell.shear);
   }
   domain_ = std::make_unique<Domain>(comm, box, range_, shapes_, options_);
   if (deforming_) {
     domain_->deform_cell(domain_->decomposition().cell().box);
     cell_at_build_ = domain_->decomposition().cell().box;
+    if (scene_.cell.shear.any())
+      domain_->shear_cell(ShearImages{scene_.cell.shear.shear(), scene_.cell.shear.gradient(), 0.0, 0});
   }
   lists_ = std::make_unique<VerletList>(
       max_radius_, skin_, summation_ == Summation::deterministic ? PairOrder::global_id : PairOrder::local);
@@ -260,12 +271,19 @@ void Simulation::step() {
   // comes closer by up to the change of the cell's lengths since the lists were built, which
   // the grains' own displacements must leave room for (verlet_list.h: two grains of a pair may
   // move half a skin each).
-  const Vec3 rate = cell_l_.diagonal();
-  const Vec3 decay = deforming_ ? Vec3((-half * rate).array().exp().matrix()) : Vec3::Ones();
+  // A sheared cell's images slide by the change of its offset besides.
+  const MeanFlow flow = cell_flow_;
+  const FlowDecay decay = deforming_ ? flow_decay(flow, half) : FlowDecay{};
   Box next_cell;
+  double next_offset = 0.0;
   if (deforming_) {
     next_cell = advanced_cell_box(cell, cell_l_, dt_);
-    const double change = ((next_cell.hi - next_cell.lo) - (cell_at_build_.hi - cell_at_build_.lo)).norm();
+    Vec3 moved_faces = (next_cell.hi - next_cell.lo) - (cell_at_build_.hi - cell_at_build_.lo);
+    if (cell.shear.any()) {
+      next_offset = advanced_offset(cell, cell_l_, dt_);
+      moved_faces[cell.shear.shear] += std::abs(next_offset - offset_at_build_);
+    }
+    const double change = moved_faces.norm();
     const double room = std::sqrt(limit2) - 0.5 * change;
     moved = !(room > 0.0);
     limit2 = room > 0.0 ? room * room : 0.0;
@@ -275,8 +293,8 @@ void Simulation::step() {
       // SLLOD (cell_motion.h): the stored peculiar velocity u takes F/m - L u, its -L u
       // exactly over the half step (u e^(-L dt/2)) before this half kick and after the second,
       // a symmetric splitting; the drift is by the absolute velocity u + L x.
-      p_.v[i] = decay.cwiseProduct(p_.v[i]) + half * (p_.force[i] * p_.inv_mass[i] + g_);
-      p_.x[i] += dt_ * (p_.v[i] + rate.cwiseProduct(p_.x[i]));
+      p_.v[i] = decay(p_.v[i]) + half * (p_.force[i] * p_.inv_mass[i] + g_);
+      p_.x[i] += dt_ * (p_.v[i] + flow.of(p_.x[i]));
       snap(cell, p_.x[i]);
     } else {
       p_.v[i] += half * (p_.force[i] * p_.inv_mass[i] + g_);
@@ -289,7 +307,14 @@ void Simulation::step() {
     moved = moved || !((p_.x[i] - x_built[i]).squaredNorm() <= limit2);
   }
   if (rotation_) rotation_first_half(p_, static_cast<std::size_t>(n), half, dt_);
-  if (deforming_) domain_->deform_cell(next_cell);
+  if (deforming_) {
+    domain_->deform_cell(next_cell);
+    if (cell.shear.any()) {
+      ShearImages le = cell.shear;
+      le.offset = next_offset;
+      domain_->shear_cell(le);
+    }
+  }
   // Grains inserted before this step: the same half kick and drift (their force is zero: they
   // touch nothing), joined to the others by this step's rebuild (insert()).
   for (std::size_t i = 0; i < arrivals_.size(); ++i) {
@@ -367,8 +392,7 @@ void Simulation::step() {
   const Clock::time_point t5 = Clock::now();
   // Second half kick with the new forces.
   if (deforming_)
-    for (int i = 0; i < n_owned_; ++i)
-      p_.v[i] = decay.cwiseProduct(p_.v[i] + half * (p_.force[i] * p_.inv_mass[i] + g_));
+    for (int i = 0; i < n_owned_; ++i) p_.v[i] = decay(p_.v[i] + half * (p_.force[i] * p_.inv_mass[i] + g_));
   else
     for (int i = 0; i < n_owned_; ++i) p_.v[i] += half * (p_.force[i] * p_.inv_mass[i] + g_);
   if (rotation_) rotation_second_half(p_, static_cast<std::size_t>(n_owned_), half);
@@ -397,6 +421,10 @@ void Simulation::rebuild() try {
   check_finite();
   timings_.rebuild_messages += seconds_since(t);
   if (dissipation_per_grain()) settle_dissipation();
+  // A sheared cell's tilt remapped to its least tilted basis, now that the ghosts are rebuilt:
+  // the lattice of images is the same, no grain moves (periodic_cell.h).
+  if (const PeriodicCell& c = domain_->decomposition().cell(); c.shear.any())
+    domain_->shear_cell(remapped(c.shear, c.length(c.shear.shear)));
   // Histories of the contacts, keyed by global ids, before local indices change. The
   // separation budgets of ellipsoid pairs rest on grains keeping their local index, which
   // depends on the decomposition: the deterministic summation drops them.
@@ -428,6 +456,7 @@ void Simulation::rebuild() try {
   wall_points_at_build_.clear();
   for (const PlaneWall& w : walls_) wall_points_at_build_.push_back(w.point);
   cell_at_build_ = domain_->decomposition().cell().box;
+  offset_at_build_ = domain_->decomposition().cell().shear.offset;
   history_.restore(lists_->pairs(), lists_->walls(), p_.id, records);
   if (dissipation_per_grain())
     dissipation_share_.assign(static_cast<std::size_t>(n_owned_), DissipatedEnergy{});
@@ -451,7 +480,7 @@ void Simulation::evaluate_forces() {
   in.law = &law_constants_;
   in.rolling = rolling_;
   in.dt = dt_;
-  if (deforming_) in.mean_flow = &cell_rate_;
+  if (deforming_) in.mean_flow = &cell_flow_;
   in.posed = &posed_;
   in.solver_settings = scene_.contact_solver;
   in.solver_stats = &solver_stats_;
@@ -867,7 +896,7 @@ void Simulation::hold_cell(bool held) {
 void Simulation::set_cell_velocity_gradient(const Mat3& l) {
   if (l == cell_l_) return;
   cell_l_ = l;
-  cell_rate_ = cell_l_.diagonal();
+  cell_flow_ = mean_flow(cell_l_, scene_.cell.shear);
 }
 
 std::vector<Vec3> Simulation::wall_forces() const { return wall_loads().force; }

@@ -282,9 +282,10 @@ class Simulation {
   // cumulative work (the same bits on every rank).
   bool deforming_ = false;
   Mat3 cell_l_ = Mat3::Zero();
-  Vec3 cell_rate_ = Vec3::Zero();  // its diagonal, what the force loop reads (ForceInput::mean_flow)
-  Box cell_start_;                 // the box its grid was sized from (a checkpoint's CellRecord::start)
+  MeanFlow cell_flow_;  // L as the drift and the force loop take it (ForceInput::mean_flow)
+  Box cell_start_;      // the box its grid was sized from (a checkpoint's CellRecord::start)
   Box cell_at_build_;
+  double offset_at_build_ = 0.0;  // a sheared cell's offset at the last rebuild
   Mat3 cell_stress_ = Mat3::Zero();
   Mat3 cell_stress_volume_ = Mat3::Zero();
   double cell_work_ = 0.0;

@@ -89,6 +89,7 @@ std::vector<char> to_bytes(const EngineState& s) {
   w.put(s.domain.balance);
   w.put(s.domain.next_balance_step);
   w.put(s.cell.values());
+  if (s.cell.deforming) w.put(s.cell.shear_values());
   return std::move(w.bytes());
 }
 
@@ -152,6 +153,11 @@ EngineState from_bytes(const std::vector<char>& bytes) {
   std::array<double, CellRecord::kValues> cell{};
   r.get(cell);
   s.cell = CellRecord::from_values(cell);
+  if (s.cell.deforming) {
+    std::array<double, CellRecord::kShearValues> shear{};
+    r.get(shear);
+    s.cell.set_shear_values(shear);
+  }
   return s;
 }
 
@@ -233,9 +239,18 @@ EngineState Simulation::capture_state() const {
   s.solver_stats = stats;
   s.reference_mass = reference_mass_;
   s.domain = domain_->state();
-  if (deforming_)
-    s.cell = {true,         cell_start_,         cell_at_build_,     cell_l_,
-              cell_stress_, cell_stress_volume_, cell_stress_known_, cell_work_};
+  if (deforming_) {
+    s.cell.deforming = true;
+    s.cell.start = cell_start_;
+    s.cell.at_build = cell_at_build_;
+    s.cell.velocity_gradient = cell_l_;
+    s.cell.stress = cell_stress_;
+    s.cell.stress_volume = cell_stress_volume_;
+    s.cell.stress_known = cell_stress_known_;
+    s.cell.work = cell_work_;
+    s.cell.shear = domain_->decomposition().cell().shear;
+    s.cell.offset_at_build = offset_at_build_;
+  }
   return s;
 }
 
@@ -291,10 +306,18 @@ Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_roo
     throw Error(std::string("restore: the scene's cell ") + (deforming_ ? "deforms" : "does not deform") +
                 " (Cell), the state's " + (s.cell.deforming ? "does" : "does not"));
   if (deforming_) domain_->deform_cell(s.domain.box);
+  if (s.cell.shear.any() != scene.cell.shear.any())
+    throw Error(std::string("restore: the scene's cell ") + (scene.cell.shear.any() ? "is" : "is not") +
+                " sheared (Cell/shear rate), the state's " + (s.cell.shear.any() ? "is" : "is not"));
   // The grains are placed by where the lists were last built (below): the balance too.
   domain_->restore(s.domain, s.positions_at_build, s.step);
   // A deforming cell: the lists are built in the cell they were built in, with its images.
   if (deforming_) domain_->deform_cell(s.cell.at_build);
+  if (s.cell.shear.any()) {
+    ShearImages at_build = s.cell.shear;
+    at_build.offset = s.cell.offset_at_build;
+    domain_->shear_cell(at_build);
+  }
   // Spheres in a scene that pours ellipsoids (set_up): with their shapes, as in the run.
   if (shapes_) s.particles.ensure_shapes();
 
@@ -318,9 +341,11 @@ Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_roo
   history_.restore(lists_->pairs(), lists_->walls(), p_.id, s.history);
   if (deforming_) {
     domain_->deform_cell(s.domain.box);
+    if (s.cell.shear.any()) domain_->shear_cell(s.cell.shear);
     cell_at_build_ = s.cell.at_build;
+    offset_at_build_ = s.cell.offset_at_build;
     cell_l_ = s.cell.velocity_gradient;
-    cell_rate_ = cell_l_.diagonal();
+    cell_flow_ = mean_flow(cell_l_, scene_.cell.shear);
     cell_stress_ = s.cell.stress;
     cell_stress_volume_ = s.cell.stress_volume;
     cell_stress_known_ = s.cell.stress_known;

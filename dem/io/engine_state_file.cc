@@ -204,6 +204,10 @@ void write_engine_state(hid_t parent, const std::string& group, const EngineStat
   if (s.cell.deforming) {
     const auto cell = s.cell.values();
     write_dataset(g, "cell", cell.data(), cell.size());
+    if (s.cell.shear.any()) {
+      const auto shear = s.cell.shear_values();
+      write_dataset(g, "cell_shear", shear.data(), shear.size());
+    }
   }
 }
 
@@ -246,6 +250,13 @@ EngineState read_engine_state(const hdf5::Reader& in, const std::string& group) 
     std::array<double, CellRecord::kValues> values{};
     std::copy(v.begin(), v.end(), values.begin());
     s.cell = CellRecord::from_values(values);
+  }
+  if (in.exists(group + "/cell_shear")) {
+    const std::vector<double> v =
+        in.read<double>(group + "/cell_shear", H5T_NATIVE_DOUBLE, CellRecord::kShearValues);
+    std::array<double, CellRecord::kShearValues> values{};
+    std::copy(v.begin(), v.end(), values.begin());
+    s.cell.set_shear_values(values);
   }
 
   // Particles.

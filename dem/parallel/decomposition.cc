@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <string>
 
 #include "dem/core/error.h"
 
@@ -25,7 +26,7 @@ void check_periodic_length(int d, double length, double min_block) {
 
 }  // namespace
 
-std::array<int, 3> choose_blocks(int ranks, const Box& box, double min_block) {
+std::array<int, 3> choose_blocks(int ranks, const Box& box, double min_block, int unsplit_axis) {
   const Vec3 l = box.hi - box.lo;
   std::array<int, 3> best{0, 0, 0};
   double best_area = std::numeric_limits<double>::infinity();
@@ -39,7 +40,7 @@ std::array<int, 3> choose_blocks(int ranks, const Box& box, double min_block) {
       const std::array<int, 3> b{px, py, pz};
       bool thin = false;
       for (int d = 0; d < 3; ++d) thin = thin || (b[d] > 1 && l[d] / b[d] < min_block);
-      if (thin) continue;
+      if (thin || (unsplit_axis >= 0 && b[static_cast<std::size_t>(unsplit_axis)] > 1)) continue;
       const double area = (px - 1) * l[1] * l[2] + (py - 1) * l[0] * l[2] + (pz - 1) * l[0] * l[1];
       if (area < best_area) {
         best_area = area;
@@ -58,7 +59,7 @@ std::array<int, 3> choose_blocks(int ranks, const Box& box, double min_block) {
 }
 
 Decomposition::Decomposition(MPI_Comm comm, const Box& box, double min_block, std::array<int, 3> blocks,
-                             std::array<bool, 3> periodic, double growth)
+                             std::array<bool, 3> periodic, double growth, int unsplit_axis)
     : box_(box), cell_(make_periodic_cell(box, periodic, growth)), min_block_(min_block) {
   box_ = cell_.box;  // the faces of the periodic axes on their grid
   MPI_Comm_size(comm, &size_);
@@ -68,7 +69,17 @@ Decomposition::Decomposition(MPI_Comm comm, const Box& box, double min_block, st
     // is one pair, and a ghost layer never reaches a second image.
     if (periodic[d]) check_periodic_length(d, box.hi[d] - box.lo[d], min_block);
   }
-  if (blocks[0] <= 0 || blocks[1] <= 0 || blocks[2] <= 0) blocks = choose_blocks(size_, box_, min_block);
+  if (blocks[0] <= 0 || blocks[1] <= 0 || blocks[2] <= 0)
+    blocks = choose_blocks(size_, box_, min_block, unsplit_axis);
+  if (unsplit_axis >= 0 && blocks[static_cast<std::size_t>(unsplit_axis)] != 1) {
+    std::ostringstream m;
+    m << "domain decomposition: " << blocks[0] << " x " << blocks[1] << " x " << blocks[2]
+      << " blocks cut the sheared cell's shear axis "
+      << "xyz"[unsplit_axis]
+      << ", which must keep one block (its images slide along it: docs/periodic.md, \"Shear\"); set "
+         "Parallel/blocks with 1 along it";
+    throw Error(m.str());
+  }
   const Vec3 l = box_.hi - box_.lo;
   if (blocks[0] * blocks[1] * blocks[2] != size_) {
     std::ostringstream m;
@@ -173,6 +184,18 @@ void Decomposition::deform(const Box& cell_box) {
     if (image_shift_[d][1] != 0.0) image_shift_[d][1] = lo - hi;
   }
   update_block();
+}
+
+void Decomposition::set_shear(const ShearImages& shear) {
+  if (shear.any()) {
+    const int s = shear.shear, g = shear.gradient;
+    if (s == g || !cell_.periodic[s] || !cell_.periodic[g])
+      throw Error("periodic cell: a sheared cell needs its shear and gradient axes distinct and periodic");
+    if (dims_[s] != 1)
+      throw Error(std::string("periodic cell: the shear axis ") + "xyz"[s] +
+                  " of a sheared cell must keep one block");
+  }
+  cell_.shear = shear;
 }
 
 Decomposition::~Decomposition() {

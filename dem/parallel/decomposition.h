@@ -24,7 +24,8 @@ namespace upgrain::dem {
 // axis that is cut; ties
 // go to fewer cuts in z, then in y (particles fall along z: fewer migrations). Throws
 // upgrain::Error naming the sizes when no factorisation fits.
-std::array<int, 3> choose_blocks(int ranks, const Box& box, double min_block);
+// `unsplit_axis` (>= 0): that axis keeps one block.
+std::array<int, 3> choose_blocks(int ranks, const Box& box, double min_block, int unsplit_axis = -1);
 
 class Decomposition {
  public:
@@ -35,8 +36,11 @@ class Decomposition {
   // another, and the minimum image would not be the only one in range).
   // `growth`: the periodic cell's position grid is sized for a cell that many times larger
   // (make_periodic_cell(); a cell that deforms, deform()).
+  // `unsplit_axis`: an axis that must keep one block (a sheared cell's shear axis): chosen so,
+  // or refused when `blocks` cut it.
   Decomposition(MPI_Comm comm, const Box& box, double min_block, std::array<int, 3> blocks = {0, 0, 0},
-                std::array<bool, 3> periodic = {false, false, false}, double growth = 1.0);
+                std::array<bool, 3> periodic = {false, false, false}, double growth = 1.0,
+                int unsplit_axis = -1);
   ~Decomposition();
   Decomposition(const Decomposition&) = delete;
   Decomposition& operator=(const Decomposition&) = delete;
@@ -65,6 +69,9 @@ class Decomposition {
   // range (its ghosts would need a second neighbour), or the cell grows past what its position
   // grid holds (grid_holds()).
   void deform(const Box& cell_box);
+  // A sheared cell's sliding images (periodic_cell.h): both axes periodic, the shear axis in one
+  // block. Throws upgrain::Error otherwise. Not collective; every rank passes the same.
+  void set_shear(const ShearImages& shear);
   // The step (-1, 0 or +1) from this block's coordinate towards block coordinate c along d: the
   // shorter way round along a periodic axis.
   [[nodiscard]] int step_towards(int d, int c) const;

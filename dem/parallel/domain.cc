@@ -39,7 +39,7 @@ std::string block_name(const std::array<int, 3>& c) {
 
 Domain::Domain(MPI_Comm comm, const Box& box, double range, bool shapes, const DomainOptions& options)
     : decomp_(std::make_unique<Decomposition>(comm, box, range, options.blocks, options.periodic,
-                                              options.cell_growth)),
+                                              options.cell_growth, options.unsplit_axis)),
       shapes_(shapes),
       range_(range) {
   if (options.balance_interval < 0) throw Error("load balance: balance_interval must be >= 0 steps");
@@ -225,11 +225,20 @@ void Domain::migration_pass(ParticleStore& p, std::vector<ContactHistoryRecord>&
   }
 }
 
+std::array<int, 3> Domain::stage_axes() const {
+  const ShearImages& le = decomp_->cell().shear;
+  if (!le.any()) return {0, 1, 2};
+  std::array<int, 3> order{le.gradient, 0, 0};
+  for (int d = 0, k = 1; d < 3; ++d)
+    if (d != le.gradient) order[static_cast<std::size_t>(k++)] = d;
+  return order;
+}
+
 void Domain::build_ghosts(ParticleStore& p, int n_owned) {
   const Decomposition& dec = *decomp_;
   const Box& block = dec.block();
   n_owned_ = n_owned;
-  for (int d = 0; d < 3; ++d) {
+  for (int d : stage_axes()) {
     for (int s = 0; s < 2; ++s) {
       std::vector<int>& send = ghost_send_[d][s];
       send.clear();
@@ -248,6 +257,7 @@ void Domain::build_ghosts(ParticleStore& p, int n_owned) {
         if (shapes_) shape_out_[s].push_back(pack_shape(p, static_cast<std::size_t>(i)));
       }
       shift_images(ghost_out_[s], d, s);
+      if (d == dec.cell().shear.gradient) slide_images(ghost_out_[s], s, true);
     }
     const std::array<int, 2> nb{dec.neighbor(d, 0), dec.neighbor(d, 1)};
     timed([&] {
@@ -288,9 +298,40 @@ void Domain::shift_images(std::vector<Record>& out, int d, int s) const {
   }
 }
 
+template <class Record>
+void Domain::slide_images(std::vector<Record>& out, int s, bool build) {
+  const PeriodicCell& cell = decomp_->cell();
+  const ShearImages& le = cell.shear;
+  const double shift = decomp_->image_shift(le.gradient, s);
+  if (shift == 0.0) return;
+  // Through the lower face (shift +L_g) the images are those across the upper face: x + L_g e_g
+  // + offset e_s; and the other way. Sums on the grid: exact.
+  const double slide = shift > 0.0 ? le.offset : -le.offset;
+  const auto turns = static_cast<std::int32_t>(shift > 0.0 ? le.turns : -le.turns);
+  const int a = le.shear;
+  const double lo = cell.box.lo[a], hi = cell.box.hi[a], l = hi - lo;
+  std::vector<int>& wraps = ghost_slide_[static_cast<std::size_t>(s)];
+  if (build) wraps.assign(out.size(), 0);
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    Record& r = out[k];
+    r.x[a] += slide;
+    if (build) {
+      // Into the cell along the shear axis, the one block there: the later stages take its images.
+      int m = 0;
+      while (r.x[a] + m * l >= hi) --m;
+      while (r.x[a] + m * l < lo) ++m;
+      wraps[k] = m;
+    }
+    const int m = wraps[k];
+    if (m != 0) r.x[a] += m * l;
+    // The unwrapped position stays the owner's (periodic_cell.h, unwrapped()).
+    if constexpr (requires { r.image; }) r.image[a] += turns - m;
+  }
+}
+
 void Domain::refresh_ghosts(ParticleStore& p) {
   const Decomposition& dec = *decomp_;
-  for (int d = 0; d < 3; ++d) {
+  for (int d : stage_axes()) {
     for (int s = 0; s < 2; ++s) {
       const std::vector<int>& send = ghost_send_[d][s];
       motion_out_[s].resize(send.size());
@@ -301,6 +342,7 @@ void Domain::refresh_ghosts(ParticleStore& p) {
         put(r.omega, p.omega[send[k]]);
       }
       shift_images(motion_out_[s], d, s);
+      if (d == dec.cell().shear.gradient) slide_images(motion_out_[s], s, false);
       motion_in_[s].resize(static_cast<std::size_t>(ghost_recv_count_[d][s]));
       if (shapes_) {
         orientation_out_[s].resize(send.size());
@@ -333,7 +375,9 @@ void Domain::return_ghost_sums(std::span<std::vector<Vec3>* const> fields) {
   const std::size_t f = fields.size();
   // The stages in reverse: what a ghost of stage z collected goes back to the rank that sent
   // it, where it may itself be a ghost of stage y or x and travels on in the next stage.
-  for (int d = 2; d >= 0; --d) {
+  const std::array<int, 3> stages = stage_axes();
+  for (auto it = stages.rbegin(); it != stages.rend(); ++it) {
+    const int d = *it;
     for (int s = 0; s < 2; ++s) {
       const int start = ghost_recv_start_[d][s];
       const int count = ghost_recv_count_[d][s];

@@ -41,6 +41,9 @@ struct DomainOptions {
   // How much larger than the box the periodic cell may grow (a deforming cell): its position
   // grid is sized for it (make_periodic_cell()).
   double cell_growth = 1.0;
+  // An axis kept in one block: a sheared cell's shear axis, whose images across the gradient
+  // axis's faces slide along it (docs/periodic.md, "Shear"). -1: none.
+  int unsplit_axis = -1;
 };
 
 // The load balance so far (identical on every rank): the number of rebalances, the step of
@@ -76,6 +79,8 @@ class Domain {
   // The periodic cell moves (Decomposition::deform()); the ghosts take the new shifts at the
   // next refresh. Every rank alike.
   void deform_cell(const Box& cell_box) { decomp_->deform(cell_box); }
+  // A sheared cell's images take `shear` (its offset on the grid of the shear axis).
+  void shear_cell(const ShearImages& shear) { decomp_->set_shear(shear); }
   [[nodiscard]] MPI_Comm comm() const { return decomp_->comm(); }
   [[nodiscard]] int rank() const { return decomp_->rank(); }
   [[nodiscard]] int size() const { return decomp_->size(); }
@@ -154,6 +159,16 @@ class Domain {
   // cell's faces), from record index `first` on.
   template <class Record>
   void shift_images(std::vector<Record>& out, int d, int s) const;
+  // A sheared cell: the ghosts that cross the gradient axis's faces through side s also slide by
+  // the offset along the shear axis, and at a build are wrapped into the cell along it by whole
+  // lengths, m of them, which `ghost_slide_[s]` keeps for the refreshes (docs/periodic.md,
+  // "Shear").
+  template <class Record>
+  void slide_images(std::vector<Record>& out, int s, bool build);
+  std::array<std::vector<int>, 2> ghost_slide_;
+  // The ghost stages' axes in order: the gradient axis of a sheared cell first (its images, slid
+  // and wrapped along the shear axis, then take their images along the others), else x, y, z.
+  [[nodiscard]] std::array<int, 3> stage_axes() const;
   std::vector<int> ghost_owner_;
   // Message buffers, kept between steps (a ghost refresh allocates nothing after warm-up).
   std::array<std::vector<StateRecord>, 2> ghost_out_, ghost_in_;  // a ghost arrives whole at a build

@@ -153,6 +153,14 @@ TEST(Restart, DeformingCellContinuesBitwise) {
                             "240 spheres in a deforming cell");
 }
 
+// The same cell sheared along x with the gradient y (docs/periodic.md, "Shear"): the sliding
+// images' offset, its turns and its offset at the last build travel in the state too.
+TEST(Restart, ShearedCellContinuesBitwise) {
+  SceneConfig s = test::compressing_cell_scene(240, Vec3(0.4, -0.3, -0.5));
+  s.cell.shear = {{0, 1}, 40.0};
+  expect_restart_is_bitwise(s, 1500, 1000, "240 spheres in a sheared cell");
+}
+
 TEST(Restart, RollingResistanceContinuesBitwise) {
   SceneConfig s = test::deposition_scene(200);
   s.effects.rolling_resistance = true;

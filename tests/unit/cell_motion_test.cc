@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <unsupported/Eigen/MatrixFunctions>
+
 using namespace upgrain::dem;
 
 // The servo squeezes a cell below its target pressure and lets one above it expand, at most at
@@ -64,7 +67,7 @@ TEST(CellMotion, FacesTakeTheMeanFlowsMapOnTheGrid) {
 // length; the shear rate enters L(s, g) and makes the motion non-trivial.
 TEST(CellMotion, ShearTiltFollowsTheVelocityGradientAndRemapsByWholeLengths) {
   CellMotion m;
-  m.shear = {0, 2, 4.0};
+  m.shear = {{0, 2}, 4.0};
   EXPECT_TRUE(m.any());
   const Mat3 l0 = initial_velocity_gradient(m);
   EXPECT_EQ(l0(0, 2), 4.0);
@@ -100,4 +103,27 @@ TEST(CellMotion, ShearTiltFollowsTheVelocityGradientAndRemapsByWholeLengths) {
   EXPECT_EQ(cell_matrix(after)(0, 2), tilt);
   EXPECT_EQ(remapped(after.shear, cell.length(0)).turns, 2) << "nothing left to remap";
   EXPECT_EQ(remapped(ShearImages{0, 2, on_grid(-0.02, cell.quantum[0]), 0}, 0.03).turns, -1);
+}
+
+// The mean flow and SLLOD's exact decay for an L with a shear component: L x, and exp(-L tau) u
+// against Eigen's matrix exponential (Pade with scaling and squaring), with equal and with
+// different diagonal rates on the shear and gradient axes.
+TEST(CellMotion, ShearedMeanFlowAndDecayAreLxAndTheExponential) {
+  for (const Vec3& rate : {Vec3(0.0, 0.0, 0.0), Vec3(-3.0, 1.0, 2.0), Vec3(2.0, 0.5, 2.0)}) {
+    Mat3 l = rate.asDiagonal();
+    l(0, 2) = 40.0;
+    CellShearControl c{{0, 2}, 40.0};
+    const MeanFlow f = mean_flow(l, c);
+    const Vec3 x(0.01, -0.02, 0.03), u(0.3, -0.1, 0.7);
+    EXPECT_LT((f.of(x) - l * x).cwiseAbs().maxCoeff(), 1e-15);
+    const double tau = 2e-3;
+    const Mat3 e = (-tau * l).exp();
+    EXPECT_LT((flow_decay(f, tau)(u) - e * u).cwiseAbs().maxCoeff(), 1e-15) << rate.transpose();
+    EXPECT_GT(std::abs(flow_decay(f, tau)(u)[0] - std::exp(-tau * rate[0]) * u[0]), 1e-3) << "the shear acts";
+  }
+  // Without shear: the diagonal alone, the bits of e^(-L_dd tau) u_d.
+  const MeanFlow diagonal = mean_flow(Vec3(-3.0, 1.0, 2.0).asDiagonal().toDenseMatrix(), CellShearControl{});
+  const Vec3 u(0.3, -0.1, 0.7);
+  EXPECT_EQ(flow_decay(diagonal, 1e-3)(u),
+            Vec3((-1e-3 * Vec3(-3.0, 1.0, 2.0)).array().exp().matrix()).cwiseProduct(u));
 }

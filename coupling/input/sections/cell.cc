@@ -1,6 +1,10 @@
 // The Cell section: how a periodic cell deforms (docs/periodic.md, "A cell that deforms").
+#include <array>
 #include <cmath>
 #include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "coupling/input/scene_input.h"
 #include "coupling/input/scene_sections.h"
@@ -45,6 +49,23 @@ std::vector<Entry> cell_entries() {
                    "axis; a start: max strain rate / target pressure."));
   e.push_back(real("max strain rate", each_axis(&dem::CellAxisControl::max_rate), 0.0, 1e4, "1/s",
                    "The bound on the servo's |L_dd| (> 0 with a servo axis)."));
+  // Simple shear: one off-diagonal component of L, the cell's images sliding (Lees-Edwards).
+  std::vector<std::pair<std::string, std::array<int, 2>>> components{{"none", {-1, -1}}};
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b)
+      if (a != b) components.push_back({std::string(1, "xyz"[a]) + "xyz" [b], { a, b }});
+  e.push_back(choice(
+      "shear component",
+      at(&SceneInput::scene, &dem::SceneConfig::cell, &dem::CellMotion::shear,
+         &dem::CellShearControl::component),
+      components,
+      "Simple shear: the component L_sg = d v_s / d x_g of L set by 'shear rate' (xz: the grains' mean "
+      "flow along x grows with z), both axes periodic; the images across the faces of g slide along s "
+      "(Lees-Edwards, docs/periodic.md, \"Shear\"). The axis s keeps one block (Parallel/blocks)."));
+  e.push_back(real(
+      "shear rate",
+      at(&SceneInput::scene, &dem::SceneConfig::cell, &dem::CellMotion::shear, &dem::CellShearControl::rate),
+      -1e4, 1e4, "1/s", "L_sg with a 'shear component'."));
   e.push_back(real("max growth",
                    at(&SceneInput::scene, &dem::SceneConfig::cell, &dem::CellMotion::max_growth), 1.0, 1024.0,
                    "-",
@@ -60,6 +81,11 @@ void check_cell(SceneInput& in, const std::string& where) {
     m.axis[d].gain = m.axis[0].gain;
     m.axis[d].max_rate = m.axis[0].max_rate;
   }
+  if (m.shear.any() && m.shear.rate == 0.0)
+    throw Error(where + "Cell/shear component = " + std::string(1, "xyz"[m.shear.shear()]) +
+                "xyz"[m.shear.gradient()] + " needs a Cell/shear rate other than 0 (1/s)");
+  if (!m.shear.any() && m.shear.rate != 0.0)
+    throw Error(where + "Cell/shear rate is given without a Cell/shear component (xz, say)");
   for (int d = 0; d < 3; ++d) {
     if (m.axis[d].mode != dem::CellAxisMode::servo) continue;
     const std::string a(1, "xyz"[d]);
