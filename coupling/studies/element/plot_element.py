@@ -10,6 +10,7 @@ import sys
 import matplotlib
 matplotlib.use('Agg')
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.ticker import NullFormatter  # noqa: E402
 
 
 def table(path):
@@ -26,9 +27,11 @@ def main():
                              ('solid fraction', 'coordination number', 'bulk modulus K (Pa)')):
         a.plot(iso['p'], iso[key], 'o-')
         a.set_xscale('log')
+        a.xaxis.set_minor_formatter(NullFormatter())  # the minor labels overlap
         a.set_xlabel('p (Pa)')
         a.set_ylabel(label)
     ax[2].set_yscale('log')
+    ax[2].yaxis.set_minor_formatter(NullFormatter())
     fig.suptitle('isotropic compression')
     fig.tight_layout()
     fig.savefig(os.path.join(folder, 'isotropic.png'), dpi=120)
