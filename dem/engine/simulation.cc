@@ -11,6 +11,7 @@
 #include "dem/contact/contact_laws.h"
 #include "dem/core/error.h"
 #include "dem/core/out_of_memory.h"
+#include "dem/engine/cell_stress.h"
 #include "dem/engine/guards.h"
 #include "dem/engine/particle_sums.h"
 #include "dem/motion/grain_rotation.h"
@@ -838,32 +839,13 @@ EnergyBalance Simulation::energy() const {
 }
 
 void Simulation::follow_cell_stress() {
-  // The Love-Weber average over the cell: the grid stress of one grid cell that is the
-  // periodic cell (its images in their grains' cell, each pair once with its minimum-image
-  // branch: dem/parallel/parallel_stress.h), Weber's formula.
+  // The Love-Weber average over the cell with its kinetic part (cell_stress.h).
   const Box& box = decomposition().cell().box;
-  RegularGrid grid;
-  grid.lo = box.lo;
-  grid.hi = box.hi;
-  const double volume = grid.cell_volume();
-  Mat3 sigma = grid_stress(grid)[StressFormula::weber][0];
-  // The kinetic part, of the peculiar velocities, summed as the summation asks.
-  ParticleSums kinetic(summation_, 6, n_owned_);
-  for (int i = 0; i < n_owned_; ++i) {
-    const Vec3& u = p_.v[i];
-    const Mat3 t = p_.mass(static_cast<std::size_t>(i)) * u * u.transpose();
-    for (int k = 0, a = 0; a < 3; ++a)
-      for (int b = a; b < 3; ++b) kinetic.add(k++, i, t(a, b));
-  }
-  const std::vector<double> k = kinetic.totals(comm());
-  for (int n = 0, a = 0; a < 3; ++a)
-    for (int b = a; b < 3; ++b, ++n) {
-      sigma(a, b) -= k[static_cast<std::size_t>(n)] / volume;
-      sigma(b, a) = sigma(a, b);
-    }
+  const double volume = (box.hi - box.lo).prod();
+  const Mat3 sigma_volume = cell_stress_times_volume(p_, n_owned_, out_.contacts, summation_, comm());
+  const Mat3 sigma = sigma_volume / volume;
   // The cell's work over the step by the trapezoidal rule, with the L of the step: the
   // power V sigma : L at its two ends (docs/periodic.md, "The cell's work").
-  const Mat3 sigma_volume = volume * sigma;
   if (cell_stress_known_)
     cell_work_ += 0.5 * dt_ * ((cell_stress_volume_ + sigma_volume).cwiseProduct(cell_l_)).sum();
   cell_stress_known_ = true;

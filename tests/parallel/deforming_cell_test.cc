@@ -201,3 +201,32 @@ TEST(DeformingCell, EnergyBalanceWithTheCellsWorkIsSecondOrder) {
   EXPECT_LT(coarse, 1e-2);
   EXPECT_GT(coarse / fine, 3.0) << coarse << " at dt, " << fine << " at dt/2";
 }
+
+// The cell's stress, summed at every step from the recorded contacts (dem/engine/cell_stress.h),
+// is the Love-Weber stress that the grid-stress machinery gives for one grid cell that is the
+// cell (its per-grain shares, each pair once from its lower id, in global-id order), less the
+// kinetic part of the peculiar velocities; the two sum in different orders, so to round-off.
+// Its off-diagonal terms are Weber's as they are: tangential forces make f (x) l asymmetric.
+TEST(DeformingCell, CellStressIsTheGridStressOfTheCellLessTheKineticPart) {
+  const SceneConfig s = test::compressing_cell_scene(300, Vec3(0.5, -0.4, -0.5));
+  const ParticleStore fill = fill_container(s);
+  Simulation sim(s, fill, make_open_box(s.container), MPI_COMM_WORLD);
+  sim.run(1500);
+  const Box box = sim.decomposition().cell().box;
+  RegularGrid grid;
+  grid.lo = box.lo;
+  grid.hi = box.hi;
+  const GridStress g = sim.grid_stress(grid);
+  const ParticleStore all = sim.gather_sorted_by_id();
+  ASSERT_GT(g.internal_contacts[0], 50);
+  if (test::world_rank() != 0) return;
+  ASSERT_EQ(g.particles[0], static_cast<long>(all.size())) << "a grain outside the cell's grid";
+  Mat3 kinetic = Mat3::Zero();
+  for (std::size_t i = 0; i < all.size(); ++i) kinetic += all.mass(i) * all.v[i] * all.v[i].transpose();
+  const Mat3 expected = g.sigma[static_cast<int>(StressFormula::weber)][0] - kinetic / g.cell_volume;
+  const Mat3& sigma = sim.cell_stress();
+  const double scale = expected.cwiseAbs().maxCoeff();
+  EXPECT_GT(scale, 1.0);
+  EXPECT_LT((sigma - expected).cwiseAbs().maxCoeff(), 1e-12 * scale) << sigma << "\nexpected\n" << expected;
+  EXPECT_GT(std::abs(sigma(0, 2) - sigma(2, 0)), 1e-9 * scale) << "Weber's asymmetry kept";
+}

@@ -6,10 +6,12 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <numeric>
 #include <random>
+#include <span>
 #include <vector>
 
 namespace {
@@ -113,7 +115,8 @@ TEST(FixedPointSums, RefusesABoundThatIsNotFinite) {
 // even at 2^-128: the definition, written with the library's std::ldexp, std::trunc and
 // std::nearbyint, against the class's multiplications and shifts, at bounds from 2^-1000 to
 // 2^1000 (and beyond, where the class itself falls back to std::ldexp), for subnormal terms
-// and for terms exactly halfway between two values of the last limb.
+// and for terms exactly halfway between two values of the last limb; added one by one (add())
+// and all at once (add_terms()).
 TEST(FixedPointSums, LimbsAreTheTermCutAndRoundedAsDefined) {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -125,12 +128,14 @@ TEST(FixedPointSums, LimbsAreTheTermCutAndRoundedAsDefined) {
     int exponent = 0;
     (void)std::frexp(bound, &exponent);
     std::array<std::int64_t, FixedPointSums::kLimbs> expected{};
-    for (int k = 0; k < 40; ++k) {
+    std::vector<double> terms;
+    for (int k = 0; k < 43; ++k) {  // 43: add_terms() has a remainder past its lanes
       double term = bound * unit(rng) * std::ldexp(1.0, -static_cast<int>(rng() % 200));
       if (k % 8 == 0)  // halfway between two values of the last limb
         term = std::ldexp(static_cast<double>(static_cast<int>(rng() % 1000) - 500) + 0.5, exponent - 128);
       if (std::abs(term) > bound) term = std::copysign(bound, term);
       sums.add(0, term);
+      terms.push_back(term);
       double x = std::ldexp(term, -exponent);
       for (int l = 0; l < FixedPointSums::kLimbs; ++l) {
         x = std::ldexp(x, 32);
@@ -142,5 +147,16 @@ TEST(FixedPointSums, LimbsAreTheTermCutAndRoundedAsDefined) {
     for (int l = 0; l < FixedPointSums::kLimbs; ++l)
       ASSERT_EQ(sums.limbs()[static_cast<std::size_t>(l)], expected[static_cast<std::size_t>(l)])
           << "bound 2^" << exponent << ", limb " << l;
+    // add_terms() cuts its limbs elsewhere (to nearest), to the same sum: the same bits, alone and
+    // with terms added one by one besides.
+    FixedPointSums at_once({bound}), mixed({bound});
+    at_once.add_terms(0, terms);
+    mixed.add_terms(0, std::span<const double>(terms).first(terms.size() / 2));
+    for (std::size_t k = terms.size() / 2; k < terms.size(); ++k) mixed.add(0, terms[k]);
+    const double value = sums.values()[0];
+    ASSERT_EQ(std::bit_cast<std::uint64_t>(at_once.values()[0]), std::bit_cast<std::uint64_t>(value))
+        << "add_terms: bound 2^" << exponent;
+    ASSERT_EQ(std::bit_cast<std::uint64_t>(mixed.values()[0]), std::bit_cast<std::uint64_t>(value))
+        << "add_terms and add: bound 2^" << exponent;
   }
 }
