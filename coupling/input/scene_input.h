@@ -12,6 +12,7 @@
 #include "coupling/studies/accuracy/accuracy_options.h"
 #include "coupling/studies/calibration/calibration_options.h"
 #include "coupling/studies/continuum/study_options.h"
+#include "coupling/studies/element/element_options.h"
 #include "dem/scene/effect_choice.h"
 #include "dem/scene/scene_config.h"
 
@@ -73,6 +74,7 @@ struct SceneInput {
   StudyOptions study;
   AccuracyOptions accuracy;        // the Accuracy section (upgrain --study accuracy)
   CalibrationOptions calibration;  // the Calibration section (upgrain --study calibration)
+  ElementOptions element;          // the Element test section (upgrain --study element)
   ParallelInput parallel;
   // A restart (upgrain --restart): the run continues from `resume` (rank 0's; null elsewhere)
   // in its own output folder, which then holds results by design.

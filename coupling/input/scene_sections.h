@@ -37,6 +37,7 @@ Section strain_section();
 Section study_section();
 Section accuracy_section();
 Section calibration_section();
+Section element_section();
 Section coarse_graining_section();
 Section continuum_section();
 

@@ -6,6 +6,8 @@
 #include "coupling/studies/calibration/calibration_study.h"
 #include "coupling/studies/continuum/continuum_checks.h"
 #include "coupling/studies/continuum/continuum_study.h"
+#include "coupling/studies/element/element_checks.h"
+#include "coupling/studies/element/element_study.h"
 #include "dem/core/error.h"
 
 namespace upgrain::coupling {
@@ -29,6 +31,12 @@ const Study kStudies[] = {
      "the stress-strain path and the equivalent elastic material,\n"
      "into <Output/folder>/calibration/",
      run_calibration_study},
+    {kElementUse,
+     "compress the scene's grains in a fully periodic cell without\n"
+     "gravity or walls: isotropically to each pressure, then in\n"
+     "drained triaxial compression (its Element test section,\n"
+     "docs/element-tests.md), into <Output/folder>/element/",
+     run_element_study},
 };
 
 }  // namespace

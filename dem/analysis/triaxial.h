@@ -54,6 +54,12 @@ struct FrictionStrength {
 // three: the nearest ones otherwise), and the critical part, the states with eps_1 >= (1 - critical_share)
 // eps_max (0 < critical_share <= 1). Throws upgrain::Error for a path too short, or a strain that does not
 // grow.
+// The shares friction_strength() is called with by the calibration's and the element tests'
+// triaxial paths: the critical state the last 30 % of the shearing; the peak's rate ratio over
+// the states within a fifteenth of the final strain of the peak (+-0.01 at 0.15).
+inline constexpr double kCriticalShare = 0.3;
+inline constexpr double kPeakWindowShare = 1.0 / 15.0;
+
 FrictionStrength friction_strength(const std::vector<TriaxialState>& path, double peak_window,
                                    double critical_share);
 

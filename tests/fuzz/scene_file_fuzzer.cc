@@ -12,6 +12,7 @@
 #include "coupling/studies/accuracy/accuracy_checks.h"
 #include "coupling/studies/calibration/calibration_checks.h"
 #include "coupling/studies/continuum/continuum_checks.h"
+#include "coupling/studies/element/element_checks.h"
 #include "dem/core/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -26,8 +27,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // Under each study (a row of coupling/studies/study_table.cc, whose runs this build does not
     // link): a section's checks run only when it is used (the Accuracy section's for the
     // accuracy study, the Calibration section's when the bed is calibrated).
-    for (const coupling::StudyUse& use :
-         {coupling::kContinuumUse, coupling::kAccuracyUse, coupling::kCalibrationUse}) {
+    for (const coupling::StudyUse& use : {coupling::kContinuumUse, coupling::kAccuracyUse,
+                                          coupling::kCalibrationUse, coupling::kElementUse}) {
       coupling::SceneInput in = read;
       in.use = use;
       // A folder that does not exist: validation looks at it, and nothing creates it.

@@ -157,11 +157,6 @@ std::string triaxial_table(const std::vector<TriaxialRecord>& rec) {
   return t.str();
 }
 
-// The critical state: the last 30 % of the shearing; the peak's rate ratio: the states within a
-// fifteenth of the final strain of the peak (+-0.01 at the default 0.15).
-constexpr double kCriticalShare = 0.3;
-constexpr double kPeakWindowShare = 1.0 / 15.0;
-
 }  // namespace
 
 std::string BedCalibration::material_error(const fs::path& folder) const {
@@ -271,7 +266,7 @@ BedCalibration calibrate_bed(const dem::SceneConfig& scene, const dem::EngineSta
   try {
     std::vector<dem::TriaxialState> path;
     for (const TriaxialRecord& r : b.shear) path.push_back(r.state);
-    b.strength = dem::friction_strength(path, kPeakWindowShare * x.final_strain, kCriticalShare);
+    b.strength = dem::friction_strength(path, dem::kPeakWindowShare * x.final_strain, dem::kCriticalShare);
   } catch (const Error& e) {
     b.strength_error = e.what();
   }

@@ -17,7 +17,7 @@ std::string calibration_refusal(const SceneInput& in) {
   const std::array<bool, 3>& periodic = in.scene.container.periodic;
   if (periodic[0] || periodic[1] || periodic[2])
     return "the calibration's tests load the bed between walls; a scene with Container/periodic axes is not "
-           "one (periodic element tests are planned: docs/periodic.md)";
+           "one (the periodic element tests are upgrain --study element: docs/element-tests.md)";
   if (!in.calibration.oedometer_by_lid && !(in.scene.effects.gravity && in.scene.gravity > 0.0))
     return "the oedometric test by gravity (Calibration/oedometer loading) raises the bed's weight, and this "
            "scene has none (Effects/gravity)";

@@ -1,0 +1,220 @@
+#include "coupling/studies/element/element_run.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <numbers>
+
+#include "dem/core/cell_motion.h"
+#include "dem/core/error.h"
+
+namespace upgrain::coupling {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using dem::CellAxisMode;
+using dem::CellMotion;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// A cell whose control changes between the phases of a test: each change captures the engine's
+// state and continues it, bitwise, under the new control (a restart, docs/restart.md), with the
+// prescribed rates in the velocity gradient of the next step; the servo axes keep theirs (the
+// servo's state) and move it towards their new targets.
+class ElementCell {
+ public:
+  ElementCell(dem::SceneConfig scene, dem::ParticleStore grains, MPI_Comm comm,
+              const dem::EngineOptions& engine, std::function<void()> after_step)
+      : scene_(std::move(scene)), comm_(comm), after_step_(std::move(after_step)) {
+    sim_ = std::make_unique<dem::Simulation>(scene_, std::move(grains), std::vector<dem::PlaneWall>{}, comm_,
+                                             engine);
+  }
+
+  void control(const CellMotion& m) {
+    dem::EngineState s = sim_->capture_state();
+    for (int d = 0; d < 3; ++d)
+      if (m.axis[d].mode == CellAxisMode::rate) s.cell.velocity_gradient(d, d) = m.axis[d].rate;
+    const double growth = scene_.cell.max_growth;
+    scene_.cell = m;
+    scene_.cell.max_growth = growth;
+    const dem::EngineOptions engine = sim_->options();
+    sim_.reset();
+    sim_ = std::make_unique<dem::Simulation>(scene_, s, comm_, engine);
+  }
+
+  // Runs `steps` steps; returns -sigma_dd averaged over the last `window` of them.
+  dem::Vec3 run(long steps, long window) {
+    dem::Vec3 sum = dem::Vec3::Zero();
+    for (long k = 0; k < steps; ++k) {
+      sim_->step();
+      if (k >= steps - window) sum -= sim_->cell_stress().diagonal();
+      if (after_step_) after_step_();
+    }
+    return sum / static_cast<double>(std::max(window, 1L));
+  }
+
+  dem::Simulation& sim() { return *sim_; }
+  [[nodiscard]] double volume() const { return sim_->cell_matrix().determinant(); }
+  [[nodiscard]] dem::Vec3 lengths() const { return sim_->cell_matrix().diagonal(); }
+
+ private:
+  dem::SceneConfig scene_;
+  MPI_Comm comm_;
+  std::function<void()> after_step_;
+  std::unique_ptr<dem::Simulation> sim_;
+};
+
+dem::CellAxisControl servo(const ElementOptions& o, double target) {
+  return {CellAxisMode::servo, 0.0, target, o.servo_gain / target, o.max_strain_rate};
+}
+
+CellMotion every_axis(const dem::CellAxisControl& c) {
+  CellMotion m;
+  m.axis = {c, c, c};
+  return m;
+}
+
+CellMotion still() { return every_axis({CellAxisMode::rate, 0.0, 0.0, 0.0, 0.0}); }
+
+// The solids' volume and the mean volume-equivalent diameter, summed on rank 0 in id order
+// (the fill's), so that they are the same bits on any rank count.
+struct Solids {
+  double volume = 0.0, mean_diameter = 0.0;
+  long count = 0;
+};
+Solids solids(const dem::ParticleStore& grains, MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  double sums[3] = {0.0, 0.0, 0.0};
+  if (rank == 0) {
+    for (std::size_t i = 0; i < grains.size(); ++i) {
+      const double v = grains.volume(i);
+      sums[0] += v;
+      sums[1] += std::cbrt(6.0 * v / std::numbers::pi);
+    }
+    sums[1] /= static_cast<double>(std::max<std::size_t>(grains.size(), 1));
+    sums[2] = static_cast<double>(grains.size());
+  }
+  MPI_Bcast(sums, 3, MPI_DOUBLE, 0, comm);
+  return {sums[0], sums[1], static_cast<long>(sums[2])};
+}
+
+}  // namespace
+
+ElementResult run_element_tests(const dem::SceneConfig& scene_in, dem::ParticleStore grains,
+                                const ElementOptions& o, MPI_Comm comm, const dem::EngineOptions& engine,
+                                const ProgressReport& on_progress) {
+  ElementResult r;
+  const Solids solid = solids(grains, comm);
+  r.particles = solid.count;
+  r.mean_diameter = solid.mean_diameter;
+  // No gravity and no walls: the cell's grains alone. The first control squeezes the fill.
+  dem::SceneConfig scene = scene_in;
+  scene.effects.gravity = false;
+  scene.cell = every_axis(servo(o, o.pressures.front()));
+  const double dt = scene.time_step;
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  const long total = isotropic_steps(o, dt) + triaxial_steps(o, dt);
+  ProgressClock clock(rank == 0 ? on_progress : ProgressReport{}, 0);
+  long done = 0;
+  ElementCell cell(scene, std::move(grains), comm, engine, [&] {
+    ++done;
+    clock.dynamics(done, total, false, done == total);
+  });
+  auto coordination = [&](long contacts) { return 2.0 * static_cast<double>(contacts) / solid.count; };
+
+  const auto t1 = Clock::now();
+  const IsotropicSchedule plan = isotropic_schedule(o, dt);
+  cell.run(steps_of(o.compaction_time, dt), 1);
+  for (std::size_t k = 0; k < o.pressures.size(); ++k) {
+    IsotropicRecord rec;
+    rec.target = o.pressures[k];
+    if (k > 0) cell.control(every_axis(servo(o, rec.target)));
+    rec.pressure = cell.run(plan.hold, std::max(1L, plan.hold / 4));
+    rec.mean_pressure = rec.pressure.mean();
+    rec.solid_fraction = solid.volume / cell.volume();
+    rec.contacts = cell.sim().diagnostics().particle_contacts;
+    rec.coordination = coordination(rec.contacts);
+    // The bulk modulus: p of the still cell before and after an isotropic strain step.
+    cell.control(still());
+    rec.pressure_before = cell.run(plan.still, std::max(1L, plan.still / 2)).mean();
+    const double v_before = cell.volume();
+    const double rate = -o.volumetric_strain_step / 3.0 / (static_cast<double>(plan.squeeze) * dt);
+    cell.control(every_axis({CellAxisMode::rate, rate, 0.0, 0.0, 0.0}));
+    cell.run(plan.squeeze, 1);
+    cell.control(still());
+    rec.pressure_after = cell.run(plan.still, std::max(1L, plan.still / 2)).mean();
+    rec.volumetric_strain = std::log(v_before / cell.volume());
+    rec.bulk_modulus = (rec.pressure_after - rec.pressure_before) / rec.volumetric_strain;
+    r.isotropic.push_back(rec);
+  }
+  r.isotropic_seconds = seconds_since(t1);
+
+  // Drained triaxial compression from the last isotropic state.
+  const auto t2 = Clock::now();
+  r.confining_pressure = o.pressures.back();
+  CellMotion shear;
+  shear.axis = {servo(o, r.confining_pressure),
+                servo(o, r.confining_pressure),
+                {CellAxisMode::rate, -o.axial_strain_rate, 0.0, 0.0, 0.0}};
+  cell.control(shear);
+  const dem::Vec3 h0 = cell.lengths();
+  const double v0 = cell.volume();
+  auto record = [&](double time, const dem::Vec3& pressure) {
+    ElementTriaxialRecord t;
+    t.time = time;
+    const dem::Vec3 h = cell.lengths();
+    t.state.axial_strain = 1.0 - h[2] / h0[2];
+    t.state.volumetric_strain = 1.0 - cell.volume() / v0;
+    t.state.axial_stress = pressure[2];
+    t.state.lateral_stress = 0.5 * (pressure[0] + pressure[1]);
+    t.mean_stress = (t.state.axial_stress + 2.0 * t.state.lateral_stress) / 3.0;
+    t.deviator = t.state.axial_stress - t.state.lateral_stress;
+    t.solid_fraction = solid.volume / cell.volume();
+    t.coordination = coordination(cell.sim().diagnostics().particle_contacts);
+    r.triaxial.push_back(t);
+  };
+  record(0.0, -cell.sim().cell_stress().diagonal());
+  const long per_record = triaxial_steps(o, dt) / kTriaxialRecords;
+  for (long k = 1; k <= kTriaxialRecords; ++k)
+    record(static_cast<double>(k * per_record) * dt, cell.run(per_record, per_record));
+  r.triaxial_seconds = seconds_since(t2);
+
+  r.inertial_number = dem::inertial_number(o.axial_strain_rate, r.mean_diameter,
+                                           scene.particles.material.density, r.confining_pressure);
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  r.strength = {nan, nan, nan, nan, nan, nan, nan, nan, 0};
+  try {
+    std::vector<dem::TriaxialState> path;
+    for (const ElementTriaxialRecord& t : r.triaxial) path.push_back(t.state);
+    r.strength =
+        dem::friction_strength(path, dem::kPeakWindowShare * o.final_axial_strain, dem::kCriticalShare);
+  } catch (const Error& e) {
+    r.strength_error = e.what();
+  }
+  // E50: the secant modulus at half the peak deviator, eps_1 interpolated on the rising path.
+  r.e50 = nan;
+  const auto peak = std::max_element(r.triaxial.begin(), r.triaxial.end(),
+                                     [](const auto& a, const auto& b) { return a.deviator < b.deviator; });
+  const double half = 0.5 * peak->deviator;
+  for (auto it = r.triaxial.begin(); it != peak && half > 0.0; ++it) {
+    const auto next = std::next(it);
+    if (it->deviator <= half && next->deviator >= half && next->deviator > it->deviator) {
+      const double s = (half - it->deviator) / (next->deviator - it->deviator);
+      const double eps = it->state.axial_strain + s * (next->state.axial_strain - it->state.axial_strain);
+      if (eps > 0.0) r.e50 = half / eps;
+      break;
+    }
+  }
+  const double k_last = r.isotropic.back().bulk_modulus;
+  r.poisson_ratio = (3.0 * k_last - r.e50) / (6.0 * k_last);
+  return r;
+}
+
+}  // namespace upgrain::coupling

@@ -1,0 +1,205 @@
+#include "coupling/studies/element/element_study.h"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "coupling/run/scene_run.h"
+#include "coupling/studies/dem_run.h"
+#include "coupling/studies/element/element_run.h"
+#include "coupling/studies/figure_script.h"
+#include "dem/files/atomic_file.h"
+#include "dem/files/json_number.h"
+
+namespace upgrain::coupling {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// 9 significant digits in the tables; empty when not finite.
+std::string number(double v) {
+  if (!std::isfinite(v)) return "";
+  char b[40];
+  std::snprintf(b, sizeof b, "%.9g", v);
+  return b;
+}
+
+std::string isotropic_table(const ElementResult& r) {
+  std::ostringstream t;
+  t << "# Upgrain isotropic compression on a periodic cell (docs/element-tests.md). SI units, compression "
+       "positive. p_x, p_y, p_z: -sigma_dd of the cell (Love-Weber and kinetic parts) averaged over the last "
+       "quarter of the servo's hold; solid_fraction and coordination (2 contacts / grains) at its end; "
+       "bulk_modulus = (p_after - p_before) / volumetric_strain of the isotropic strain step between two "
+       "still cells\n"
+       "target,p_x,p_y,p_z,p,relative_error,solid_fraction,contacts,coordination,p_before,p_after,"
+       "volumetric_strain,bulk_modulus\n";
+  for (const IsotropicRecord& k : r.isotropic)
+    t << number(k.target) << ',' << number(k.pressure[0]) << ',' << number(k.pressure[1]) << ','
+      << number(k.pressure[2]) << ',' << number(k.mean_pressure) << ','
+      << number(k.mean_pressure / k.target - 1.0) << ',' << number(k.solid_fraction) << ',' << k.contacts
+      << ',' << number(k.coordination) << ',' << number(k.pressure_before) << ',' << number(k.pressure_after)
+      << ',' << number(k.volumetric_strain) << ',' << number(k.bulk_modulus) << '\n';
+  return t.str();
+}
+
+std::string triaxial_table(const ElementResult& r) {
+  std::ostringstream t;
+  t << "# Upgrain drained triaxial compression on a periodic cell (docs/element-tests.md). SI units, "
+       "compression positive. Record 0: the last isotropic state; then z shortened at the prescribed rate, x "
+       "and y servo to sigma_3. axial_strain = 1 - h_z/h_z0, volumetric_strain = 1 - V/V_0; sigma_1 = "
+       "-sigma_zz, "
+       "sigma_3 = -(sigma_xx + sigma_yy)/2 averaged over the steps since the record before; p = (sigma_1 + 2 "
+       "sigma_3)/3, q = sigma_1 - sigma_3; phi_mobilised = asin(q / (sigma_1 + sigma_3)) in degrees\n"
+       "record,time,axial_strain,volumetric_strain,sigma_1,sigma_3,p,q,q_over_p,phi_mobilised,solid_fraction,"
+       "coordination\n";
+  for (std::size_t k = 0; k < r.triaxial.size(); ++k) {
+    const ElementTriaxialRecord& x = r.triaxial[k];
+    const dem::TriaxialState& s = x.state;
+    const double sum = s.axial_stress + s.lateral_stress;
+    t << k << ',' << number(x.time) << ',' << number(s.axial_strain) << ',' << number(s.volumetric_strain)
+      << ',' << number(s.axial_stress) << ',' << number(s.lateral_stress) << ',' << number(x.mean_stress)
+      << ',' << number(x.deviator) << ',' << number(x.deviator / x.mean_stress) << ','
+      << (sum > 0.0 ? number(dem::mobilised_friction_angle(s.axial_stress, s.lateral_stress)) : "") << ','
+      << number(x.solid_fraction) << ',' << number(x.coordination) << '\n';
+  }
+  return t.str();
+}
+
+// Why the tests give no material the continuum takes (E > 0, 0 <= nu <= 0.499, phi in
+// [0.1, 89]), or "".
+std::string material_error(const ElementResult& r) {
+  if (!r.strength_error.empty()) return "no friction angle: " + r.strength_error;
+  std::ostringstream m;
+  if (!(r.e50 > 0.0))
+    m << "no E50 (the deviator did not rise from the isotropic state)";
+  else if (!(r.poisson_ratio >= 0.0 && r.poisson_ratio <= 0.499))
+    m << "Poisson's ratio (3 K - E50) / (6 K) = " << r.poisson_ratio
+      << " is outside [0, 0.499] (K = " << r.isotropic.back().bulk_modulus << " Pa, E50 = " << r.e50
+      << " Pa)";
+  else if (!(r.strength.peak_angle >= 0.1 && r.strength.peak_angle <= 89.0))
+    m << "the peak friction angle " << r.strength.peak_angle << " deg is outside [0.1, 89]";
+  return m.str();
+}
+
+std::string material_file(const std::string& source, const ElementResult& r) {
+  const IsotropicRecord& last = r.isotropic.back();
+  const dem::FrictionStrength& s = r.strength;
+  std::ostringstream m;
+  m << "# Upgrain material from the element tests (docs/element-tests.md) of " << source << " on a periodic\n"
+    << "# cell: the bulk modulus K = " << number(last.bulk_modulus)
+    << " Pa at p = " << number(last.mean_pressure)
+    << " Pa (isotropic.csv), the secant modulus E50 = " << number(r.e50) << " Pa of the drained\n"
+    << "# triaxial compression at sigma_3 = " << number(r.confining_pressure)
+    << " Pa (triaxial.csv); nu = (3 K - E50) / (6 K). Peak phi = " << number(s.peak_angle)
+    << " deg at axial strain " << number(s.peak_strain) << "\n# with psi = " << number(s.peak_dilatancy_angle)
+    << " deg; critical state phi = " << number(s.critical_angle) << " +- " << number(s.critical_spread)
+    << " deg. The continuum takes the peak's (psi clamped to [0, phi]).\n"
+    << "subsection Continuum\n"
+    << "  set youngs modulus = " << number(r.e50) << "\n"
+    << "  set poisson ratio = " << number(r.poisson_ratio) << "\n"
+    << "  set friction angle = " << number(s.peak_angle) << "\n"
+    << "  set dilatancy angle = " << number(std::clamp(s.peak_dilatancy_angle, 0.0, s.peak_angle)) << "\n"
+    << "end\n";
+  return m.str();
+}
+
+std::string report_section(const ElementResult& r, const std::string& why_no_material, bool plots) {
+  std::ostringstream m;
+  const dem::FrictionStrength& s = r.strength;
+  m << "## Element test\n\n"
+    << r.particles
+    << " grains in a fully periodic cell, without gravity or walls (docs/element-tests.md).\n\n"
+    << "### Isotropic compression\n\n"
+    << "| target p (Pa) | p reached (Pa) | error | solid fraction | coordination | K (Pa) "
+       "|\n|---|---|---|---|---|---|\n";
+  for (const IsotropicRecord& k : r.isotropic) {
+    char row[256];
+    std::snprintf(row, sizeof row, "| %.4g | %.6g | %+.2f %% | %.4f | %.3f | %.4g |\n", k.target,
+                  k.mean_pressure, 100.0 * (k.mean_pressure / k.target - 1.0), k.solid_fraction,
+                  k.coordination, k.bulk_modulus);
+    m << row;
+  }
+  char text[1024];
+  std::snprintf(
+      text, sizeof text,
+      "\n### Drained triaxial compression\n\nsigma_3 = %.4g Pa, axial strain rate with inertial number "
+      "I = %.3g%s. Peak friction angle %.2f deg at eps_1 = %.4f with dilatancy angle %.2f deg; "
+      "critical state %.2f +- %.2f deg (d eps_v / d eps_1 = %.3f there). E50 = %.4g Pa, "
+      "nu = %.3f.\n\n",
+      r.confining_pressure, r.inertial_number,
+      r.inertial_number > 1e-3 ? " (above 1e-3: not quasi-static)" : "", s.peak_angle, s.peak_strain,
+      s.peak_dilatancy_angle, s.critical_angle, s.critical_spread, s.critical_rate_ratio, r.e50,
+      r.poisson_ratio);
+  m << text;
+  m << (why_no_material.empty() ? "Material: `material.prm`.\n"
+                                : "No material file: " + why_no_material + ".\n");
+  m << "Paths: `isotropic.csv`, `triaxial.csv`"
+    << (plots ? "; plots `isotropic.png`, `triaxial.png` (plot_element.py).\n" : ".\n");
+  return m.str();
+}
+
+}  // namespace
+
+int run_element_study(const SceneInput& in, MPI_Comm comm, const StudyHooks& hooks) {
+  // The scene was checked by the study's own checks (element_checks.h): every axis periodic.
+  const ElementResult r = run_element_tests(in.scene, fill_on_root(in.scene, comm), in.element, comm,
+                                            engine_options(in), hooks.progress);
+  on_rank0(comm, [&] {
+    const fs::path folder = fs::path(in.output.folder) / "element";
+    dem::io::create_folder(folder);
+    dem::io::write_text_atomically(folder / "isotropic.csv", isotropic_table(r));
+    dem::io::write_text_atomically(folder / "triaxial.csv", triaxial_table(r));
+    const std::string why = material_error(r);
+    if (why.empty()) dem::io::write_text_atomically(folder / "material.prm", material_file(in.source, r));
+    const FigureRun plots = run_figure_script("studies/element/plot_element.py", folder, "plots.log",
+                                              {"isotropic.png", "triaxial.png"});
+    dem::io::write_text_atomically(folder / "report.md", report_section(r, why, plots.succeeded));
+    using dem::io::json_number;
+    const dem::FrictionStrength& s = r.strength;
+    std::ostringstream j;
+    j << "{\n  \"study\": \"element\",\n  \"particles\": " << r.particles
+      << ",\n  \"wall_time_s\": " << json_number(r.isotropic_seconds + r.triaxial_seconds)
+      << ",\n  \"pressures_Pa\": [";
+    for (std::size_t k = 0; k < r.isotropic.size(); ++k)
+      j << (k ? ", " : "") << json_number(r.isotropic[k].mean_pressure);
+    j << "],\n  \"solid_fractions\": [";
+    for (std::size_t k = 0; k < r.isotropic.size(); ++k)
+      j << (k ? ", " : "") << json_number(r.isotropic[k].solid_fraction);
+    j << "],\n  \"coordination_numbers\": [";
+    for (std::size_t k = 0; k < r.isotropic.size(); ++k)
+      j << (k ? ", " : "") << json_number(r.isotropic[k].coordination);
+    j << "],\n  \"bulk_moduli_Pa\": [";
+    for (std::size_t k = 0; k < r.isotropic.size(); ++k)
+      j << (k ? ", " : "") << json_number(r.isotropic[k].bulk_modulus);
+    j << "],\n  \"confining_pressure_Pa\": " << json_number(r.confining_pressure)
+      << ",\n  \"inertial_number\": " << json_number(r.inertial_number)
+      << ",\n  \"peak_friction_angle_deg\": " << json_number(s.peak_angle)
+      << ",\n  \"peak_axial_strain\": " << json_number(s.peak_strain)
+      << ",\n  \"peak_dilatancy_angle_deg\": " << json_number(s.peak_dilatancy_angle)
+      << ",\n  \"critical_friction_angle_deg\": " << json_number(s.critical_angle)
+      << ",\n  \"critical_friction_angle_spread_deg\": " << json_number(s.critical_spread)
+      << ",\n  \"critical_volumetric_rate_ratio\": " << json_number(s.critical_rate_ratio)
+      << ",\n  \"e50_Pa\": " << json_number(r.e50)
+      << ",\n  \"poisson_ratio\": " << json_number(r.poisson_ratio)
+      << ",\n  \"material_file\": " << (why.empty() ? "true" : "false") << "\n}\n";
+    dem::io::write_text_atomically(fs::path(in.output.folder) / "summary.json", j.str());
+    std::printf("\n  element tests: %ld grains, isotropic %.1f s, triaxial %.1f s of wall clock\n",
+                r.particles, r.isotropic_seconds, r.triaxial_seconds);
+    for (const IsotropicRecord& k : r.isotropic)
+      std::printf("    p* %.4g Pa: p %.6g Pa (%+.2f %%), phi %.4f, Z %.3f, K %.4g Pa\n", k.target,
+                  k.mean_pressure, 100.0 * (k.mean_pressure / k.target - 1.0), k.solid_fraction,
+                  k.coordination, k.bulk_modulus);
+    std::printf(
+        "    triaxial at sigma_3 %.4g Pa, I %.3g: peak phi %.2f deg at eps_1 %.4f, psi %.2f deg; "
+        "critical phi %.2f +- %.2f deg; E50 %.4g Pa, nu %.3f\n",
+        r.confining_pressure, r.inertial_number, s.peak_angle, s.peak_strain, s.peak_dilatancy_angle,
+        s.critical_angle, s.critical_spread, r.e50, r.poisson_ratio);
+    if (!why.empty()) std::printf("    no material file: %s\n", why.c_str());
+    std::printf("  results: %s/{isotropic.csv,triaxial.csv%s,report.md}, %s/summary.json\n", folder.c_str(),
+                why.empty() ? ",material.prm" : "", in.output.folder.c_str());
+  });
+  return 0;
+}
+
+}  // namespace upgrain::coupling
