@@ -19,45 +19,8 @@
 using namespace upgrain;
 using namespace upgrain::dem;
 
-namespace {
-
-// A fully periodic cube of side `side`, no gravity, the given rates on the diagonal of L.
-SceneConfig gas_cell(double side, const Vec3& rates) {
-  SceneConfig s;
-  s.particles.material = {2650.0, 5e7, 0.25};
-  s.container.lx = s.container.ly = s.container.height = side;
-  s.container.periodic = {true, true, true};
-  s.effects.gravity = false;
-  s.friction = 0.5;
-  s.damping_ratio = 0.3;
-  s.time_step = 1e-5;
-  for (int d = 0; d < 3; ++d) {
-    if (rates[d] == 0.0) continue;
-    s.cell.axis[d].mode = CellAxisMode::rate;
-    s.cell.axis[d].rate = rates[d];
-  }
-  return s;
-}
-
-// n^3 grains on a lattice of pitch side / n, moved by up to `jitter` pitches, their peculiar
-// velocities zero or random.
-ParticleStore lattice(int n, double side, double r, double speed, std::mt19937_64& rng,
-                      double jitter = 0.05) {
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  ParticleStore p;
-  const double pitch = side / n;
-  for (int a = 0; a < n; ++a)
-    for (int b = 0; b < n; ++b)
-      for (int c = 0; c < n; ++c) {
-        const Vec3 x =
-            pitch * (Vec3(a, b, c) + Vec3::Constant(0.5)) + jitter * pitch * Vec3(u(rng), u(rng), u(rng));
-        p.add_sphere(static_cast<GlobalId>(p.size()), r, 2650, x, speed * Vec3(u(rng), u(rng), u(rng)),
-                     Vec3::Zero());
-      }
-  return p;
-}
-
-}  // namespace
+using test::gas_cell;
+using test::lattice;
 
 // Grains that never touch, with no peculiar velocity, stay on the affine field x(t) = F(t) x(0),
 // F = h(t) h(0)^-1, to round-off: each step's drift and the cell's faces take the same map

@@ -148,4 +148,41 @@ inline dem::SceneConfig compressing_cell_scene(long count, const dem::Vec3& thro
   return s;
 }
 
+// A fully periodic cube of side `side`, no gravity, the given rates on the diagonal of L
+// (docs/periodic.md, "A cell that deforms").
+inline dem::SceneConfig gas_cell(double side, const dem::Vec3& rates) {
+  dem::SceneConfig s;
+  s.particles.material = {2650.0, 5e7, 0.25};
+  s.container.lx = s.container.ly = s.container.height = side;
+  s.container.periodic = {true, true, true};
+  s.effects.gravity = false;
+  s.friction = 0.5;
+  s.damping_ratio = 0.3;
+  s.time_step = 1e-5;
+  for (int d = 0; d < 3; ++d) {
+    if (rates[d] == 0.0) continue;
+    s.cell.axis[d].mode = dem::CellAxisMode::rate;
+    s.cell.axis[d].rate = rates[d];
+  }
+  return s;
+}
+
+// n^3 grains on a lattice of pitch side / n, moved by up to `jitter` pitches, their peculiar
+// velocities zero or random, up to `speed`.
+inline dem::ParticleStore lattice(int n, double side, double r, double speed, std::mt19937_64& rng,
+                                  double jitter = 0.05) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  dem::ParticleStore p;
+  const double pitch = side / n;
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b)
+      for (int c = 0; c < n; ++c) {
+        const dem::Vec3 x = pitch * (dem::Vec3(a, b, c) + dem::Vec3::Constant(0.5)) +
+                            jitter * pitch * dem::Vec3(u(rng), u(rng), u(rng));
+        p.add_sphere(static_cast<dem::GlobalId>(p.size()), r, 2650, x,
+                     speed * dem::Vec3(u(rng), u(rng), u(rng)), dem::Vec3::Zero());
+      }
+  return p;
+}
+
 }  // namespace upgrain::test

@@ -19,40 +19,16 @@
 using namespace upgrain;
 using namespace upgrain::dem;
 
+using test::lattice;
+
 namespace {
 
-// A fully periodic cube of side `side`, no gravity, sheared at L(0, 2) = `rate` (x along z),
-// with the given rates on the diagonal of L besides.
+// test::gas_cell() sheared at L(0, 2) = `rate` (x along z), with the given rates on the diagonal of
+// L besides.
 SceneConfig sheared_gas(double side, double rate, const Vec3& diagonal = Vec3::Zero()) {
-  SceneConfig s;
-  s.particles.material = {2650.0, 5e7, 0.25};
-  s.container.lx = s.container.ly = s.container.height = side;
-  s.container.periodic = {true, true, true};
-  s.effects.gravity = false;
-  s.friction = 0.5;
-  s.damping_ratio = 0.3;
-  s.time_step = 1e-5;
+  SceneConfig s = test::gas_cell(side, diagonal);
   s.cell.shear = {{0, 2}, rate};
-  for (int d = 0; d < 3; ++d)
-    if (diagonal[d] != 0.0) s.cell.axis[d] = {CellAxisMode::rate, diagonal[d]};
   return s;
-}
-
-// n^3 grains on a jittered lattice of pitch side / n, their peculiar velocities `speed` at most.
-ParticleStore lattice(int n, double side, double r, double speed, std::mt19937_64& rng,
-                      double jitter = 0.05) {
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  ParticleStore p;
-  const double pitch = side / n;
-  for (int a = 0; a < n; ++a)
-    for (int b = 0; b < n; ++b)
-      for (int c = 0; c < n; ++c) {
-        const Vec3 x =
-            pitch * (Vec3(a, b, c) + Vec3::Constant(0.5)) + jitter * pitch * Vec3(u(rng), u(rng), u(rng));
-        p.add_sphere(static_cast<GlobalId>(p.size()), r, 2650, x, speed * Vec3(u(rng), u(rng), u(rng)),
-                     Vec3::Zero());
-      }
-  return p;
 }
 
 }  // namespace
