@@ -2,7 +2,41 @@
 
 #include <utility>
 
+#include "upscale/strain/periodic_kinematics.h"
+
 namespace upgrain::coupling {
+
+namespace {
+
+// The grains as the strain takes them (docs/periodic.md, "Strain over a periodic cell"): in a
+// periodic cell followed from their images at the reference time, with the mean flow's
+// velocity added to the peculiar one; elsewhere as they are.
+struct StrainGrains {
+  upscale::PeriodicKinematics periodic;
+  upscale::ParticleKinematics now;
+};
+StrainGrains strain_grains(const dem::Simulation& sim, const dem::ParticleStore& p,
+                           const upscale::StrainReference& reference) {
+  StrainGrains g;
+  const dem::PeriodicCell& cell = sim.decomposition().cell();
+  if (!cell.any()) {
+    g.now = {p.id, p.x, p.v};
+    return g;
+  }
+  // A reference without counters (written before they were kept): every grain from image 0.
+  const std::vector<dem::ImageCount> zeros(reference.image.empty() ? reference.id.size() : 0, {0, 0, 0});
+  g.periodic = upscale::periodic_kinematics(cell, sim.cell_velocity_gradient(), p.id, p.x, p.v, p.image,
+                                            reference.id, reference.image.empty() ? zeros : reference.image);
+  g.now = {p.id, g.periodic.x, g.periodic.v};
+  return g;
+}
+
+// A periodic cell's reference keeps the counters at t0.
+void keep_images(upscale::StrainReference& reference, const dem::Simulation& sim, const dem::ParticleStore& p) {
+  if (sim.decomposition().cell().any()) reference.image = p.image;
+}
+
+}  // namespace
 
 GridEvaluation::GridEvaluation(dem::Simulation& sim, const OutputOptions& output,
                                const GridEvaluationState* resume)
@@ -92,10 +126,12 @@ void GridEvaluation::evaluate_block_strain(dem::Simulation& sim, const dem::Part
   const int count = static_cast<int>(blocks.size());
   if (!block_reference_) {
     block_reference_ = upscale::make_strain_reference(p.id, p.x, owner, count, sim.time(), sim.step_count());
+    keep_images(*block_reference_, sim, p);
     reference_blocks_ = blocks;
   }
+  const StrainGrains grains = strain_grains(sim, p, *block_reference_);
   upscale::GridStrain b = upscale::partition_strain(
-      *block_reference_, owner, {p.id, p.x, p.v}, {sim.time(), sim.step_count()}, output_.grid_strain.kernel,
+      *block_reference_, owner, grains.now, {sim.time(), sim.step_count()}, output_.grid_strain.kernel,
       last_block_strain_ ? &*last_block_strain_ : nullptr);
   if (!block_strain_out_) block_strain_out_.emplace(output_.folder);
   if (output_.grid_strain.kernel.set == upscale::StrainSet::lagrangian)
@@ -113,11 +149,14 @@ void GridEvaluation::evaluate_strain(dem::Simulation& sim, const dem::RegularGri
   const std::vector<int> owner = sim.gather_owners_sorted_by_id();  // collective
   sim.on_root([&] {
     evaluate_block_strain(sim, p, owner);
-    if (!strain_reference_)
+    if (!strain_reference_) {
       strain_reference_ = upscale::make_strain_reference(p.id, p.x, grid, sim.time(), sim.step_count());
+      keep_images(*strain_reference_, sim, p);
+    }
+    const StrainGrains grains = strain_grains(sim, p, *strain_reference_);
     upscale::GridStrain g =
-        upscale::grid_strain(*strain_reference_, grid, {p.id, p.x, p.v}, {sim.time(), sim.step_count()},
-                             output_.grid_strain.kernel, final_strain_ ? &*final_strain_ : nullptr);
+        upscale::grid_strain(*strain_reference_, grid, grains.now, {sim.time(), sim.step_count()},
+                             output_.grid_strain.kernel, final_strain_ ? &*final_strain_ : nullptr, p.x);
     if (stress) {
       const upscale::GridStressRates rates =
           rate_history_->push((*stress)[output_.grid_strain.rate_formula], g);

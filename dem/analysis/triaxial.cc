@@ -45,6 +45,18 @@ double triaxial_dilatancy_angle(double volumetric_rate_ratio) {
   return std::asin(std::clamp(-volumetric_rate_ratio / (2.0 - volumetric_rate_ratio), -1.0, 1.0)) / kDegree;
 }
 
+double matsuoka_nakai_angle(double s1, double s2, double s3) {
+  if (!(s1 >= s2 && s2 >= s3 && s3 > 0.0))
+    throw Error("Matsuoka-Nakai angle: the principal compressions must be ordered and positive, not " +
+                std::to_string(s1) + ", " + std::to_string(s2) + ", " + std::to_string(s3));
+  const double i1 = s1 + s2 + s3, i2 = s1 * s2 + s2 * s3 + s3 * s1, i3 = s1 * s2 * s3;
+  // Triaxial compression (r, 1, 1) with the same invariant j: (r + 2)(2 r + 1) / r = j, so
+  // 2 r^2 + (5 - j) r + 2 = 0, its root r >= 1 (j >= 9, the isotropic state's).
+  const double j = std::max(i1 * i2 / i3, 9.0);
+  const double r = ((j - 5.0) + std::sqrt(std::max((j - 5.0) * (j - 5.0) - 16.0, 0.0))) / 4.0;
+  return std::asin((r - 1.0) / (r + 1.0)) / kDegree;
+}
+
 double jaky_k0(double friction_angle_deg) { return 1.0 - std::sin(friction_angle_deg * kDegree); }
 
 double inertial_number(double strain_rate, double diameter, double density, double pressure) {

@@ -30,6 +30,12 @@ struct TriaxialState {
 double mobilised_friction_angle(double sigma1, double sigma3);
 // The triaxial dilatancy angle (degrees) of a volumetric strain rate ratio d eps_v / d eps_1.
 double triaxial_dilatancy_angle(double volumetric_rate_ratio);
+// The friction angle of triaxial compression with the Matsuoka-Nakai invariant I1 I2 / I3 of the
+// principal compressions s1 >= s2 >= s3 > 0 (Matsuoka & Nakai 1974, Proc. JSCE 232, 59-70): a
+// measure of the mobilised strength that counts the intermediate stress, so that states of
+// other Lode angles (simple shear) compare with the triaxial test's. With s2 = s3 it is
+// mobilised_friction_angle(s1, s3). Throws upgrain::Error unless s1 >= s2 >= s3 > 0.
+double matsuoka_nakai_angle(double s1, double s2, double s3);
 // Jaky's K0 = 1 - sin phi.
 double jaky_k0(double friction_angle_deg);
 // I = strain_rate d sqrt(density / pressure).

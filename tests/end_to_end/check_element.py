@@ -14,6 +14,15 @@ Usage: check_element.py FOLDER RANKS PARTICLES
   over the shearing (past its first tenth) within 6 % of the target: the proportional servo
   lags by the lateral strain rate over its gain, about rate / (2 gain) = 5 % here (measured 4.2 %); the deviator
   rising from the isotropic state to q/p > 0.3.
+- shear.csv: three steady states at the targets 0.01, 0.1, 0.3; each one's inertial number
+  from its mean normal stress within 5 % of its target, that stress within 5 % of 4 kPa (the
+  servo's mean over a steady state with no net dilation is its target); the friction
+  coefficient tau/P at I = 0.3 above that at I = 0.01 by more than their spreads' sum (the rate
+  dependence of mu(I)), the solid fraction lower (dilatancy with I); shear_path.csv: 20 states
+  per inertial number, the last at the strain 1 to within 20 steps' strain (the steps are
+  rounded down to a whole number per state).
+- the plots: shear.png beside isotropic.png and triaxial.png whenever those were drawn (the
+  figure script reads the fits from summary.json).
 - summary.json: the grains, the friction angles finite, the peak not below the critical state's
   less its spread; material.prm written when it says so.
 """
@@ -64,6 +73,32 @@ def main():
         problems.append(f'sigma_3 {mean_s3} over the shearing, target 4000')
     if not max(float(r['q_over_p']) for r in tri) > 0.3:
         problems.append('q/p never above 0.3')
+    shear = rows(os.path.join(element, 'shear.csv'))
+    if [float(r['target_inertial_number']) for r in shear] != [0.01, 0.1, 0.3]:
+        problems.append(f'shear targets {[r["target_inertial_number"] for r in shear]}')
+    for r in shear:
+        t, i, n = float(r['target_inertial_number']), float(r['inertial_number']), float(r['normal_stress'])
+        if abs(i / t - 1) > 0.05 or abs(n / 4000.0 - 1) > 0.05:
+            problems.append(f'shear at I* {t}: I {i}, normal stress {n}')
+    if len(shear) == 3:
+        slow, fast = shear[0], shear[2]
+        if not (float(fast['friction']) - float(slow['friction']) >
+                float(fast['friction_spread']) + float(slow['friction_spread'])):
+            problems.append(f'friction at I 0.3 {fast["friction"]} not above that at 0.01 {slow["friction"]} '
+                            'by more than the spreads')
+        if not float(fast['solid_fraction']) < float(slow['solid_fraction']):
+            problems.append(f'solid fraction at I 0.3 {fast["solid_fraction"]}, at 0.01 {slow["solid_fraction"]}')
+    path = rows(os.path.join(element, 'shear_path.csv'))
+    if len(path) != 60:
+        problems.append(f'{len(path)} shear states, not 60')
+    for r in shear:
+        last = [float(p['shear_strain']) for p in path if p['target_inertial_number'] == r['target_inertial_number']]
+        steps = 20 * float(r['shear_rate']) * 1e-5
+        if not last or not 0 <= 1.0 - last[-1] < steps:
+            problems.append(f'shear at I* {r["target_inertial_number"]} ends at strain {last[-1:]}')
+    drawn = [os.path.exists(os.path.join(element, f)) for f in ('isotropic.png', 'triaxial.png', 'shear.png')]
+    if drawn[0] and not all(drawn):
+        problems.append(f'plots drawn: isotropic, triaxial, shear {drawn} (see element/plots.log)')
     with open(os.path.join(folder, 'summary.json')) as f:
         s = json.load(f)
     if s['particles'] != particles:
@@ -77,7 +112,8 @@ def main():
     for p in problems:
         print(p)
     print(f'{folder}: p {[r["p"] for r in iso]}, solid fraction {[r["solid_fraction"] for r in iso]}, '
-          f'sigma_3 {mean_s3:.1f}, peak {peak:.2f} deg, critical {crit:.2f} deg: {len(problems)} problems')
+          f'sigma_3 {mean_s3:.1f}, peak {peak:.2f} deg, critical {crit:.2f} deg, '
+          f'mu {[r["friction"] for r in shear]}: {len(problems)} problems')
     sys.exit(1 if problems else 0)
 
 

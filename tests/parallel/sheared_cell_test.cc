@@ -15,6 +15,8 @@
 #include "dem/engine/simulation.h"
 #include "dem/scene/fill.h"
 #include "helpers.h"
+#include "upscale/strain/deformation_fit.h"
+#include "upscale/strain/periodic_kinematics.h"
 
 using namespace upgrain;
 using namespace upgrain::dem;
@@ -71,6 +73,19 @@ TEST(ShearedCell, ContactFreeGasStaysOnTheAffineFieldThroughCrossingsAndRemaps) 
   EXPECT_LE(worst, 3.0 * steps * q) << "off the affine field by more than the roundings of the steps";
   EXPECT_EQ(worst_v, 0.0) << "a peculiar velocity: the grain left the mean flow L x";
   EXPECT_GT(crossed, 20) << "the flow carried no grain across the shear axis's faces";
+  // The strain's view (docs/periodic.md, "Strain over a periodic cell"): the best-fit F of the
+  // grains followed from their images at t0 is the cell's F, and the best-fit L the cell's.
+  const std::vector<ImageCount> at_start(all.size(), ImageCount{0, 0, 0});
+  const upscale::PeriodicKinematics k = upscale::periodic_kinematics(
+      cell, sim.cell_velocity_gradient(), all.id, all.x, all.v, all.image, p0.id, at_start);
+  const upscale::AffineFit fit = upscale::fit_deformation_gradient(p0.x, k.x);
+  const upscale::AffineFit rate = upscale::fit_velocity_gradient(k.x, k.v);
+  ASSERT_TRUE(fit.valid && rate.valid);
+  const double f_error = (fit.gradient - f).cwiseAbs().maxCoeff();
+  const double l_error = (rate.gradient - sim.cell_velocity_gradient()).cwiseAbs().maxCoeff();
+  std::printf("best-fit F - cell F: %.3g; best-fit L - cell L: %.3g /s\n", f_error, l_error);
+  EXPECT_LE(f_error, 1e-12);
+  EXPECT_LE(l_error, 1e-12 * sim.cell_velocity_gradient().cwiseAbs().maxCoeff());
 }
 
 // A bed of frictional grains thrown into a cell periodic along x and y over a floor, sheared

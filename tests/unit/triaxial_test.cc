@@ -24,6 +24,20 @@ TEST(Triaxial, MobilisedAngleOfKnownRatios) {
   EXPECT_THROW(static_cast<void>(mobilised_friction_angle(-1.0, 0.5)), Error);
 }
 
+TEST(Triaxial, MatsuokaNakaiAngleOfKnownStates) {
+  // Triaxial compression: the mobilised angle itself.
+  const double s = std::sin(30.0 * kDegree);
+  EXPECT_NEAR(matsuoka_nakai_angle(1e3 * (1 + s) / (1 - s), 1e3, 1e3), 30.0, 1e-10);
+  EXPECT_NEAR(matsuoka_nakai_angle(2.0, 2.0, 2.0), 0.0, 1e-6);
+  // Triaxial extension (3, 3, 1) has the invariant of compression (3, 1, 1), I1 I2 / I3 = 35/3,
+  // so compression's angle, asin(1/2) = 30 degrees.
+  EXPECT_NEAR(matsuoka_nakai_angle(3.0, 3.0, 1.0), 30.0, 1e-10);
+  // A plane-strain-like state with b = 1/2 mobilises less than its Mohr-Coulomb angle says.
+  EXPECT_LT(matsuoka_nakai_angle(3.0, 2.0, 1.0), mobilised_friction_angle(3.0, 1.0));
+  EXPECT_THROW(static_cast<void>(matsuoka_nakai_angle(1.0, 2.0, 0.5)), Error);
+  EXPECT_THROW(static_cast<void>(matsuoka_nakai_angle(2.0, 1.0, 0.0)), Error);
+}
+
 TEST(Triaxial, DilatancyAngleOfKnownRateRatios) {
   // A sample that neither dilates nor contracts: psi = 0. Dilating at d eps_v / d eps_1 = -1/2:
   // sin psi = 0.5 / 2.5 = 0.2. Isochoric limit of maximum dilation d eps_v = -d eps_1 (eps_3

@@ -219,15 +219,18 @@ void evaluate_cell(CellStrainFields& out, int c, StrainDefinition d, const CellS
 
 GridStrain grid_strain(const StrainReference& reference, const RegularGrid& current_grid,
                        const ParticleKinematics& now, const StateInstant& when,
-                       const GridStrainOptions& options, const GridStrain* previous) {
-  if (now.id.size() != now.x.size() || now.id.size() != now.v.size())
+                       const GridStrainOptions& options, const GridStrain* previous,
+                       std::span<const Vec3> placed) {
+  if (now.id.size() != now.x.size() || now.id.size() != now.v.size() ||
+      (!placed.empty() && placed.size() != now.id.size()))
     throw Error("grid strain: the current state's ids, positions and velocities differ in length");
   const bool lagrangian = options.set == StrainSet::lagrangian;
   if (!lagrangian && current_grid.num_cells() != reference.cells)
     throw Error("grid strain: the current grid has " + std::to_string(current_grid.num_cells()) +
                 " cells, the reference " + std::to_string(reference.cells));
   std::vector<int> current_cell(lagrangian ? 0 : now.x.size());
-  for (std::size_t k = 0; k < current_cell.size(); ++k) current_cell[k] = current_grid.cell_of(now.x[k]);
+  const std::span<const Vec3> at = placed.empty() ? now.x : placed;
+  for (std::size_t k = 0; k < current_cell.size(); ++k) current_cell[k] = current_grid.cell_of(at[k]);
   GridStrain g = partition_strain(reference, current_cell, now, when, options, previous);
   g.grid = lagrangian ? reference.grid : current_grid;
   return g;

@@ -22,6 +22,7 @@
 #include <string_view>
 #include <vector>
 
+#include "dem/core/periodic_cell.h"
 #include "dem/core/types.h"
 #include "dem/stress/grid_stress.h"
 #include "upscale/strain/equivalent_continuum.h"
@@ -64,6 +65,8 @@ struct StrainReference {
   std::vector<GlobalId> id;  // ascending
   std::vector<Vec3> x;       // position at t0
   std::vector<int> cell;     // cell of x at t0, -1 outside every cell
+  // A periodic cell's image counters at t0 (periodic_kinematics.h); empty for a bounded box.
+  std::vector<dem::ImageCount> image;
 };
 
 // Throws upgrain::Error on repeated ids or spans of different lengths.
@@ -155,9 +158,13 @@ struct GridStrain {
 // Evaluates every cell. `previous` (the last evaluation from the same reference, same cell
 // count) gives F_prev for the increment; without it F_prev = 1, so F_inc = F. Its reference
 // tessellations are reused for the cells whose set has not changed.
+// `placed`: where the Eulerian sets place each grain of `now` in the current grid, when not at
+// now.x (a periodic cell's wrapped positions, now.x being followed across the faces:
+// periodic_kinematics.h); empty: now.x.
 GridStrain grid_strain(const StrainReference& reference, const RegularGrid& current_grid,
                        const ParticleKinematics& now, const StateInstant& when,
-                       const GridStrainOptions& options, const GridStrain* previous = nullptr);
+                       const GridStrainOptions& options, const GridStrain* previous = nullptr,
+                       std::span<const Vec3> placed = {});
 
 // The same over any partition into reference.cells sets: Lagrangian sets from reference.cell,
 // Eulerian ones from `current_cell` (the cell of each particle of `now`, -1 for none, below

@@ -51,6 +51,13 @@ void write_strain_reference(hid_t parent, const std::string& group, const Strain
   hdf5::write_vectors(g, "x", r.x);
   std::vector<std::int32_t> cell(r.cell.begin(), r.cell.end());
   write_dataset(g, "cell", cell.data(), cell.size());
+  // A periodic cell's image counters at t0; a bounded box's references keep their layout.
+  if (!r.image.empty()) {
+    std::vector<std::int32_t> image(3 * r.image.size());
+    for (std::size_t i = 0; i < r.image.size(); ++i)
+      for (int d = 0; d < 3; ++d) image[3 * i + d] = r.image[i][d];
+    write_dataset(g, "image", image.data(), r.image.size(), 3);
+  }
 }
 
 StrainReference read_strain_reference(const Reader& in, const std::string& group) {
@@ -65,6 +72,10 @@ StrainReference read_strain_reference(const Reader& in, const std::string& group
       in.read<std::int32_t>(group + "/cell", H5T_NATIVE_INT32, r.id.size());
   r.cell.assign(cell.begin(), cell.end());
   if (r.x.size() != r.id.size()) throw Error(in.where() + group + ": positions and ids differ in count");
+  if (in.exists(group + "/image")) {
+    const std::vector<std::int32_t> image = in.read<std::int32_t>(group + "/image", H5T_NATIVE_INT32, r.id.size(), 3);
+    for (std::size_t i = 0; i < r.id.size(); ++i) r.image.push_back({image[3 * i], image[3 * i + 1], image[3 * i + 2]});
+  }
   return r;
 }
 

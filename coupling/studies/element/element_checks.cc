@@ -43,6 +43,13 @@ void check_element_study(SceneInput& in, const std::string& where) {
       << dt << " s: the triaxial path records 100 states; lower Element test/axial strain rate";
     throw Error(m.str());
   }
+  for (double i : o.shear_inertial_numbers)
+    if (!(i > 0.0 && i <= 1.0)) {
+      std::ostringstream m;
+      m << study << "Element test/shear inertial numbers: each must be in (0, 1], not " << i
+        << " (above 1 the flow is no longer dense, GDR MiDi 2004)";
+      throw Error(m.str());
+    }
 }
 
 }  // namespace upgrain::coupling

@@ -1,7 +1,8 @@
 #pragma once
 // The Element test section of a scene file (docs/element-tests.md): the isotropic and drained
-// triaxial compressions of `upgrain --study element` on a fully periodic cell of the scene's
-// grains (docs/periodic.md, "A cell that deforms").
+// triaxial compressions and the simple shear at a constant normal stress of `upgrain --study
+// element` on a fully periodic cell of the scene's grains (docs/periodic.md, "A cell that
+// deforms", "Shear").
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -24,6 +25,15 @@ struct ElementOptions {
   // The drained triaxial compression: eps_1 rate along z and where it ends.
   double axial_strain_rate = 0.5;  // 1/s
   double final_axial_strain = 0.2;
+  // Simple shear at the last pressure as normal stress, from the last isotropic state: one
+  // steady state per inertial number, in turn (empty: no shear test). Each is sheared by
+  // shear_strain; its last half is the steady state.
+  std::vector<double> shear_inertial_numbers = {0.003, 0.01, 0.03, 0.1};
+  double shear_strain = 2.0;
+  // The normal stress's servo during shear, relative to the shear rate: L_gg = gain gamma_dot
+  // (p_gg - P) / P, bounded by gamma_dot, so that the cell dilates in the same shear strain at
+  // every inertial number.
+  double shear_servo_gain = 1.0;
 };
 
 // The schedule of the tests in time steps of dt: header-only, for the study's checks too.
@@ -52,6 +62,20 @@ inline constexpr long kTriaxialRecords = 100;
 inline long triaxial_steps(const ElementOptions& o, double dt) {
   const double time = -std::log1p(-o.final_axial_strain) / o.axial_strain_rate;
   return std::max(1L, steps_of(time, dt) / kTriaxialRecords) * kTriaxialRecords;
+}
+
+// The states recorded over the shear at one inertial number.
+inline constexpr long kShearRecords = 20;
+
+// The shear rate of inertial number I at the normal stress P: gamma_dot = I sqrt(P / rho) / d
+// (GDR MiDi 2004, Eur. Phys. J. E 14, 341-365).
+inline double shear_rate_of(double inertial_number, double pressure, double density, double diameter) {
+  return inertial_number * std::sqrt(pressure / density) / diameter;
+}
+
+// The steps of the shear at one rate, a multiple of kShearRecords.
+inline long shear_steps(const ElementOptions& o, double rate, double dt) {
+  return std::max(1L, steps_of(o.shear_strain / rate, dt) / kShearRecords) * kShearRecords;
 }
 
 }  // namespace upgrain::coupling

@@ -1,11 +1,15 @@
 #include "coupling/studies/element/element_run.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <span>
+
+#include <Eigen/Eigenvalues>
 
 #include "dem/core/cell_motion.h"
 #include "dem/core/error.h"
@@ -35,10 +39,20 @@ class ElementCell {
                                              engine);
   }
 
-  void control(const CellMotion& m) {
-    dem::EngineState s = sim_->capture_state();
+  void control(const CellMotion& m) { resume(sim_->capture_state(), m); }
+
+  // Continues from `s` under `m`: the prescribed rates in the velocity gradient (a shear rate
+  // too: a cell not yet sheared starts with its images unslid, the same lattice).
+  void resume(dem::EngineState s, const CellMotion& m) {
     for (int d = 0; d < 3; ++d)
       if (m.axis[d].mode == CellAxisMode::rate) s.cell.velocity_gradient(d, d) = m.axis[d].rate;
+    if (m.shear.any()) {
+      s.cell.velocity_gradient(m.shear.shear(), m.shear.gradient()) = m.shear.rate;
+      if (!s.cell.shear.any()) {
+        s.cell.shear = dem::ShearImages{m.shear.shear(), m.shear.gradient(), 0.0, 0};
+        s.cell.offset_at_build = 0.0;
+      }
+    }
     const double growth = scene_.cell.max_growth;
     scene_.cell = m;
     scene_.cell.max_growth = growth;
@@ -47,16 +61,19 @@ class ElementCell {
     sim_ = std::make_unique<dem::Simulation>(scene_, s, comm_, engine);
   }
 
-  // Runs `steps` steps; returns -sigma_dd averaged over the last `window` of them.
-  dem::Vec3 run(long steps, long window) {
-    dem::Vec3 sum = dem::Vec3::Zero();
+  // Runs `steps` steps; returns sigma (tension positive) averaged over the last `window`.
+  dem::Mat3 run_stress(long steps, long window) {
+    dem::Mat3 sum = dem::Mat3::Zero();
     for (long k = 0; k < steps; ++k) {
       sim_->step();
-      if (k >= steps - window) sum -= sim_->cell_stress().diagonal();
+      if (k >= steps - window) sum += sim_->cell_stress();
       if (after_step_) after_step_();
     }
     return sum / static_cast<double>(std::max(window, 1L));
   }
+
+  // Runs `steps` steps; returns -sigma_dd averaged over the last `window` of them.
+  dem::Vec3 run(long steps, long window) { return -run_stress(steps, window).diagonal(); }
 
   dem::Simulation& sim() { return *sim_; }
   [[nodiscard]] double volume() const { return sim_->cell_matrix().determinant(); }
@@ -104,6 +121,63 @@ Solids solids(const dem::ParticleStore& grains, MPI_Comm comm) {
   return {sums[0], sums[1], static_cast<long>(sums[2])};
 }
 
+// The principal compressions s1 >= s2 >= s3 of a stress (tension positive, docs/stress.md).
+std::array<double, 3> principal_compressions(const dem::Mat3& sigma) {
+  const dem::Mat3 symmetric = 0.5 * (sigma + sigma.transpose());
+  const Eigen::SelfAdjointEigenSolver<dem::Mat3> e(symmetric, Eigen::EigenvaluesOnly);
+  return {-e.eigenvalues()[0], -e.eigenvalues()[1], -e.eigenvalues()[2]};
+}
+
+// The mobilised friction angle of the principal compressions: the triaxial test's measure,
+// independent of the test's axes (docs/element-tests.md).
+double principal_friction_angle(const std::array<double, 3>& s) {
+  return s[0] + s[2] > 0.0 ? dem::mobilised_friction_angle(s[0], s[2]) : std::numeric_limits<double>::quiet_NaN();
+}
+
+// The intermediate principal stress ratio b = (s2 - s3) / (s1 - s3): 0 in triaxial compression.
+double intermediate_ratio(const std::array<double, 3>& s) {
+  return s[0] > s[2] ? (s[1] - s[2]) / (s[0] - s[2]) : std::numeric_limits<double>::quiet_NaN();
+}
+
+// The steady state of one inertial number from the states of its last half: mu the ratio of the
+// mean stresses, its spread the standard deviation of the states' ratios.
+ShearSteadyState steady_state(std::span<const ShearPathRecord> states, double target, double rate, long steps,
+                              double diameter, double density) {
+  ShearSteadyState s;
+  s.target_inertial_number = target;
+  s.shear_rate = rate;
+  s.steps = steps;
+  double tau = 0.0;
+  for (const ShearPathRecord& p : states) {
+    tau += p.shear_stress;
+    s.normal_stress += p.normal_stress;
+    s.mean_stress += p.mean_stress;
+    s.mobilised_angle += p.mobilised_angle;
+    s.intermediate_ratio += p.intermediate_ratio;
+    s.matsuoka_nakai_angle += p.matsuoka_nakai_angle;
+    s.solid_fraction += p.solid_fraction;
+    s.coordination += p.coordination;
+  }
+  const double n = static_cast<double>(states.size());
+  tau /= n;
+  s.normal_stress /= n;
+  s.mean_stress /= n;
+  s.mobilised_angle /= n;
+  s.intermediate_ratio /= n;
+  s.matsuoka_nakai_angle /= n;
+  s.solid_fraction /= n;
+  s.coordination /= n;
+  s.friction = tau / s.normal_stress;
+  double var = 0.0;
+  for (const ShearPathRecord& p : states) {
+    const double d = p.shear_stress / p.normal_stress - s.friction;
+    var += d * d;
+  }
+  s.friction_spread = std::sqrt(var / std::max(n - 1.0, 1.0));
+  s.inertial_number = dem::inertial_number(rate, diameter, density, s.normal_stress);
+  return s;
+}
+
 }  // namespace
 
 ElementResult run_element_tests(const dem::SceneConfig& scene_in, dem::ParticleStore grains,
@@ -120,7 +194,15 @@ ElementResult run_element_tests(const dem::SceneConfig& scene_in, dem::ParticleS
   const double dt = scene.time_step;
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
-  const long total = isotropic_steps(o, dt) + triaxial_steps(o, dt);
+  const double normal_stress = o.pressures.back();
+  std::vector<double> shear_rates;
+  long shear_total = 0;
+  for (double i : o.shear_inertial_numbers) {
+    shear_rates.push_back(
+        shear_rate_of(i, normal_stress, scene.particles.material.density, solid.mean_diameter));
+    shear_total += shear_steps(o, shear_rates.back(), dt);
+  }
+  const long total = isotropic_steps(o, dt) + triaxial_steps(o, dt) + shear_total;
   ProgressClock clock(rank == 0 ? on_progress : ProgressReport{}, 0);
   long done = 0;
   ElementCell cell(scene, std::move(grains), comm, engine, [&] {
@@ -155,15 +237,18 @@ ElementResult run_element_tests(const dem::SceneConfig& scene_in, dem::ParticleS
     r.isotropic.push_back(rec);
   }
   r.isotropic_seconds = seconds_since(t1);
+  // The consolidated state, where the simple shear starts too.
+  const dem::EngineState consolidated =
+      o.shear_inertial_numbers.empty() ? dem::EngineState{} : cell.sim().capture_state();
 
   // Drained triaxial compression from the last isotropic state.
   const auto t2 = Clock::now();
   r.confining_pressure = o.pressures.back();
-  CellMotion shear;
-  shear.axis = {servo(o, r.confining_pressure),
-                servo(o, r.confining_pressure),
-                {CellAxisMode::rate, -o.axial_strain_rate, 0.0, 0.0, 0.0}};
-  cell.control(shear);
+  CellMotion triaxial;
+  triaxial.axis = {servo(o, r.confining_pressure),
+                   servo(o, r.confining_pressure),
+                   {CellAxisMode::rate, -o.axial_strain_rate, 0.0, 0.0, 0.0}};
+  cell.control(triaxial);
   const dem::Vec3 h0 = cell.lengths();
   const double v0 = cell.volume();
   auto record = [&](double time, const dem::Vec3& pressure) {
@@ -214,6 +299,60 @@ ElementResult run_element_tests(const dem::SceneConfig& scene_in, dem::ParticleS
   }
   const double k_last = r.isotropic.back().bulk_modulus;
   r.poisson_ratio = (3.0 * k_last - r.e50) / (6.0 * k_last);
+
+  // Simple shear at the normal stress P from the consolidated state: x sheared across z
+  // (L_xz = gamma_dot), z servo to P at a gain relative to the shear rate, x and y held.
+  const auto t3 = Clock::now();
+  for (std::size_t n = 0; n < shear_rates.size(); ++n) {
+    const double rate = shear_rates[n];
+    CellMotion shear;
+    shear.axis = {dem::CellAxisControl{CellAxisMode::rate, 0.0, 0.0, 0.0, 0.0},
+                  dem::CellAxisControl{CellAxisMode::rate, 0.0, 0.0, 0.0, 0.0},
+                  dem::CellAxisControl{CellAxisMode::servo, 0.0, normal_stress,
+                                       o.shear_servo_gain * rate / normal_stress, rate}};
+    shear.shear.component = {0, 2};
+    shear.shear.rate = rate;
+    if (n == 0)
+      cell.resume(consolidated, shear);
+    else
+      cell.control(shear);
+    const long steps = shear_steps(o, rate, dt), per_state = steps / kShearRecords;
+    const std::size_t first = r.shear_path.size();
+    for (long k = 1; k <= kShearRecords; ++k) {
+      const dem::Mat3 sigma = cell.run_stress(per_state, per_state);
+      ShearPathRecord p;
+      p.target_inertial_number = o.shear_inertial_numbers[n];
+      p.shear_strain = rate * static_cast<double>(k * per_state) * dt;
+      p.shear_stress = 0.5 * (sigma(0, 2) + sigma(2, 0));
+      p.normal_stress = -sigma(2, 2);
+      p.mean_stress = -sigma.trace() / 3.0;
+      const std::array<double, 3> principal = principal_compressions(sigma);
+      p.mobilised_angle = principal_friction_angle(principal);
+      p.intermediate_ratio = intermediate_ratio(principal);
+      p.matsuoka_nakai_angle = principal[2] > 0.0 ? dem::matsuoka_nakai_angle(principal[0], principal[1], principal[2])
+                                                  : std::numeric_limits<double>::quiet_NaN();
+      p.solid_fraction = solid.volume / cell.volume();
+      p.coordination = coordination(cell.sim().diagnostics().particle_contacts);
+      r.shear_path.push_back(p);
+    }
+    r.shear.push_back(steady_state(std::span(r.shear_path).subspan(first + kShearRecords / 2),
+                                   o.shear_inertial_numbers[n], rate, steps, solid.mean_diameter,
+                                   scene.particles.material.density));
+  }
+  r.shear_seconds = seconds_since(t3);
+  try {
+    std::vector<double> i, mu, phi;
+    for (const ShearSteadyState& x : r.shear) {
+      i.push_back(x.inertial_number);
+      mu.push_back(x.friction);
+      phi.push_back(x.solid_fraction);
+    }
+    if (r.shear.empty()) throw Error("no shear inertial numbers");
+    r.phi_of_i = dem::fit_phi_of_i(i, phi);
+    r.mu_of_i = dem::fit_mu_of_i(i, mu);
+  } catch (const Error& e) {
+    r.rheology_error = e.what();
+  }
   return r;
 }
 

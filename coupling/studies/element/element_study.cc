@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 
 #include "coupling/run/scene_run.h"
@@ -63,6 +64,44 @@ std::string triaxial_table(const ElementResult& r) {
       << (sum > 0.0 ? number(dem::mobilised_friction_angle(s.axial_stress, s.lateral_stress)) : "") << ','
       << number(x.solid_fraction) << ',' << number(x.coordination) << '\n';
   }
+  return t.str();
+}
+
+std::string shear_table(const ElementResult& r) {
+  std::ostringstream t;
+  t << "# Upgrain simple shear at a constant normal stress on a periodic cell (docs/element-tests.md). SI "
+       "units, compression positive. One row per inertial number, the means over the last half of its shear "
+       "strain: shear_rate = L_xz; inertial_number = shear_rate d sqrt(rho / P) with P = -sigma_zz; friction = "
+       "mean tau / mean P, tau = (sigma_xz + sigma_zx) / 2; friction_spread the standard deviation of tau / P "
+       "over the states; p = -tr sigma / 3; phi_mobilised = asin((s1 - s3) / (s1 + s3)) of the principal "
+       "compressions in degrees, b = (s2 - s3) / (s1 - s3) and phi_matsuoka_nakai, the triaxial compression "
+       "angle with the same I1 I2 / I3 (Matsuoka & Nakai 1974), each the mean of the states'\n"
+       "target_inertial_number,shear_rate,steps,inertial_number,friction,friction_spread,normal_stress,p,"
+       "phi_mobilised,b,phi_matsuoka_nakai,solid_fraction,coordination,fitted_friction,fitted_solid_fraction\n";
+  const bool fitted = r.rheology_error.empty();
+  for (const ShearSteadyState& x : r.shear)
+    t << number(x.target_inertial_number) << ',' << number(x.shear_rate) << ',' << x.steps << ','
+      << number(x.inertial_number) << ',' << number(x.friction) << ',' << number(x.friction_spread) << ','
+      << number(x.normal_stress) << ',' << number(x.mean_stress) << ',' << number(x.mobilised_angle) << ','
+      << number(x.intermediate_ratio) << ',' << number(x.matsuoka_nakai_angle) << ',' << number(x.solid_fraction)
+      << ',' << number(x.coordination) << ','
+      << (fitted ? number(r.mu_of_i(x.inertial_number)) : "") << ','
+      << (fitted ? number(r.phi_of_i(x.inertial_number)) : "") << '\n';
+  return t.str();
+}
+
+std::string shear_path_table(const ElementResult& r) {
+  std::ostringstream t;
+  t << "# Upgrain simple shear path (docs/element-tests.md): 20 states per inertial number, the stresses "
+       "averaged over the steps since the state before, compression positive; shear_strain from the start of "
+       "that inertial number's shear\n"
+       "target_inertial_number,shear_strain,tau,normal_stress,p,friction,phi_mobilised,b,phi_matsuoka_nakai,"
+       "solid_fraction,coordination\n";
+  for (const ShearPathRecord& x : r.shear_path)
+    t << number(x.target_inertial_number) << ',' << number(x.shear_strain) << ',' << number(x.shear_stress)
+      << ',' << number(x.normal_stress) << ',' << number(x.mean_stress) << ','
+      << number(x.shear_stress / x.normal_stress) << ',' << number(x.mobilised_angle) << ','
+      << number(x.intermediate_ratio) << ',' << number(x.matsuoka_nakai_angle) << ',' << number(x.solid_fraction) << ',' << number(x.coordination) << '\n';
   return t.str();
 }
 
@@ -134,8 +173,36 @@ std::string report_section(const ElementResult& r, const std::string& why_no_mat
   m << text;
   m << (why_no_material.empty() ? "Material: `material.prm`.\n"
                                 : "No material file: " + why_no_material + ".\n");
-  m << "Paths: `isotropic.csv`, `triaxial.csv`"
-    << (plots ? "; plots `isotropic.png`, `triaxial.png` (plot_element.py).\n" : ".\n");
+  if (!r.shear.empty()) {
+    m << "\n### Simple shear at a constant normal stress\n\nP = " << number(r.confining_pressure)
+      << " Pa; each inertial number sheared from the one before (the first from the last isotropic state), "
+         "the steady state over the last half of its strain.\n\n"
+      << "| I | friction tau/P | spread | phi mobilised (deg) | b | phi Matsuoka-Nakai (deg) | solid fraction | "
+         "coordination |\n|---|---|---|---|---|---|---|---|\n";
+    for (const ShearSteadyState& x : r.shear) {
+      char row[256];
+      std::snprintf(row, sizeof row, "| %.4g | %.4f | %.4f | %.2f | %.3f | %.2f | %.4f | %.3f |\n",
+                    x.inertial_number, x.friction, x.friction_spread, x.mobilised_angle, x.intermediate_ratio,
+                    x.matsuoka_nakai_angle, x.solid_fraction, x.coordination);
+      m << row;
+    }
+    if (r.rheology_error.empty()) {
+      char fit[512];
+      std::snprintf(fit, sizeof fit,
+                    "\nmu(I) = mu_s + (mu_2 - mu_s) / (1 + I0 / I): mu_s = %.4f, mu_2 = %.4f, I0 = %.4g "
+                    "(rms %.2g)%s; phi(I) = %.4f - %.4f I (rms %.2g).\n",
+                    r.mu_of_i.mu_s, r.mu_of_i.mu_2, r.mu_of_i.i0, r.mu_of_i.rms,
+                    r.mu_of_i.i0_at_bound ? ", I0 at the end of its search: the points do not bound it" : "",
+                    r.phi_of_i.phi_max, r.phi_of_i.slope, r.phi_of_i.rms);
+      m << fit;
+    } else {
+      m << "\nNo mu(I) fit: " << r.rheology_error << ".\n";
+    }
+  }
+  m << "Paths: `isotropic.csv`, `triaxial.csv`" << (r.shear.empty() ? "" : ", `shear.csv`, `shear_path.csv`")
+    << (plots ? std::string("; plots `isotropic.png`, `triaxial.png`") + (r.shear.empty() ? "" : ", `shear.png`") +
+                    " (plot_element.py).\n"
+              : std::string(".\n"));
   return m.str();
 }
 
@@ -150,16 +217,18 @@ int run_element_study(const SceneInput& in, MPI_Comm comm, const StudyHooks& hoo
     dem::io::create_folder(folder);
     dem::io::write_text_atomically(folder / "isotropic.csv", isotropic_table(r));
     dem::io::write_text_atomically(folder / "triaxial.csv", triaxial_table(r));
+    if (!r.shear.empty()) {
+      dem::io::write_text_atomically(folder / "shear.csv", shear_table(r));
+      dem::io::write_text_atomically(folder / "shear_path.csv", shear_path_table(r));
+    }
     const std::string why = material_error(r);
     if (why.empty()) dem::io::write_text_atomically(folder / "material.prm", material_file(in.source, r));
-    const FigureRun plots = run_figure_script("studies/element/plot_element.py", folder, "plots.log",
-                                              {"isotropic.png", "triaxial.png"});
-    dem::io::write_text_atomically(folder / "report.md", report_section(r, why, plots.succeeded));
+    // The summary first: the plots draw the fits from it.
     using dem::io::json_number;
     const dem::FrictionStrength& s = r.strength;
     std::ostringstream j;
     j << "{\n  \"study\": \"element\",\n  \"particles\": " << r.particles
-      << ",\n  \"wall_time_s\": " << json_number(r.isotropic_seconds + r.triaxial_seconds)
+      << ",\n  \"wall_time_s\": " << json_number(r.isotropic_seconds + r.triaxial_seconds + r.shear_seconds)
       << ",\n  \"pressures_Pa\": [";
     for (std::size_t k = 0; k < r.isotropic.size(); ++k)
       j << (k ? ", " : "") << json_number(r.isotropic[k].mean_pressure);
@@ -182,10 +251,29 @@ int run_element_study(const SceneInput& in, MPI_Comm comm, const StudyHooks& hoo
       << ",\n  \"critical_volumetric_rate_ratio\": " << json_number(s.critical_rate_ratio)
       << ",\n  \"e50_Pa\": " << json_number(r.e50)
       << ",\n  \"poisson_ratio\": " << json_number(r.poisson_ratio)
-      << ",\n  \"material_file\": " << (why.empty() ? "true" : "false") << "\n}\n";
+      << ",\n  \"material_file\": " << (why.empty() ? "true" : "false")
+      << ",\n  \"shear_inertial_numbers\": [";
+    for (std::size_t k = 0; k < r.shear.size(); ++k) j << (k ? ", " : "") << json_number(r.shear[k].inertial_number);
+    j << "],\n  \"shear_friction\": [";
+    for (std::size_t k = 0; k < r.shear.size(); ++k) j << (k ? ", " : "") << json_number(r.shear[k].friction);
+    j << "],\n  \"shear_solid_fractions\": [";
+    for (std::size_t k = 0; k < r.shear.size(); ++k)
+      j << (k ? ", " : "") << json_number(r.shear[k].solid_fraction);
+    const bool fit = r.rheology_error.empty();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    j << "],\n  \"mu_s\": " << json_number(fit ? r.mu_of_i.mu_s : nan)
+      << ",\n  \"mu_2\": " << json_number(fit ? r.mu_of_i.mu_2 : nan)
+      << ",\n  \"I0\": " << json_number(fit ? r.mu_of_i.i0 : nan)
+      << ",\n  \"I0_at_bound\": " << (fit && r.mu_of_i.i0_at_bound ? "true" : "false")
+      << ",\n  \"phi_max\": " << json_number(fit ? r.phi_of_i.phi_max : nan)
+      << ",\n  \"phi_slope\": " << json_number(fit ? r.phi_of_i.slope : nan) << "\n}\n";
     dem::io::write_text_atomically(fs::path(in.output.folder) / "summary.json", j.str());
-    std::printf("\n  element tests: %ld grains, isotropic %.1f s, triaxial %.1f s of wall clock\n",
-                r.particles, r.isotropic_seconds, r.triaxial_seconds);
+    std::vector<std::string> figures = {"isotropic.png", "triaxial.png"};
+    if (!r.shear.empty()) figures.emplace_back("shear.png");
+    const FigureRun plots = run_figure_script("studies/element/plot_element.py", folder, "plots.log", figures);
+    dem::io::write_text_atomically(folder / "report.md", report_section(r, why, plots.succeeded));
+    std::printf("\n  element tests: %ld grains, isotropic %.1f s, triaxial %.1f s, shear %.1f s of wall clock\n",
+                r.particles, r.isotropic_seconds, r.triaxial_seconds, r.shear_seconds);
     for (const IsotropicRecord& k : r.isotropic)
       std::printf("    p* %.4g Pa: p %.6g Pa (%+.2f %%), phi %.4f, Z %.3f, K %.4g Pa\n", k.target,
                   k.mean_pressure, 100.0 * (k.mean_pressure / k.target - 1.0), k.solid_fraction,
@@ -195,9 +283,22 @@ int run_element_study(const SceneInput& in, MPI_Comm comm, const StudyHooks& hoo
         "critical phi %.2f +- %.2f deg; E50 %.4g Pa, nu %.3f\n",
         r.confining_pressure, r.inertial_number, s.peak_angle, s.peak_strain, s.peak_dilatancy_angle,
         s.critical_angle, s.critical_spread, r.e50, r.poisson_ratio);
+    for (const ShearSteadyState& x : r.shear)
+      std::printf(
+          "    shear at P %.4g Pa, I %.4g: mu %.4f +- %.4f, phi_m %.2f deg, b %.3f, phi_MN %.2f deg, solid fraction "
+          "%.4f, Z %.3f\n",
+          x.normal_stress, x.inertial_number, x.friction, x.friction_spread, x.mobilised_angle, x.intermediate_ratio,
+          x.matsuoka_nakai_angle, x.solid_fraction, x.coordination);
+    if (!r.shear.empty() && r.rheology_error.empty())
+      std::printf("    mu(I): mu_s %.4f, mu_2 %.4f, I0 %.4g%s; phi(I) = %.4f - %.4f I\n", r.mu_of_i.mu_s,
+                  r.mu_of_i.mu_2, r.mu_of_i.i0, r.mu_of_i.i0_at_bound ? " (at its bound)" : "",
+                  r.phi_of_i.phi_max, r.phi_of_i.slope);
+    else if (!r.shear.empty())
+      std::printf("    no mu(I) fit: %s\n", r.rheology_error.c_str());
     if (!why.empty()) std::printf("    no material file: %s\n", why.c_str());
-    std::printf("  results: %s/{isotropic.csv,triaxial.csv%s,report.md}, %s/summary.json\n", folder.c_str(),
-                why.empty() ? ",material.prm" : "", in.output.folder.c_str());
+    std::printf("  results: %s/{isotropic.csv,triaxial.csv%s%s,report.md}, %s/summary.json\n", folder.c_str(),
+                r.shear.empty() ? "" : ",shear.csv,shear_path.csv", why.empty() ? ",material.prm" : "",
+                in.output.folder.c_str());
   });
   return 0;
 }
