@@ -42,6 +42,7 @@ void write_grid_state(hid_t parent, const GridEvaluationState& s) {
   upscale::write_strain_list(g, "strain_files", s.strain_files);
   hdf5::write_attribute(g, "strain_rows", static_cast<double>(s.strain_rows));
   hdf5::write_attribute(g, "block_rows", static_cast<double>(s.block_rows));
+  hdf5::write_attribute(g, "cell_rows", static_cast<double>(s.cell_rows));
   if (s.reference) upscale::write_strain_reference(g, "reference", *s.reference);
   if (s.previous) upscale::write_previous_strain(g, "previous", *s.previous);
   if (s.rates) upscale::write_rate_history(g, "rates", *s.rates);
@@ -61,6 +62,7 @@ GridEvaluationState read_grid_state(const hdf5::Reader& in, const std::string& g
   s.strain_files = upscale::read_strain_list(in, group + "/strain_files");
   s.strain_rows = in.whole_attribute("strain_rows", group, 0);
   s.block_rows = in.whole_attribute("block_rows", group, -1);  // -1: no block strain output
+  s.cell_rows = in.has_attribute("cell_rows", group) ? in.whole_attribute("cell_rows", group, -1) : -1;
   if (in.exists(group + "/reference")) s.reference = upscale::read_strain_reference(in, group + "/reference");
   if (in.exists(group + "/previous")) s.previous = upscale::read_previous_strain(in, group + "/previous");
   if (in.exists(group + "/rates")) s.rates = upscale::read_rate_history(in, group + "/rates", rate_formula);

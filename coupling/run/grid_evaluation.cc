@@ -1,7 +1,10 @@
 #include "coupling/run/grid_evaluation.h"
 
+#include <algorithm>
+#include <filesystem>
 #include <utility>
 
+#include "upscale/strain/cell_deformation.h"
 #include "upscale/strain/periodic_kinematics.h"
 
 namespace upgrain::coupling {
@@ -43,7 +46,12 @@ GridEvaluation::GridEvaluation(dem::Simulation& sim, const OutputOptions& output
     : output_(output), strain_on_(output.grid_strain.enabled) {
   sim.on_root([&] { stress_out_.emplace(output_.folder, output_.grid_stress.formulas); });
   if (strain_on_) {
-    sim.on_root([&] { strain_out_.emplace(output_.folder); });
+    sim.on_root([&] {
+      strain_out_.emplace(output_.folder);
+      if (sim.scene().cell.any())
+        cell_out_.emplace(std::filesystem::path(output_.folder) / "cell_deformation.csv",
+                          upscale::cell_deformation_header());
+    });
     rate_history_.emplace(output_.grid_strain.rate_formula);
   }
   if (resume) {
@@ -71,6 +79,7 @@ GridEvaluationState GridEvaluation::state() const {
   s.reference_blocks = reference_blocks_;
   s.previous_blocks = last_block_strain_;
   if (block_strain_out_) s.block_rows = block_strain_out_->csv_rows();
+  if (cell_out_) s.cell_rows = cell_out_->rows();
   return s;
 }
 
@@ -82,6 +91,7 @@ void GridEvaluation::restore(const GridEvaluationState& s, int blocks) {
   }
   if (!strain_on_) return;
   strain_out_->resume(s.strain_files, s.strain_rows);
+  if (cell_out_) cell_out_->resume(std::max(s.cell_rows, 0L));
   strain_reference_ = s.reference;
   final_strain_ = s.previous;
   if (s.rates) rate_history_ = s.rates;
@@ -152,6 +162,7 @@ void GridEvaluation::evaluate_strain(dem::Simulation& sim, const dem::RegularGri
     if (!strain_reference_) {
       strain_reference_ = upscale::make_strain_reference(p.id, p.x, grid, sim.time(), sim.step_count());
       keep_images(*strain_reference_, sim, p);
+      if (cell_out_) strain_reference_->cell_matrix = sim.cell_matrix();
     }
     const StrainGrains grains = strain_grains(sim, p, *strain_reference_);
     upscale::GridStrain g =
@@ -165,6 +176,12 @@ void GridEvaluation::evaluate_strain(dem::Simulation& sim, const dem::RegularGri
       strain_out_->record(g);
     }
     final_strain_ = std::move(g);
+    if (cell_out_ && !strain_reference_->cell_matrix.isZero()) {
+      const upscale::CellDeformation d =
+          upscale::cell_deformation(strain_reference_->cell_matrix, sim.cell_matrix(), sim.decomposition().cell().periodic,
+                                    strain_reference_->id, strain_reference_->x, p.id, grains.now.x);
+      cell_out_->append(upscale::cell_deformation_row(sim.time(), sim.step_count(), d));
+    }
   });
 }
 

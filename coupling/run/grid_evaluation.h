@@ -10,6 +10,7 @@
 #include "coupling/run/output_options.h"
 #include "dem/engine/simulation.h"
 #include "dem/io/compute_grid_stress_output.h"
+#include "dem/io/csv_series.h"
 #include "dem/io/grid_stress_output.h"
 #include "upscale/strain/grid_strain.h"
 #include "upscale/strain/grid_strain_output.h"
@@ -33,6 +34,7 @@ struct GridEvaluationState {
   std::vector<dem::Box> reference_blocks;
   std::optional<upscale::GridStrain> previous_blocks;
   long block_rows = -1;
+  long cell_rows = -1;  // cell_deformation.csv (a deforming cell's)
 };
 
 class GridEvaluation {
@@ -84,6 +86,7 @@ class GridEvaluation {
   // place nor of fixed material (docs/strain.md, "Compute grids").
   std::optional<upscale::ComputeGridStrainRecorder> block_strain_out_;
   std::optional<upscale::StrainReference> block_reference_;
+  std::optional<dem::io::CsvSeries> cell_out_;  // a deforming cell's F beside its grains'
   std::vector<dem::Box> reference_blocks_;
   std::optional<upscale::GridStrain> last_block_strain_;
 };

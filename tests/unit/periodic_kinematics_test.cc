@@ -4,6 +4,12 @@
 // motion of the cell carries the reference positions to F x*(t0) for a grain in another image at t0.
 #include "upscale/strain/periodic_kinematics.h"
 
+#include <algorithm>
+#include <random>
+#include <sstream>
+
+#include "upscale/strain/cell_deformation.h"
+
 #include <gtest/gtest.h>
 
 #include "dem/core/cell_motion.h"
@@ -80,6 +86,44 @@ TEST(PeriodicKinematics, SpansOfOtherLengthsAreRefused) {
   const std::vector<Vec3> x = {Vec3::Zero()};
   const std::vector<ImageCount> image = {{0, 0, 0}, {0, 0, 0}};
   EXPECT_THROW(static_cast<void>(periodic_kinematics(cube(), Mat3::Zero(), id, x, x, image, id, image)), Error);
+}
+
+// The cell's F beside the grains' (cell_deformation.h): grains on the affine field of the cell
+// give the cell's F to round-off; a grain in one of the two states only is left out; along a
+// bounded axis the components do not count; the table's rows have the header's columns.
+TEST(CellDeformation, GrainsOnTheCellsAffineFieldGiveTheCellsF) {
+  Mat3 h0 = Mat3::Zero();
+  h0.diagonal() = Vec3(0.02, 0.03, 0.025);
+  Mat3 f = Mat3::Identity();
+  f(0, 0) = 0.9;
+  f(2, 2) = 1.1;
+  f(0, 2) = 0.7;
+  const Mat3 h = f * h0;
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<GlobalId> ref_id, id;
+  std::vector<Vec3> ref_x, x;
+  for (GlobalId k = 0; k < 40; ++k) {
+    const Vec3 a(0.02 * u(rng), 0.03 * u(rng), 0.025 * u(rng));
+    if (k != 7) ref_id.push_back(k), ref_x.push_back(a);  // 7: poured since t0
+    if (k != 11) id.push_back(k), x.push_back(f * a + Vec3(1e-3, 0.0, 0.0));  // 11: gone since
+  }
+  const CellDeformation d = cell_deformation(h0, h, {true, true, true}, ref_id, ref_x, id, x);
+  ASSERT_TRUE(d.grains.valid);
+  EXPECT_EQ(d.grains.points, 38);
+  EXPECT_NEAR((d.cell - f).cwiseAbs().maxCoeff(), 0.0, 1e-15);
+  EXPECT_LE(d.difference, 1e-14);
+  // A floor along z: the grains settle (F_zz 0.95) where the cell does not move; not counted.
+  for (Vec3& p : x) p.z() *= 0.95 / 1.1;
+  const CellDeformation bed = cell_deformation(h0, h, {true, true, false}, ref_id, ref_x, id, x);
+  EXPECT_LE(bed.difference, 1e-14);
+  EXPECT_GT(cell_deformation(h0, h, {true, true, true}, ref_id, ref_x, id, x).difference, 0.1);
+  std::istringstream header(cell_deformation_header());
+  std::string line, columns;
+  while (std::getline(header, line))
+    if (!line.starts_with("#")) columns = line;
+  const std::string row = cell_deformation_row(0.5, 100, d);
+  EXPECT_EQ(std::count(columns.begin(), columns.end(), ','), std::count(row.begin(), row.end(), ','));
 }
 
 }  // namespace

@@ -67,6 +67,8 @@ struct StrainReference {
   std::vector<int> cell;     // cell of x at t0, -1 outside every cell
   // A periodic cell's image counters at t0 (periodic_kinematics.h); empty for a bounded box.
   std::vector<dem::ImageCount> image;
+  // A deforming cell's matrix h at t0 (cell_deformation.h); zero for any other.
+  Mat3 cell_matrix = Mat3::Zero();
 };
 
 // Throws upgrain::Error on repeated ids or spans of different lengths.

@@ -58,6 +58,7 @@ void write_strain_reference(hid_t parent, const std::string& group, const Strain
       for (int d = 0; d < 3; ++d) image[3 * i + d] = r.image[i][d];
     write_dataset(g, "image", image.data(), r.image.size(), 3);
   }
+  if (!r.cell_matrix.isZero()) write_dataset(g, "cell_matrix", r.cell_matrix.data(), 9);
 }
 
 StrainReference read_strain_reference(const Reader& in, const std::string& group) {
@@ -75,6 +76,10 @@ StrainReference read_strain_reference(const Reader& in, const std::string& group
   if (in.exists(group + "/image")) {
     const std::vector<std::int32_t> image = in.read<std::int32_t>(group + "/image", H5T_NATIVE_INT32, r.id.size(), 3);
     for (std::size_t i = 0; i < r.id.size(); ++i) r.image.push_back({image[3 * i], image[3 * i + 1], image[3 * i + 2]});
+  }
+  if (in.exists(group + "/cell_matrix")) {
+    const std::vector<double> h = in.read<double>(group + "/cell_matrix", H5T_NATIVE_DOUBLE, 9);
+    r.cell_matrix = Eigen::Map<const Mat3>(h.data());
   }
   return r;
 }

@@ -199,7 +199,7 @@ std::string report_section(const ElementResult& r, const std::string& why_no_mat
       m << "\nNo mu(I) fit: " << r.rheology_error << ".\n";
     }
   }
-  m << "Paths: `isotropic.csv`, `triaxial.csv`" << (r.shear.empty() ? "" : ", `shear.csv`, `shear_path.csv`")
+  m << "\nPaths: `isotropic.csv`, `triaxial.csv`" << (r.shear.empty() ? "" : ", `shear.csv`, `shear_path.csv`")
     << (plots ? std::string("; plots `isotropic.png`, `triaxial.png`") + (r.shear.empty() ? "" : ", `shear.png`") +
                     " (plot_element.py).\n"
               : std::string(".\n"));
