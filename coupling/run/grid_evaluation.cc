@@ -35,7 +35,8 @@ StrainGrains strain_grains(const dem::Simulation& sim, const dem::ParticleStore&
 }
 
 // A periodic cell's reference keeps the counters at t0.
-void keep_images(upscale::StrainReference& reference, const dem::Simulation& sim, const dem::ParticleStore& p) {
+void keep_images(upscale::StrainReference& reference, const dem::Simulation& sim,
+                 const dem::ParticleStore& p) {
   if (sim.decomposition().cell().any()) reference.image = p.image;
 }
 
@@ -177,9 +178,9 @@ void GridEvaluation::evaluate_strain(dem::Simulation& sim, const dem::RegularGri
     }
     final_strain_ = std::move(g);
     if (cell_out_ && !strain_reference_->cell_matrix.isZero()) {
-      const upscale::CellDeformation d =
-          upscale::cell_deformation(strain_reference_->cell_matrix, sim.cell_matrix(), sim.decomposition().cell().periodic,
-                                    strain_reference_->id, strain_reference_->x, p.id, grains.now.x);
+      const upscale::CellDeformation d = upscale::cell_deformation(
+          strain_reference_->cell_matrix, sim.cell_matrix(), sim.decomposition().cell().periodic,
+          strain_reference_->id, strain_reference_->x, p.id, grains.now.x);
       cell_out_->append(upscale::cell_deformation_row(sim.time(), sim.step_count(), d));
     }
   });

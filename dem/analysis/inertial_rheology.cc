@@ -21,7 +21,8 @@ void check_points(std::span<const double> x, std::span<const double> y, std::siz
   std::set<double> seen;
   for (double i : x) {
     if (!(i > 0.0) || !std::isfinite(i))
-      throw Error(std::string(what) + ": an inertial number must be finite and > 0, not " + std::to_string(i));
+      throw Error(std::string(what) + ": an inertial number must be finite and > 0, not " +
+                  std::to_string(i));
     seen.insert(i);
   }
   for (double v : y)
@@ -101,7 +102,8 @@ PhiOfI fit_phi_of_i(std::span<const double> x, std::span<const double> y) {
   for (std::size_t k = 0; k < x.size(); ++k) mx += x[k], my += y[k];
   mx /= n, my /= n;
   double sxx = 0, sxy = 0;
-  for (std::size_t k = 0; k < x.size(); ++k) sxx += (x[k] - mx) * (x[k] - mx), sxy += (x[k] - mx) * (y[k] - my);
+  for (std::size_t k = 0; k < x.size(); ++k)
+    sxx += (x[k] - mx) * (x[k] - mx), sxy += (x[k] - mx) * (y[k] - my);
   PhiOfI f;
   f.slope = -sxy / sxx;
   f.phi_max = my + f.slope * mx;

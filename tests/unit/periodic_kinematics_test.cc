@@ -64,7 +64,8 @@ TEST(PeriodicKinematics, AnAffineMotionCarriesEveryImageAlong) {
   f(0, 0) = 1.25;
   f(2, 2) = 0.8;
   f(0, 2) = 0.15;  // the tilt h_xz = 0.15 * 4 = 0.6
-  dem::PeriodicCell c1 = dem::make_periodic_cell({Vec3(0.0, 0.0, 0.0), Vec3(1.25, 2.0, 3.2)}, {true, true, true});
+  dem::PeriodicCell c1 =
+      dem::make_periodic_cell({Vec3(0.0, 0.0, 0.0), Vec3(1.25, 2.0, 3.2)}, {true, true, true});
   c1.shear = dem::ShearImages{0, 2, 0.6, 0};
   const Mat3 h0 = dem::cell_matrix(c0), h1 = dem::cell_matrix(c1);
   ASSERT_NEAR((h1 - f * h0).norm(), 0.0, 1e-15);
@@ -75,9 +76,9 @@ TEST(PeriodicKinematics, AnAffineMotionCarriesEveryImageAlong) {
   const ImageCount n = {0, 2, 2};
   const Vec3 x = unwrapped_now - h1 * Vec3(0.0, 2.0, 2.0);
   const std::vector<GlobalId> id = {1};
-  const PeriodicKinematics k = periodic_kinematics(c1, Mat3::Zero(), id, std::vector<Vec3>{x},
-                                                   std::vector<Vec3>{Vec3::Zero()}, std::vector<ImageCount>{n}, id,
-                                                   std::vector<ImageCount>{n0});
+  const PeriodicKinematics k =
+      periodic_kinematics(c1, Mat3::Zero(), id, std::vector<Vec3>{x}, std::vector<Vec3>{Vec3::Zero()},
+                          std::vector<ImageCount>{n}, id, std::vector<ImageCount>{n0});
   EXPECT_NEAR((k.x[0] - f * X).norm(), 0.0, 1e-14);
 }
 
@@ -85,7 +86,8 @@ TEST(PeriodicKinematics, SpansOfOtherLengthsAreRefused) {
   const std::vector<GlobalId> id = {1, 2};
   const std::vector<Vec3> x = {Vec3::Zero()};
   const std::vector<ImageCount> image = {{0, 0, 0}, {0, 0, 0}};
-  EXPECT_THROW(static_cast<void>(periodic_kinematics(cube(), Mat3::Zero(), id, x, x, image, id, image)), Error);
+  EXPECT_THROW(static_cast<void>(periodic_kinematics(cube(), Mat3::Zero(), id, x, x, image, id, image)),
+               Error);
 }
 
 // The cell's F beside the grains' (cell_deformation.h): grains on the affine field of the cell
@@ -105,7 +107,7 @@ TEST(CellDeformation, GrainsOnTheCellsAffineFieldGiveTheCellsF) {
   std::vector<Vec3> ref_x, x;
   for (GlobalId k = 0; k < 40; ++k) {
     const Vec3 a(0.02 * u(rng), 0.03 * u(rng), 0.025 * u(rng));
-    if (k != 7) ref_id.push_back(k), ref_x.push_back(a);  // 7: poured since t0
+    if (k != 7) ref_id.push_back(k), ref_x.push_back(a);                      // 7: poured since t0
     if (k != 11) id.push_back(k), x.push_back(f * a + Vec3(1e-3, 0.0, 0.0));  // 11: gone since
   }
   const CellDeformation d = cell_deformation(h0, h, {true, true, true}, ref_id, ref_x, id, x);

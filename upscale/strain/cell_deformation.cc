@@ -41,7 +41,8 @@ std::string cell_deformation_header() {
       "the faces (docs/periodic.md, \"Strain over a periodic cell\"); difference = max |F_grains - F_cell| "
       "over the components between periodic axes\ntime,step";
   for (const char* who : {"F_cell_", "F_grains_"})
-    for (const char* c : {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"}) h += std::string(",") + who + c;
+    for (const char* c : {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"})
+      h += std::string(",") + who + c;
   return h + ",difference,grains\n";
 }
 

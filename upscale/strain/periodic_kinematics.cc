@@ -6,9 +6,10 @@
 
 namespace upgrain::upscale {
 
-PeriodicKinematics periodic_kinematics(const dem::PeriodicCell& cell, const Mat3& l, std::span<const GlobalId> id,
-                                       std::span<const Vec3> x, std::span<const Vec3> u,
-                                       std::span<const ImageCount> image, std::span<const GlobalId> reference_id,
+PeriodicKinematics periodic_kinematics(const dem::PeriodicCell& cell, const Mat3& l,
+                                       std::span<const GlobalId> id, std::span<const Vec3> x,
+                                       std::span<const Vec3> u, std::span<const ImageCount> image,
+                                       std::span<const GlobalId> reference_id,
                                        std::span<const ImageCount> reference_image) {
   if (x.size() != id.size() || u.size() != id.size() || image.size() != id.size() ||
       reference_image.size() != reference_id.size())

@@ -31,9 +31,10 @@ struct PeriodicKinematics {
 // `id`, `x`, `u`, `image`: the grains now, ids ascending; `reference_id`, `reference_image`:
 // the grains at t0, ids ascending. A grain not there at t0 (poured since) is followed from its
 // image now. `l`: the velocity gradient (zero for a fixed cell).
-PeriodicKinematics periodic_kinematics(const dem::PeriodicCell& cell, const Mat3& l, std::span<const GlobalId> id,
-                                       std::span<const Vec3> x, std::span<const Vec3> u,
-                                       std::span<const ImageCount> image, std::span<const GlobalId> reference_id,
+PeriodicKinematics periodic_kinematics(const dem::PeriodicCell& cell, const Mat3& l,
+                                       std::span<const GlobalId> id, std::span<const Vec3> x,
+                                       std::span<const Vec3> u, std::span<const ImageCount> image,
+                                       std::span<const GlobalId> reference_id,
                                        std::span<const ImageCount> reference_image);
 
 }  // namespace upgrain::upscale

@@ -74,8 +74,10 @@ StrainReference read_strain_reference(const Reader& in, const std::string& group
   r.cell.assign(cell.begin(), cell.end());
   if (r.x.size() != r.id.size()) throw Error(in.where() + group + ": positions and ids differ in count");
   if (in.exists(group + "/image")) {
-    const std::vector<std::int32_t> image = in.read<std::int32_t>(group + "/image", H5T_NATIVE_INT32, r.id.size(), 3);
-    for (std::size_t i = 0; i < r.id.size(); ++i) r.image.push_back({image[3 * i], image[3 * i + 1], image[3 * i + 2]});
+    const std::vector<std::int32_t> image =
+        in.read<std::int32_t>(group + "/image", H5T_NATIVE_INT32, r.id.size(), 3);
+    for (std::size_t i = 0; i < r.id.size(); ++i)
+      r.image.push_back({image[3 * i], image[3 * i + 1], image[3 * i + 2]});
   }
   if (in.exists(group + "/cell_matrix")) {
     const std::vector<double> h = in.read<double>(group + "/cell_matrix", H5T_NATIVE_DOUBLE, 9);

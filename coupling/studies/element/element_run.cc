@@ -131,7 +131,8 @@ std::array<double, 3> principal_compressions(const dem::Mat3& sigma) {
 // The mobilised friction angle of the principal compressions: the triaxial test's measure,
 // independent of the test's axes (docs/element-tests.md).
 double principal_friction_angle(const std::array<double, 3>& s) {
-  return s[0] + s[2] > 0.0 ? dem::mobilised_friction_angle(s[0], s[2]) : std::numeric_limits<double>::quiet_NaN();
+  return s[0] + s[2] > 0.0 ? dem::mobilised_friction_angle(s[0], s[2])
+                           : std::numeric_limits<double>::quiet_NaN();
 }
 
 // The intermediate principal stress ratio b = (s2 - s3) / (s1 - s3): 0 in triaxial compression.
@@ -329,8 +330,9 @@ ElementResult run_element_tests(const dem::SceneConfig& scene_in, dem::ParticleS
       const std::array<double, 3> principal = principal_compressions(sigma);
       p.mobilised_angle = principal_friction_angle(principal);
       p.intermediate_ratio = intermediate_ratio(principal);
-      p.matsuoka_nakai_angle = principal[2] > 0.0 ? dem::matsuoka_nakai_angle(principal[0], principal[1], principal[2])
-                                                  : std::numeric_limits<double>::quiet_NaN();
+      p.matsuoka_nakai_angle = principal[2] > 0.0
+                                   ? dem::matsuoka_nakai_angle(principal[0], principal[1], principal[2])
+                                   : std::numeric_limits<double>::quiet_NaN();
       p.solid_fraction = solid.volume / cell.volume();
       p.coordination = coordination(cell.sim().diagnostics().particle_contacts);
       r.shear_path.push_back(p);

@@ -57,12 +57,12 @@ struct ElementTriaxialRecord {
 // since the state before (compression positive).
 struct ShearPathRecord {
   double target_inertial_number = 0.0;
-  double shear_strain = 0.0;    // gamma since the start of this inertial number's shear
-  double shear_stress = 0.0;    // tau = (sigma_xz + sigma_zx) / 2 (Pa)
-  double normal_stress = 0.0;   // P = -sigma_zz (Pa)
-  double mean_stress = 0.0;     // p = -tr sigma / 3 (Pa)
-  double mobilised_angle = 0.0;     // asin((s1 - s3) / (s1 + s3)) of the principal stresses (degrees)
-  double intermediate_ratio = 0.0;  // b = (s2 - s3) / (s1 - s3)
+  double shear_strain = 0.0;          // gamma since the start of this inertial number's shear
+  double shear_stress = 0.0;          // tau = (sigma_xz + sigma_zx) / 2 (Pa)
+  double normal_stress = 0.0;         // P = -sigma_zz (Pa)
+  double mean_stress = 0.0;           // p = -tr sigma / 3 (Pa)
+  double mobilised_angle = 0.0;       // asin((s1 - s3) / (s1 + s3)) of the principal stresses (degrees)
+  double intermediate_ratio = 0.0;    // b = (s2 - s3) / (s1 - s3)
   double matsuoka_nakai_angle = 0.0;  // triaxial compression's angle at the same I1 I2 / I3 (degrees)
   double solid_fraction = 0.0;
   double coordination = 0.0;
@@ -71,15 +71,15 @@ struct ShearPathRecord {
 // The steady state at one inertial number: the means over the last half of its shear strain.
 struct ShearSteadyState {
   double target_inertial_number = 0.0;
-  double shear_rate = 0.0;       // gamma_dot = L_xz (1/s)
+  double shear_rate = 0.0;  // gamma_dot = L_xz (1/s)
   long steps = 0;
-  double inertial_number = 0.0;  // gamma_dot d sqrt(rho / P) with the mean P
-  double friction = 0.0;         // mean tau / mean P
-  double friction_spread = 0.0;  // the standard deviation of tau / P over the states
+  double inertial_number = 0.0;                   // gamma_dot d sqrt(rho / P) with the mean P
+  double friction = 0.0;                          // mean tau / mean P
+  double friction_spread = 0.0;                   // the standard deviation of tau / P over the states
   double normal_stress = 0.0, mean_stress = 0.0;  // Pa
-  double mobilised_angle = 0.0;     // the mean of the states' (degrees)
-  double intermediate_ratio = 0.0;  // the mean of the states' b
-  double matsuoka_nakai_angle = 0.0;  // the mean of the states' (degrees)
+  double mobilised_angle = 0.0;                   // the mean of the states' (degrees)
+  double intermediate_ratio = 0.0;                // the mean of the states' b
+  double matsuoka_nakai_angle = 0.0;              // the mean of the states' (degrees)
   double solid_fraction = 0.0, coordination = 0.0;
 };
 

@@ -39,12 +39,13 @@ Section element_section() {
        real("final axial strain", element(&ElementOptions::final_axial_strain), 0.01, 0.5, "-",
             "eps_1 = 1 - h_z / h_z0 at which the triaxial compression ends; its last 30 % is the "
             "critical state."),
-       numbers("shear inertial numbers", element(&ElementOptions::shear_inertial_numbers), "-",
-               "Simple shear at a constant normal stress (docs/element-tests.md, \"Simple shear and mu(I)\"): "
-               "from the last isotropic state, the cell is sheared along x across z (Cell/shear component = "
-               "xz) at the rate gamma_dot = I sqrt(P / rho) / d of each inertial number I in turn, each in "
-               "(0, 1], with z servo to P = the last pressure; x and y keep their lengths. Empty: no shear "
-               "test. Three or more give the fit mu(I) = mu_s + (mu_2 - mu_s) / (1 + I0 / I)."),
+       numbers(
+           "shear inertial numbers", element(&ElementOptions::shear_inertial_numbers), "-",
+           "Simple shear at a constant normal stress (docs/element-tests.md, \"Simple shear and mu(I)\"): "
+           "from the last isotropic state, the cell is sheared along x across z (Cell/shear component = "
+           "xz) at the rate gamma_dot = I sqrt(P / rho) / d of each inertial number I in turn, each in "
+           "(0, 1], with z servo to P = the last pressure; x and y keep their lengths. Empty: no shear "
+           "test. Three or more give the fit mu(I) = mu_s + (mu_2 - mu_s) / (1 + I0 / I)."),
        real("shear strain", element(&ElementOptions::shear_strain), 0.1, 100.0, "-",
             "The shear strain at each inertial number; its last half is the steady state averaged."),
        real("shear servo gain", element(&ElementOptions::shear_servo_gain), 1e-3, 100.0, "-",

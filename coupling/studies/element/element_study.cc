@@ -71,20 +71,23 @@ std::string shear_table(const ElementResult& r) {
   std::ostringstream t;
   t << "# Upgrain simple shear at a constant normal stress on a periodic cell (docs/element-tests.md). SI "
        "units, compression positive. One row per inertial number, the means over the last half of its shear "
-       "strain: shear_rate = L_xz; inertial_number = shear_rate d sqrt(rho / P) with P = -sigma_zz; friction = "
-       "mean tau / mean P, tau = (sigma_xz + sigma_zx) / 2; friction_spread the standard deviation of tau / P "
+       "strain: shear_rate = L_xz; inertial_number = shear_rate d sqrt(rho / P) with P = -sigma_zz; friction "
+       "= "
+       "mean tau / mean P, tau = (sigma_xz + sigma_zx) / 2; friction_spread the standard deviation of tau / "
+       "P "
        "over the states; p = -tr sigma / 3; phi_mobilised = asin((s1 - s3) / (s1 + s3)) of the principal "
        "compressions in degrees, b = (s2 - s3) / (s1 - s3) and phi_matsuoka_nakai, the triaxial compression "
        "angle with the same I1 I2 / I3 (Matsuoka & Nakai 1974), each the mean of the states'\n"
        "target_inertial_number,shear_rate,steps,inertial_number,friction,friction_spread,normal_stress,p,"
-       "phi_mobilised,b,phi_matsuoka_nakai,solid_fraction,coordination,fitted_friction,fitted_solid_fraction\n";
+       "phi_mobilised,b,phi_matsuoka_nakai,solid_fraction,coordination,fitted_friction,fitted_solid_"
+       "fraction\n";
   const bool fitted = r.rheology_error.empty();
   for (const ShearSteadyState& x : r.shear)
     t << number(x.target_inertial_number) << ',' << number(x.shear_rate) << ',' << x.steps << ','
       << number(x.inertial_number) << ',' << number(x.friction) << ',' << number(x.friction_spread) << ','
       << number(x.normal_stress) << ',' << number(x.mean_stress) << ',' << number(x.mobilised_angle) << ','
-      << number(x.intermediate_ratio) << ',' << number(x.matsuoka_nakai_angle) << ',' << number(x.solid_fraction)
-      << ',' << number(x.coordination) << ','
+      << number(x.intermediate_ratio) << ',' << number(x.matsuoka_nakai_angle) << ','
+      << number(x.solid_fraction) << ',' << number(x.coordination) << ','
       << (fitted ? number(r.mu_of_i(x.inertial_number)) : "") << ','
       << (fitted ? number(r.phi_of_i(x.inertial_number)) : "") << '\n';
   return t.str();
@@ -101,7 +104,8 @@ std::string shear_path_table(const ElementResult& r) {
     t << number(x.target_inertial_number) << ',' << number(x.shear_strain) << ',' << number(x.shear_stress)
       << ',' << number(x.normal_stress) << ',' << number(x.mean_stress) << ','
       << number(x.shear_stress / x.normal_stress) << ',' << number(x.mobilised_angle) << ','
-      << number(x.intermediate_ratio) << ',' << number(x.matsuoka_nakai_angle) << ',' << number(x.solid_fraction) << ',' << number(x.coordination) << '\n';
+      << number(x.intermediate_ratio) << ',' << number(x.matsuoka_nakai_angle) << ','
+      << number(x.solid_fraction) << ',' << number(x.coordination) << '\n';
   return t.str();
 }
 
@@ -177,7 +181,8 @@ std::string report_section(const ElementResult& r, const std::string& why_no_mat
     m << "\n### Simple shear at a constant normal stress\n\nP = " << number(r.confining_pressure)
       << " Pa; each inertial number sheared from the one before (the first from the last isotropic state), "
          "the steady state over the last half of its strain.\n\n"
-      << "| I | friction tau/P | spread | phi mobilised (deg) | b | phi Matsuoka-Nakai (deg) | solid fraction | "
+      << "| I | friction tau/P | spread | phi mobilised (deg) | b | phi Matsuoka-Nakai (deg) | solid "
+         "fraction | "
          "coordination |\n|---|---|---|---|---|---|---|---|\n";
     for (const ShearSteadyState& x : r.shear) {
       char row[256];
@@ -199,9 +204,10 @@ std::string report_section(const ElementResult& r, const std::string& why_no_mat
       m << "\nNo mu(I) fit: " << r.rheology_error << ".\n";
     }
   }
-  m << "\nPaths: `isotropic.csv`, `triaxial.csv`" << (r.shear.empty() ? "" : ", `shear.csv`, `shear_path.csv`")
-    << (plots ? std::string("; plots `isotropic.png`, `triaxial.png`") + (r.shear.empty() ? "" : ", `shear.png`") +
-                    " (plot_element.py).\n"
+  m << "\nPaths: `isotropic.csv`, `triaxial.csv`"
+    << (r.shear.empty() ? "" : ", `shear.csv`, `shear_path.csv`")
+    << (plots ? std::string("; plots `isotropic.png`, `triaxial.png`") +
+                    (r.shear.empty() ? "" : ", `shear.png`") + " (plot_element.py).\n"
               : std::string(".\n"));
   return m.str();
 }
@@ -253,7 +259,8 @@ int run_element_study(const SceneInput& in, MPI_Comm comm, const StudyHooks& hoo
       << ",\n  \"poisson_ratio\": " << json_number(r.poisson_ratio)
       << ",\n  \"material_file\": " << (why.empty() ? "true" : "false")
       << ",\n  \"shear_inertial_numbers\": [";
-    for (std::size_t k = 0; k < r.shear.size(); ++k) j << (k ? ", " : "") << json_number(r.shear[k].inertial_number);
+    for (std::size_t k = 0; k < r.shear.size(); ++k)
+      j << (k ? ", " : "") << json_number(r.shear[k].inertial_number);
     j << "],\n  \"shear_friction\": [";
     for (std::size_t k = 0; k < r.shear.size(); ++k) j << (k ? ", " : "") << json_number(r.shear[k].friction);
     j << "],\n  \"shear_solid_fractions\": [";
@@ -270,10 +277,12 @@ int run_element_study(const SceneInput& in, MPI_Comm comm, const StudyHooks& hoo
     dem::io::write_text_atomically(fs::path(in.output.folder) / "summary.json", j.str());
     std::vector<std::string> figures = {"isotropic.png", "triaxial.png"};
     if (!r.shear.empty()) figures.emplace_back("shear.png");
-    const FigureRun plots = run_figure_script("studies/element/plot_element.py", folder, "plots.log", figures);
+    const FigureRun plots =
+        run_figure_script("studies/element/plot_element.py", folder, "plots.log", figures);
     dem::io::write_text_atomically(folder / "report.md", report_section(r, why, plots.succeeded));
-    std::printf("\n  element tests: %ld grains, isotropic %.1f s, triaxial %.1f s, shear %.1f s of wall clock\n",
-                r.particles, r.isotropic_seconds, r.triaxial_seconds, r.shear_seconds);
+    std::printf(
+        "\n  element tests: %ld grains, isotropic %.1f s, triaxial %.1f s, shear %.1f s of wall clock\n",
+        r.particles, r.isotropic_seconds, r.triaxial_seconds, r.shear_seconds);
     for (const IsotropicRecord& k : r.isotropic)
       std::printf("    p* %.4g Pa: p %.6g Pa (%+.2f %%), phi %.4f, Z %.3f, K %.4g Pa\n", k.target,
                   k.mean_pressure, 100.0 * (k.mean_pressure / k.target - 1.0), k.solid_fraction,
@@ -285,10 +294,11 @@ int run_element_study(const SceneInput& in, MPI_Comm comm, const StudyHooks& hoo
         s.critical_angle, s.critical_spread, r.e50, r.poisson_ratio);
     for (const ShearSteadyState& x : r.shear)
       std::printf(
-          "    shear at P %.4g Pa, I %.4g: mu %.4f +- %.4f, phi_m %.2f deg, b %.3f, phi_MN %.2f deg, solid fraction "
+          "    shear at P %.4g Pa, I %.4g: mu %.4f +- %.4f, phi_m %.2f deg, b %.3f, phi_MN %.2f deg, solid "
+          "fraction "
           "%.4f, Z %.3f\n",
-          x.normal_stress, x.inertial_number, x.friction, x.friction_spread, x.mobilised_angle, x.intermediate_ratio,
-          x.matsuoka_nakai_angle, x.solid_fraction, x.coordination);
+          x.normal_stress, x.inertial_number, x.friction, x.friction_spread, x.mobilised_angle,
+          x.intermediate_ratio, x.matsuoka_nakai_angle, x.solid_fraction, x.coordination);
     if (!r.shear.empty() && r.rheology_error.empty())
       std::printf("    mu(I): mu_s %.4f, mu_2 %.4f, I0 %.4g%s; phi(I) = %.4f - %.4f I\n", r.mu_of_i.mu_s,
                   r.mu_of_i.mu_2, r.mu_of_i.i0, r.mu_of_i.i0_at_bound ? " (at its bound)" : "",
