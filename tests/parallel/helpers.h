@@ -185,4 +185,26 @@ inline dem::ParticleStore lattice(int n, double side, double r, double speed, st
   return p;
 }
 
+// The energy balance of a deforming cell's test (docs/periodic.md, "A cell that deforms"): 125
+// frictionless, undamped elastic spheres on a jittered lattice of the cell of side 15 mm that
+// `s` moves, with peculiar velocities, run for `time` at time step dt.
+struct CellBalance {
+  double error = 0.0;  // |balance error|
+  double work = 0.0;   // the cell's work
+  double drift = 0.0;  // |total - total(0)|
+  long contacts = 0;   // at the end
+};
+inline CellBalance cell_balance(dem::SceneConfig s, double dt, double time) {
+  s.friction = 0.0;
+  s.damping_ratio = 0.0;
+  s.time_step = dt;
+  std::mt19937_64 rng(9);
+  const dem::ParticleStore p0 = lattice(5, 0.015, 1.45e-3, 0.05, rng, 0.01);
+  dem::Simulation sim(s, p0, std::vector<dem::PlaneWall>{}, MPI_COMM_WORLD);
+  sim.run(std::lround(time / dt));
+  const dem::EnergyBalance e = sim.energy();
+  return {std::abs(sim.energy_balance_error()), e.work_by_cell,
+          std::abs(e.total() - sim.initial_energy().total()), sim.diagnostics().particle_contacts};
+}
+
 }  // namespace upgrain::test
