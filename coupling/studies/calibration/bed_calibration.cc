@@ -62,10 +62,10 @@ dem::EngineState with_wall_friction(dem::EngineState bed, double side, bool floo
   return bed;
 }
 
-// The first state the fit and the step moduli take: by lid, the first held target (the step
-// from the unloaded bed includes the lid's seating); by gravity, the bed as it is.
+// The first state the fit and the step moduli take: by lid or in the periodic cell, the first
+// held target (the step from the unloaded bed includes the seating); by gravity, the bed as it is.
 std::size_t first_fitted_state(const OedometerOptions& o) {
-  return o.loading == OedometerLoading::lid ? 1 : 0;
+  return o.loading == OedometerLoading::gravity ? 0 : 1;
 }
 
 // The step that ends at state k (from the state before), or nullptr for a state no step ends at.
@@ -100,6 +100,18 @@ std::string path_table(const OedometerOptions& o, const std::vector<OedometerRec
          "only those enter the fit); M, nu, E: the step from the previous state (states >= 1)\n"
          "state,time,gravity_factor,at_rest,centroid,side_wall_share,vertical_strain,sigma_v,sigma_h,K0,M,nu,"
          "E\n";
+  else if (o.loading == OedometerLoading::periodic_cell)
+    t << "# Upgrain oedometric test in a periodic cell (docs/calibration.md, \"In a periodic cell\"). SI "
+         "units. "
+         "State 0: the deposited bed in its box under its weight, its mean Bagi stress from the floor to its "
+         "highest point (the cell's height); then its grains without walls or gravity in the fully periodic "
+         "cell of that box, x and y still, z servo-controlled to each target in turn, one state at the end "
+         "of "
+         "each hold: sigma_v = -sigma_zz, sigma_h = -(sigma_xx + sigma_yy)/2 of the cell's Love-Weber stress "
+         "over the last quarter of the hold (compression positive); height the cell's; vertical_strain = 1 - "
+         "height/height_0; lid_stress empty (no lid); at_rest: sigma_v within 5 % of its target (only those "
+         "enter the fit); M, nu, E: the step from the previous loaded state (states >= 2)\n"
+         "state,time,target,lid_stress,at_rest,height,vertical_strain,sigma_v,sigma_h,K0,M,nu,E\n";
   else
     t << "# Upgrain oedometric test by a servo lid (docs/calibration.md). SI units. State 0: the deposited "
          "bed, "
@@ -130,17 +142,34 @@ std::string path_table(const OedometerOptions& o, const std::vector<OedometerRec
   return t.str();
 }
 
-std::string triaxial_table(const std::vector<TriaxialRecord>& rec) {
+std::string triaxial_table(const std::vector<TriaxialRecord>& rec, bool periodic_cell) {
   std::ostringstream t;
-  t << "# Upgrain friction-angle test (docs/calibration.md): triaxial-like compression without gravity. SI "
-       "units, compression positive. Record 0: the bed consolidated to sigma_3 by the five servo walls; then "
-       "the lid at a constant axial strain rate, the side walls holding sigma_3. axial_strain from the lid's "
-       "height at record 0, volumetric_strain = 1 - V/V_0 of the box between the walls; sigma_xx, sigma_yy, "
-       "sigma_zz: the sample's mean Bagi stress over that box; sigma_1 = sigma_zz, sigma_3 = (sigma_xx + "
-       "sigma_yy)/2; phi = asin((sigma_1 - sigma_3)/(sigma_1 + sigma_3)) in degrees; the walls' normal "
-       "stresses over their faces\n"
-       "record,time,axial_strain,volumetric_strain,sigma_xx,sigma_yy,sigma_zz,sigma_1,sigma_3,phi,height,"
-       "width_x,width_y,lid,wall_x_min,wall_x_max,wall_y_min,wall_y_max\n";
+  if (periodic_cell)
+    t << "# Upgrain friction-angle test in a periodic cell (docs/calibration.md, \"In a periodic cell\"): "
+         "drained "
+         "triaxial compression of the bed's grains without walls or gravity. SI units, compression positive. "
+         "Record 0: the cell consolidated to sigma_3 by its servo on every axis; then z shortened at the "
+         "axial "
+         "strain rate (L_zz = -rate), x and y holding sigma_3. axial_strain = 1 - height/height_0, "
+         "volumetric_strain = 1 - V/V_0 of the cell; sigma_xx, sigma_yy, sigma_zz: the cell's Love-Weber "
+         "stress over the steps since the record before; sigma_1 = sigma_zz, sigma_3 = (sigma_xx + "
+         "sigma_yy)/2; phi = asin((sigma_1 - sigma_3)/(sigma_1 + sigma_3)) in degrees; height, width_x, "
+         "width_y: the cell's lengths; the lid and wall columns empty (none)\n"
+         "record,time,axial_strain,volumetric_strain,sigma_xx,sigma_yy,sigma_zz,sigma_1,sigma_3,phi,height,"
+         "width_x,width_y,lid,wall_x_min,wall_x_max,wall_y_min,wall_y_max\n";
+  else
+    t << "# Upgrain friction-angle test (docs/calibration.md): triaxial-like compression without gravity. SI "
+         "units, compression positive. Record 0: the bed consolidated to sigma_3 by the five servo walls; "
+         "then "
+         "the lid at a constant axial strain rate, the side walls holding sigma_3. axial_strain from the "
+         "lid's "
+         "height at record 0, volumetric_strain = 1 - V/V_0 of the box between the walls; sigma_xx, "
+         "sigma_yy, "
+         "sigma_zz: the sample's mean Bagi stress over that box; sigma_1 = sigma_zz, sigma_3 = (sigma_xx + "
+         "sigma_yy)/2; phi = asin((sigma_1 - sigma_3)/(sigma_1 + sigma_3)) in degrees; the walls' normal "
+         "stresses over their faces\n"
+         "record,time,axial_strain,volumetric_strain,sigma_xx,sigma_yy,sigma_zz,sigma_1,sigma_3,phi,height,"
+         "width_x,width_y,lid,wall_x_min,wall_x_max,wall_y_min,wall_y_max\n";
   for (std::size_t k = 0; k < rec.size(); ++k) {
     const TriaxialRecord& r = rec[k];
     const dem::TriaxialState& s = r.state;
@@ -157,7 +186,62 @@ std::string triaxial_table(const std::vector<TriaxialRecord>& rec) {
   return t.str();
 }
 
+// Both tests between the bed's walls: the oedometer in its ring, whose side walls get the
+// calibration's friction (a lubricated ring by default; the floor keeps the scene's), then the
+// friction-angle test from the same bed with frictionless walls (lubricated platens and sides:
+// the walls' shear would add to the sample's strength).
+void calibrate_between_walls(BedCalibration& b, const dem::SceneConfig& scene, const dem::EngineState& bed,
+                             const CalibrationOptions& c, MPI_Comm comm, const dem::EngineOptions& engine) {
+  const auto t1 = Clock::now();
+  {
+    dem::SceneConfig ring = scene;
+    if (c.lubricate_side_walls)
+      for (int w = 1; w < 5; ++w) ring.container.friction[w] = c.side_wall_friction;
+    dem::Simulation sim(ring,
+                        c.lubricate_side_walls ? with_wall_friction(bed, c.side_wall_friction, false) : bed,
+                        comm, engine);
+    b.path = allocating("the oedometric test's path", [&] { return run_oedometer(sim, b.oedometer); });
+  }
+  b.oedometer_seconds = seconds_since(t1);
+  const auto t2 = Clock::now();
+  {
+    dem::SceneConfig smooth = scene;
+    for (double& f : smooth.container.friction) f = 0.0;
+    dem::Simulation tx(smooth, with_wall_friction(bed, 0.0, true), comm, engine);
+    b.shear = allocating("the friction-angle test's path", [&] { return run_triaxial(tx, b.triaxial); });
+  }
+  b.triaxial_seconds = seconds_since(t2);
+}
+
+// Both tests on the bed's grains without walls, each from the same bed (periodic_cell_tests.h).
+void calibrate_in_periodic_cell(BedCalibration& b, const dem::SceneConfig& scene, const dem::EngineState& bed,
+                                const CellServo& servo, MPI_Comm comm, const dem::EngineOptions& engine) {
+  const auto t1 = Clock::now();
+  const OedometerRecord deposited = deposited_state(scene, bed, comm, engine);
+  b.path = allocating("the oedometric test's path", [&] {
+    return run_cell_oedometer(scene, bed, deposited, b.oedometer, servo, comm, engine);
+  });
+  b.oedometer_seconds = seconds_since(t1);
+  const auto t2 = Clock::now();
+  b.shear = allocating("the friction-angle test's path", [&] {
+    return run_cell_triaxial(scene, bed, deposited.height, b.triaxial, servo, comm, engine);
+  });
+  b.triaxial_seconds = seconds_since(t2);
+}
+
 }  // namespace
+
+std::string_view loading_name(OedometerLoading l) {
+  switch (l) {
+    case OedometerLoading::gravity:
+      return "gravity";
+    case OedometerLoading::lid:
+      return "lid";
+    case OedometerLoading::periodic_cell:
+      break;
+  }
+  return "periodic cell";
+}
 
 std::string BedCalibration::material_error(const fs::path& folder) const {
   if (!fit_error.empty()) return fit_error + "; the path is in " + (folder / "oedometer.csv").string();
@@ -175,20 +259,17 @@ std::string BedCalibration::material_error(const fs::path& folder) const {
 }
 
 BedCalibration calibrate_bed(const dem::SceneConfig& scene, const dem::EngineState& bed,
-                             const CalibrationOptions& c, MPI_Comm comm, const dem::EngineOptions& engine,
-                             const ProgressReport& on_progress) {
+                             const CalibrationOptions& c, const CellServo& cell_servo, MPI_Comm comm,
+                             const dem::EngineOptions& engine, const ProgressReport& on_progress) {
   BedCalibration b;
   const BedScales scales = bed_scales(scene, bed, comm);
   b.particles = scales.particles;
   b.weight_stress = scales.weight_stress;
   b.critical_state_strength = c.critical_state_strength;
-  // The oedometer's ring: the side walls get the calibration's friction (a lubricated ring by
-  // default), the floor keeps the scene's.
-  dem::SceneConfig ring = scene;
-  if (c.lubricate_side_walls)
-    for (int w = 1; w < 5; ++w) ring.container.friction[w] = c.side_wall_friction;
   OedometerOptions& o = b.oedometer;
-  o.loading = c.oedometer_by_lid ? OedometerLoading::lid : OedometerLoading::gravity;
+  o.loading = c.periodic_cell      ? OedometerLoading::periodic_cell
+              : c.oedometer_by_lid ? OedometerLoading::lid
+                                   : OedometerLoading::gravity;
   o.gravity_factors = c.gravity_factors;
   for (double f : c.lid_stress_factors) o.lid_stresses.push_back(f * scales.weight_stress);
   o.hold_time = c.hold_time;
@@ -207,31 +288,19 @@ BedCalibration calibrate_bed(const dem::SceneConfig& scene, const dem::EngineSta
   // One progress report over both tests.
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
-  const long total = oedometer_steps(o, scene.time_step) + triaxial_steps(x, scene.time_step);
+  const long total = c.periodic_cell
+                         ? cell_oedometer_steps(o, scene.time_step) + cell_triaxial_steps(x, scene.time_step)
+                         : oedometer_steps(o, scene.time_step) + triaxial_steps(x, scene.time_step);
   ProgressClock clock(rank == 0 ? on_progress : ProgressReport{}, 0);
   long done = 0;
   o.after_step = x.after_step = [&] {
     ++done;
     clock.dynamics(done, total, false, done == total);
   };
-  const auto t1 = Clock::now();
-  {
-    dem::Simulation sim(ring,
-                        c.lubricate_side_walls ? with_wall_friction(bed, c.side_wall_friction, false) : bed,
-                        comm, engine);
-    b.path = allocating("the oedometric test's path", [&] { return run_oedometer(sim, o); });
-  }
-  b.oedometer_seconds = seconds_since(t1);
-  // The friction-angle test on the same bed, with frictionless walls (lubricated platens and
-  // sides: the walls' shear would add to the sample's strength).
-  const auto t2 = Clock::now();
-  {
-    dem::SceneConfig smooth = scene;
-    for (double& f : smooth.container.friction) f = 0.0;
-    dem::Simulation tx(smooth, with_wall_friction(bed, 0.0, true), comm, engine);
-    b.shear = allocating("the friction-angle test's path", [&] { return run_triaxial(tx, x); });
-  }
-  b.triaxial_seconds = seconds_since(t2);
+  if (c.periodic_cell)
+    calibrate_in_periodic_cell(b, scene, bed, cell_servo, comm, engine);
+  else
+    calibrate_between_walls(b, scene, bed, c, comm, engine);
   o.after_step = x.after_step = nullptr;  // `clock` and `done` end here
   b.inertial_number = dem::inertial_number(x.strain_rate, scales.mean_diameter,
                                            scene.particles.material.density, x.confining_stress);
@@ -256,8 +325,10 @@ BedCalibration calibrate_bed(const dem::SceneConfig& scene, const dem::EngineSta
                ? " states (the bed under its own weight and each gravity factor) came to rest (the centre "
                  "of mass still moving at the end of the hold); a modulus needs two: lengthen "
                  "Calibration/hold time"
-               : " targets were held (the lid within 5 % of its target at the end of the hold); a modulus "
-                 "needs two: lengthen Calibration/hold time or seating time"));
+               : std::string(" targets were held (") +
+                     (o.loading == OedometerLoading::lid ? "the lid" : "the periodic cell's sigma_zz") +
+                     " within 5 % of its target at the end of the hold); a modulus needs two: lengthen "
+                     "Calibration/hold time or seating time"));
     b.elastic = dem::elastic_equivalent(held, b.sigma_mean);
   } catch (const Error& e) {
     b.fit_error = e.what();
@@ -283,14 +354,18 @@ BedCalibration calibrate_bed(const dem::SceneConfig& scene, const dem::EngineSta
 void write_bed_calibration(const fs::path& folder, const std::string& source, const BedCalibration& b) {
   dem::io::create_folder(folder);
   dem::io::write_text_atomically(folder / "oedometer.csv", path_table(b.oedometer, b.path, b.steps));
-  dem::io::write_text_atomically(folder / "triaxial.csv", triaxial_table(b.shear));
+  dem::io::write_text_atomically(
+      folder / "triaxial.csv",
+      triaxial_table(b.shear, b.oedometer.loading == OedometerLoading::periodic_cell));
   if (!b.material_error(folder).empty()) return;
   const dem::ElasticEquivalent& eq = b.elastic;
   const dem::FrictionStrength& s = b.strength;
   std::ostringstream m;
   m << "# Upgrain calibrated material (docs/calibration.md) of " << source << ": the linear elastic\n"
     << "# material equivalent to its bed in oedometric compression "
-    << (b.oedometer.loading == OedometerLoading::gravity ? "by gravity" : "by a servo lid")
+    << (b.oedometer.loading == OedometerLoading::gravity ? "by gravity"
+        : b.oedometer.loading == OedometerLoading::lid   ? "by a servo lid"
+                                                         : "in a periodic cell (without walls)")
     << " at the bed's mean vertical stress\n"
     << "# sigma_v = " << number(b.sigma_mean) << " Pa: M = " << number(eq.modulus)
     << " Pa (power law M ~ sigma^" << number(eq.exponent) << " through the states at rest, taken at "
@@ -318,8 +393,7 @@ std::string bed_calibration_json(const BedCalibration& b) {
   const dem::ElasticEquivalent& eq = b.elastic;
   const dem::FrictionStrength& s = b.strength;
   std::ostringstream j;
-  j << "  \"oedometer_loading\": \"" << (b.oedometer.loading == OedometerLoading::gravity ? "gravity" : "lid")
-    << "\""
+  j << "  \"oedometer_loading\": \"" << loading_name(b.oedometer.loading) << "\""
     << ",\n  \"oedometer_wall_time_s\": " << json_number(b.oedometer_seconds)
     << ",\n  \"triaxial_wall_time_s\": " << json_number(b.triaxial_seconds)
     << ",\n  \"weight_stress_Pa\": " << json_number(b.weight_stress)
@@ -351,22 +425,23 @@ void print_bed_calibration(const BedCalibration& b) {
   const dem::ElasticEquivalent& eq = b.elastic;
   const dem::FrictionStrength& s = b.strength;
   const bool by_gravity = o.loading == OedometerLoading::gravity;
+  const bool in_cell = o.loading == OedometerLoading::periodic_cell;
   if (by_gravity)
     std::printf("oedometric test by gravity %.1f s (%zu factors x %g s), friction-angle test %.1f s\n",
                 b.oedometer_seconds, o.gravity_factors.size(), o.hold_time, b.triaxial_seconds);
   else
-    std::printf(
-        "oedometric test by lid %.1f s (seating %g s, %zu targets x %g s), friction-angle test %.1f s\n",
-        b.oedometer_seconds, o.seating_time, o.lid_stresses.size(), o.hold_time, b.triaxial_seconds);
+    std::printf("oedometric test %s %.1f s (seating %g s, %zu targets x %g s), friction-angle test %.1f s\n",
+                o.loading == OedometerLoading::lid ? "by lid" : "in a periodic cell", b.oedometer_seconds,
+                o.seating_time, o.lid_stresses.size(), o.hold_time, b.triaxial_seconds);
   std::printf("  %-6s %12s %12s %7s %12s %12s %8s %12s %8s %12s\n", "state",
-              by_gravity ? "g factor" : "target Pa", by_gravity ? "zc m" : "lid Pa", "at rest", "sigma_v Pa",
-              "strain", "K0", "M Pa", "nu", "E Pa");
+              by_gravity ? "g factor" : "target Pa", by_gravity ? "zc m" : (in_cell ? "height m" : "lid Pa"),
+              "at rest", "sigma_v Pa", "strain", "K0", "M Pa", "nu", "E Pa");
   for (std::size_t k = 0; k < b.path.size(); ++k) {
     const OedometerRecord& r = b.path[k];
     const dem::OedometerState& st = r.state;
     std::printf("  %-6zu %12.4g %12.4g %7s %12.4g %12.4e %8.3f", k, by_gravity ? r.gravity_factor : r.target,
-                by_gravity ? r.centroid : r.lid_stress, r.at_rest ? "yes" : "no", st.vertical_stress,
-                st.vertical_strain, st.horizontal_stress / st.vertical_stress);
+                by_gravity ? r.centroid : (in_cell ? r.height : r.lid_stress), r.at_rest ? "yes" : "no",
+                st.vertical_stress, st.vertical_strain, st.horizontal_stress / st.vertical_stress);
     if (const dem::OedometerStep* q = step_ending_at(o, b.steps, k))
       std::printf(" %12.4g %8.3f %12.4g\n", q->modulus, q->poisson, q->youngs);
     else

@@ -10,12 +10,14 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "coupling/input/scene_input.h"
 #include "coupling/run/progress_clock.h"
 #include "coupling/studies/calibration/calibration_options.h"
 #include "coupling/studies/calibration/oedometer_run.h"
+#include "coupling/studies/calibration/periodic_cell_tests.h"
 #include "coupling/studies/calibration/triaxial_run.h"
 #include "dem/analysis/oedometer.h"
 #include "dem/analysis/triaxial.h"
@@ -52,12 +54,21 @@ struct BedCalibration {
 
 // Both tests from `bed` (rank 0's state; the other ranks may pass an empty one) in the box of
 // `scene`: the oedometer's side walls get Calibration/side wall friction, the friction-angle
-// test's walls none. Collective over `comm`; the result is the same bits on every rank and, with
-// the deterministic summation, on every rank count.
-// `on_progress` (rank 0's) hears of both tests' steps as one run.
+// test's walls none; or, with options.periodic_cell, in the periodic cell of that box under
+// `cell_servo` (periodic_cell_tests.h). Collective over `comm`; the result is the same bits on every rank
+// and, with the deterministic summation, on every rank count. `on_progress` (rank 0's) hears of both tests'
+// steps as one run.
 BedCalibration calibrate_bed(const dem::SceneConfig& scene, const dem::EngineState& bed,
-                             const CalibrationOptions& options, MPI_Comm comm,
+                             const CalibrationOptions& options, const CellServo& cell_servo, MPI_Comm comm,
                              const dem::EngineOptions& engine, const ProgressReport& on_progress = {});
+
+// The periodic cell's servo: the element tests' (Element test/servo gain, max strain rate).
+inline CellServo cell_servo_of(const SceneInput& in) {
+  return {in.element.servo_gain, in.element.max_strain_rate};
+}
+
+// "gravity", "lid" or "periodic cell": the oedometric test's loading as summary.json names it.
+std::string_view loading_name(OedometerLoading l);
 
 // Writes folder/oedometer.csv and triaxial.csv, and folder/material.prm (the calibrated
 // Continuum entries, a scene-file fragment; its header names `source`) when material_error() is

@@ -8,13 +8,24 @@
 namespace upgrain::coupling {
 
 std::string calibration_refusal(const SceneInput& in) {
+  const std::array<bool, 3>& periodic = in.scene.container.periodic;
+  if (in.calibration.periodic_cell) {
+    // Without servo walls: any law; the bed needs its floor.
+    if (periodic[2])
+      return "the calibration's periodic cell is the box of a bed on its floor; a scene periodic along z "
+             "(Container/periodic axes) has no floor";
+    if (in.scene.container.has_gate() || in.scene.container.opens_side_walls())
+      return "the calibration's periodic cell is the box of a bed deposited in it; a scene with a gate or "
+             "with "
+             "side walls that open (Container) is not one";
+    return "";
+  }
   if (in.scene.contact_law != "hertz-mindlin")
     return "the calibration's servo walls need Contact/law = hertz-mindlin, not " + in.scene.contact_law;
   if (in.scene.container.has_gate() || in.scene.container.opens_side_walls())
     return "the calibration's tests load the bed in its closed box; a scene with a gate or with side walls "
            "that "
            "open (Container) is not one";
-  const std::array<bool, 3>& periodic = in.scene.container.periodic;
   if (periodic[0] || periodic[1] || periodic[2])
     return "the calibration's tests load the bed between walls; a scene with Container/periodic axes is not "
            "one (the periodic element tests are upgrain --study element: docs/element-tests.md)";
@@ -27,7 +38,8 @@ std::string calibration_refusal(const SceneInput& in) {
 void check_calibration(const SceneInput& in, const std::string& where) {
   const dem::SceneConfig& s = in.scene;
   // Each oedometric loading has its own entries (Calibration/oedometer loading).
-  if (!in.calibration.oedometer_by_lid) {
+  const bool by_lid = in.calibration.oedometer_by_lid || in.calibration.periodic_cell;
+  if (!by_lid) {
     const std::vector<double>& f = in.calibration.gravity_factors;
     if (f.empty())
       throw Error(where +
@@ -35,7 +47,7 @@ void check_calibration(const SceneInput& in, const std::string& where) {
     if (const std::string why = gravity_factors_error(f); !why.empty())
       throw Error(where + "Calibration/gravity factors: " + why);
   }
-  if (in.calibration.oedometer_by_lid) {
+  if (by_lid) {
     const std::vector<double>& f = in.calibration.lid_stress_factors;
     if (f.size() < 2)
       throw Error(where +
@@ -55,7 +67,7 @@ void check_calibration(const SceneInput& in, const std::string& where) {
         << " s): the friction-angle test records 100 states; lower Calibration/axial strain rate";
       throw Error(m.str());
     }
-    if (c.consolidation_time < 10.0 * static_cast<double>(c.update_every) * s.time_step) {
+    if (!c.periodic_cell && c.consolidation_time < 10.0 * static_cast<double>(c.update_every) * s.time_step) {
       std::ostringstream m;
       m << where << "Calibration/consolidation time = " << c.consolidation_time
         << " s gives the servo walls fewer than 10 updates (Calibration/update interval = " << c.update_every

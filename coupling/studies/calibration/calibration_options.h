@@ -11,6 +11,10 @@ struct CalibrationOptions {
   // How the oedometric test loads the bed (oedometer_run.h): by raising its weight (gravity) or
   // by a servo lid.
   bool oedometer_by_lid = false;
+  // Where both tests load the bed's grains: between the bed's walls (the oedometer by
+  // oedometer_by_lid), or without walls, in a fully periodic cell of the bed's box whose servo
+  // takes the lid's targets and the friction-angle test's sigma_3 (periodic_cell_tests.h).
+  bool periodic_cell = false;
   // The bed's weight times each, in turn (gravity loading), ascending from above 1.
   std::vector<double> gravity_factors = {1.5, 2.0};
   // The lid's targets as multiples of the bed's weight over the box's footprint, ascending.

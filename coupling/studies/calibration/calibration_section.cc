@@ -17,7 +17,15 @@ auto calibration(Member m) {
 Section calibration_section() {
   return {
       "Calibration",
-      {choice("oedometer loading", calibration(&CalibrationOptions::oedometer_by_lid),
+      {choice("tests in", calibration(&CalibrationOptions::periodic_cell),
+              {{"walls", false}, {"periodic cell", true}},
+              "Where both tests load the bed's grains (docs/calibration.md): walls, the bed's box with "
+              "servo walls (the oedometer by 'oedometer loading'); periodic cell, the bed's grains without "
+              "walls or gravity in a fully periodic cell of its box (its footprint, the height of its "
+              "highest point), loaded by the cell's servo (Element test/servo gain, max strain rate): the "
+              "oedometric test x and y still, z to each of 'lid stresses' (seated at the first for "
+              "'seating time'), the friction-angle test drained triaxial compression at 'confining stress'."),
+       choice("oedometer loading", calibration(&CalibrationOptions::oedometer_by_lid),
               {{"gravity", false}, {"lid", true}},
               "How the oedometric test (docs/calibration.md) loads the bed: gravity raises its weight by "
               "each of 'gravity factors' (no wall on the top: nothing to seat; the modulus at the bed's "
@@ -28,15 +36,17 @@ Section calibration_section() {
                "comma-separated, ascending, each > 1; the weight rises linearly over the first half of "
                "each hold."),
        numbers("lid stresses", calibration(&CalibrationOptions::lid_stress_factors), "bed weight / footprint",
-               "Targets of the oedometric test's servo lid (oedometer loading = lid), as multiples of the "
-               "bed's weight over the box's footprint, comma-separated, ascending; at least two."),
+               "Targets of the oedometric test's servo lid (oedometer loading = lid) or of the periodic "
+               "cell's servo along z (tests in = periodic cell), as multiples of the bed's weight over the "
+               "box's footprint, comma-separated, ascending; at least two."),
        real("hold time", calibration(&CalibrationOptions::hold_time), 1e-9, 1e6, "s",
             "Simulated time each gravity factor or lid target is held before the bed's stress and "
             "strain are taken."),
        real("seating time", calibration(&CalibrationOptions::seating_time), 0.0, 1e6, "s",
             "Simulated time before the first hold in which the lid comes down onto the bed and seats at"
             " the first target (its first contacts with the uneven top are impacts); not recorded "
-            "(oedometer loading = lid)."),
+            "(oedometer loading = lid); in the periodic cell, the time its servo first squeezes the "
+            "grains to the first target (tests in = periodic cell)."),
        real("gain factor", calibration(&CalibrationOptions::gain_factor), 1e-6, 1.0, "-",
             "alpha of the lid's servo (as Lid/gain factor)."),
        real("max speed", calibration(&CalibrationOptions::max_speed), 1e-9, 1e3, "m/s",

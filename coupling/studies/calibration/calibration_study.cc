@@ -33,7 +33,8 @@ int run_calibration_study(const SceneInput& in, MPI_Comm comm, const StudyHooks&
   const RunResult dep = run_scene(sim, deposition, std::nullopt, on_progress);
   const double deposition_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   // Both tests start from the deposited bed.
-  const BedCalibration b = calibrate_bed(scene, sim.capture_state(), c, comm, sim.options(), on_progress);
+  const BedCalibration b =
+      calibrate_bed(scene, sim.capture_state(), c, cell_servo_of(in), comm, sim.options(), on_progress);
   on_rank0(comm, [&] {
     const fs::path folder = fs::path(in.output.folder) / "calibration";
     write_bed_calibration(folder, in.source, b);

@@ -25,19 +25,11 @@ constexpr double kHeldTolerance = 0.05;
 // The bed's mean stress over the box from the floor to the lid (one Bagi cell); needs a step
 // that recorded its contacts.
 OedometerRecord measure(const dem::Simulation& sim, double target, double first_height) {
-  const dem::SceneConfig& scene = sim.scene();
   const long lid = Lid::index(sim);
-  OedometerRecord r;
+  OedometerRecord r = stress_below(sim, sim.walls()[static_cast<std::size_t>(lid)].point.z());
   r.time = sim.time();
   r.target = target;
-  r.height = sim.walls()[static_cast<std::size_t>(lid)].point.z();
   r.lid_stress = Lid::stress(sim);
-  dem::RegularGrid grid;
-  grid.lo = dem::Vec3::Zero();
-  grid.hi = dem::Vec3(scene.container.lx, scene.container.ly, r.height);
-  r.bagi = sim.grid_stress(grid)[dem::StressFormula::bagi][0];
-  r.state.vertical_stress = -r.bagi(2, 2);
-  r.state.horizontal_stress = -0.5 * (r.bagi(0, 0) + r.bagi(1, 1));
   r.state.vertical_strain = (first_height - r.height) / first_height;
   r.at_rest = target > 0.0 && std::abs(r.lid_stress - target) <= kHeldTolerance * target;
   return r;
@@ -240,7 +232,22 @@ std::vector<OedometerRecord> run_gravity_oedometer(dem::Simulation& sim, const O
 
 }  // namespace
 
+OedometerRecord stress_below(const dem::Simulation& sim, double height) {
+  const dem::SceneConfig& scene = sim.scene();
+  OedometerRecord r;
+  r.height = height;
+  dem::RegularGrid grid;
+  grid.lo = dem::Vec3::Zero();
+  grid.hi = dem::Vec3(scene.container.lx, scene.container.ly, height);
+  r.bagi = sim.grid_stress(grid)[dem::StressFormula::bagi][0];
+  r.state.vertical_stress = -r.bagi(2, 2);
+  r.state.horizontal_stress = -0.5 * (r.bagi(0, 0) + r.bagi(1, 1));
+  return r;
+}
+
 std::vector<OedometerRecord> run_oedometer(dem::Simulation& sim, const OedometerOptions& o) {
+  if (o.loading == OedometerLoading::periodic_cell)
+    throw Error("run_oedometer: the periodic cell's oedometric test is run_cell_oedometer()");
   return o.loading == OedometerLoading::gravity ? run_gravity_oedometer(sim, o) : run_lid_oedometer(sim, o);
 }
 

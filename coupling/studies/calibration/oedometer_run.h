@@ -21,7 +21,9 @@
 
 namespace upgrain::coupling {
 
-enum class OedometerLoading { gravity, lid };
+// periodic_cell: the bed's grains without walls, in a periodic cell whose servo takes the lid's
+// targets (periodic_cell_tests.h); run_oedometer() does not run it.
+enum class OedometerLoading { gravity, lid, periodic_cell };
 
 struct OedometerOptions {
   OedometerLoading loading = OedometerLoading::gravity;
@@ -52,6 +54,11 @@ struct OedometerRecord {
   // its settlement since the last state. State 0 is the bed as it is.
   bool at_rest = false;
 };
+
+// The bed's mean stress by Bagi's formula over the box from the floor to `height` (one cell), as
+// a record's height, bagi, sigma_v = -sigma_zz and sigma_h = -(sigma_xx + sigma_yy) / 2; the rest
+// zero. Needs a step that recorded its contacts. Collective.
+OedometerRecord stress_below(const dem::Simulation& sim, double height);
 
 // Record 0 is the bed under its own weight (by gravity: after a hold; by lid: the lid just
 // placed, touching nothing), then one per gravity factor or lid target, at the end of its hold

@@ -2,6 +2,7 @@
 # that the physics tests run alone.
 list(APPEND UPGRAIN_STUDY_RUN_SOURCES
   coupling/studies/calibration/oedometer_run.cc
+  coupling/studies/calibration/periodic_cell_tests.cc
   coupling/studies/calibration/triaxial_run.cc)
 list(APPEND UPGRAIN_STUDY_INPUT_SOURCES
   coupling/studies/calibration/calibration_section.cc

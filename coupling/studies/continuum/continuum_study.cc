@@ -185,8 +185,8 @@ BedCalibration calibrate_continuum(SceneInput& in, RunResult& r, MPI_Comm comm,
     // the bed's top anyway, in the lubricated ring.
     CalibrationOptions own_bed = in.calibration;
     own_bed.lubricate_side_walls = in.calibration.oedometer_by_lid;
-    b = calibrate_bed(in.scene, r.final_state ? *r.final_state : none, own_bed, comm, engine_options(in),
-                      on_progress);
+    b = calibrate_bed(in.scene, r.final_state ? *r.final_state : none, own_bed, cell_servo_of(in), comm,
+                      engine_options(in), on_progress);
   } catch (const RunStopped& e) {
     throw RunStopped(
         e.signal(), e.step(), {},

@@ -135,8 +135,10 @@ void material_section(std::ostringstream& m, const StudyRecord& s) {
       m << (k > 0 ? ", " : "") << fmt(b.oedometer.gravity_factors[k]);
     m << "; " << b.held << " of " << b.fitted_states << " states (its own weight's included) at rest";
   } else {
-    m << "by a servo lid: " << b.oedometer.lid_stresses.size() << " targets from "
-      << fmt(b.oedometer.lid_stresses.front()) << " Pa, " << b.held << " of " << b.fitted_states << " held";
+    m << (b.oedometer.loading == OedometerLoading::lid ? "by a servo lid: "
+                                                       : "in a periodic cell, without walls: ")
+      << b.oedometer.lid_stresses.size() << " targets from " << fmt(b.oedometer.lid_stresses.front())
+      << " Pa, " << b.held << " of " << b.fitted_states << " held";
   }
   m << " (the bed's weight over the footprint is " << fmt(b.weight_stress)
     << " Pa); at the bed's mean vertical stress " << fmt(b.sigma_mean) << " Pa: M = " << fmt(eq.modulus)

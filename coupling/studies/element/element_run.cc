@@ -11,6 +11,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "coupling/studies/element/element_cell.h"
 #include "dem/core/cell_motion.h"
 #include "dem/core/error.h"
 
@@ -26,77 +27,9 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// A cell whose control changes between the phases of a test: each change captures the engine's
-// state and continues it, bitwise, under the new control (a restart, docs/restart.md), with the
-// prescribed rates in the velocity gradient of the next step; the servo axes keep theirs (the
-// servo's state) and move it towards their new targets.
-class ElementCell {
- public:
-  ElementCell(dem::SceneConfig scene, dem::ParticleStore grains, MPI_Comm comm,
-              const dem::EngineOptions& engine, std::function<void()> after_step)
-      : scene_(std::move(scene)), comm_(comm), after_step_(std::move(after_step)) {
-    sim_ = std::make_unique<dem::Simulation>(scene_, std::move(grains), std::vector<dem::PlaneWall>{}, comm_,
-                                             engine);
-  }
-
-  void control(const CellMotion& m) { resume(sim_->capture_state(), m); }
-
-  // Continues from `s` under `m`: the prescribed rates in the velocity gradient (a shear rate
-  // too: a cell not yet sheared starts with its images unslid, the same lattice).
-  void resume(dem::EngineState s, const CellMotion& m) {
-    for (int d = 0; d < 3; ++d)
-      if (m.axis[d].mode == CellAxisMode::rate) s.cell.velocity_gradient(d, d) = m.axis[d].rate;
-    if (m.shear.any()) {
-      s.cell.velocity_gradient(m.shear.shear(), m.shear.gradient()) = m.shear.rate;
-      if (!s.cell.shear.any()) {
-        s.cell.shear = dem::ShearImages{m.shear.shear(), m.shear.gradient(), 0.0, 0};
-        s.cell.offset_at_build = 0.0;
-      }
-    }
-    const double growth = scene_.cell.max_growth;
-    scene_.cell = m;
-    scene_.cell.max_growth = growth;
-    const dem::EngineOptions engine = sim_->options();
-    sim_.reset();
-    sim_ = std::make_unique<dem::Simulation>(scene_, s, comm_, engine);
-  }
-
-  // Runs `steps` steps; returns sigma (tension positive) averaged over the last `window`.
-  dem::Mat3 run_stress(long steps, long window) {
-    dem::Mat3 sum = dem::Mat3::Zero();
-    for (long k = 0; k < steps; ++k) {
-      sim_->step();
-      if (k >= steps - window) sum += sim_->cell_stress();
-      if (after_step_) after_step_();
-    }
-    return sum / static_cast<double>(std::max(window, 1L));
-  }
-
-  // Runs `steps` steps; returns -sigma_dd averaged over the last `window` of them.
-  dem::Vec3 run(long steps, long window) { return -run_stress(steps, window).diagonal(); }
-
-  dem::Simulation& sim() { return *sim_; }
-  [[nodiscard]] double volume() const { return sim_->cell_matrix().determinant(); }
-  [[nodiscard]] dem::Vec3 lengths() const { return sim_->cell_matrix().diagonal(); }
-
- private:
-  dem::SceneConfig scene_;
-  MPI_Comm comm_;
-  std::function<void()> after_step_;
-  std::unique_ptr<dem::Simulation> sim_;
-};
-
 dem::CellAxisControl servo(const ElementOptions& o, double target) {
-  return {CellAxisMode::servo, 0.0, target, o.servo_gain / target, o.max_strain_rate};
+  return cell_servo(target, o.servo_gain, o.max_strain_rate);
 }
-
-CellMotion every_axis(const dem::CellAxisControl& c) {
-  CellMotion m;
-  m.axis = {c, c, c};
-  return m;
-}
-
-CellMotion still() { return every_axis({CellAxisMode::rate, 0.0, 0.0, 0.0, 0.0}); }
 
 // The solids' volume and the mean volume-equivalent diameter, summed on rank 0 in id order
 // (the fill's), so that they are the same bits on any rank count.
@@ -225,13 +158,13 @@ ElementResult run_element_tests(const dem::SceneConfig& scene_in, dem::ParticleS
     rec.contacts = cell.sim().diagnostics().particle_contacts;
     rec.coordination = coordination(rec.contacts);
     // The bulk modulus: p of the still cell before and after an isotropic strain step.
-    cell.control(still());
+    cell.control(still_cell());
     rec.pressure_before = cell.run(plan.still, std::max(1L, plan.still / 2)).mean();
     const double v_before = cell.volume();
     const double rate = -o.volumetric_strain_step / 3.0 / (static_cast<double>(plan.squeeze) * dt);
-    cell.control(every_axis({CellAxisMode::rate, rate, 0.0, 0.0, 0.0}));
+    cell.control(every_axis(cell_rate(rate)));
     cell.run(plan.squeeze, 1);
-    cell.control(still());
+    cell.control(still_cell());
     rec.pressure_after = cell.run(plan.still, std::max(1L, plan.still / 2)).mean();
     rec.volumetric_strain = std::log(v_before / cell.volume());
     rec.bulk_modulus = (rec.pressure_after - rec.pressure_before) / rec.volumetric_strain;
@@ -245,31 +178,23 @@ ElementResult run_element_tests(const dem::SceneConfig& scene_in, dem::ParticleS
   // Drained triaxial compression from the last isotropic state.
   const auto t2 = Clock::now();
   r.confining_pressure = o.pressures.back();
-  CellMotion triaxial;
-  triaxial.axis = {servo(o, r.confining_pressure),
-                   servo(o, r.confining_pressure),
-                   {CellAxisMode::rate, -o.axial_strain_rate, 0.0, 0.0, 0.0}};
-  cell.control(triaxial);
-  const dem::Vec3 h0 = cell.lengths();
-  const double v0 = cell.volume();
-  auto record = [&](double time, const dem::Vec3& pressure) {
+  const std::vector<CellSample> samples = drained_triaxial(
+      cell, servo(o, r.confining_pressure), o.axial_strain_rate, triaxial_steps(o, dt), kTriaxialRecords);
+  const CellSample& start = samples.front();
+  for (const CellSample& c : samples) {
     ElementTriaxialRecord t;
-    t.time = time;
-    const dem::Vec3 h = cell.lengths();
-    t.state.axial_strain = 1.0 - h[2] / h0[2];
-    t.state.volumetric_strain = 1.0 - cell.volume() / v0;
+    t.time = c.time;
+    const dem::Vec3 pressure = -c.stress.diagonal();
+    t.state.axial_strain = 1.0 - c.lengths[2] / start.lengths[2];
+    t.state.volumetric_strain = 1.0 - c.volume / start.volume;
     t.state.axial_stress = pressure[2];
     t.state.lateral_stress = 0.5 * (pressure[0] + pressure[1]);
     t.mean_stress = (t.state.axial_stress + 2.0 * t.state.lateral_stress) / 3.0;
     t.deviator = t.state.axial_stress - t.state.lateral_stress;
-    t.solid_fraction = solid.volume / cell.volume();
-    t.coordination = coordination(cell.sim().diagnostics().particle_contacts);
+    t.solid_fraction = solid.volume / c.volume;
+    t.coordination = coordination(c.contacts);
     r.triaxial.push_back(t);
-  };
-  record(0.0, -cell.sim().cell_stress().diagonal());
-  const long per_record = triaxial_steps(o, dt) / kTriaxialRecords;
-  for (long k = 1; k <= kTriaxialRecords; ++k)
-    record(static_cast<double>(k * per_record) * dt, cell.run(per_record, per_record));
+  }
   r.triaxial_seconds = seconds_since(t2);
 
   r.inertial_number = dem::inertial_number(o.axial_strain_rate, r.mean_diameter,
