@@ -81,6 +81,46 @@ TEST(PeriodicFields, PairAcrossAFaceACornerAndASlidingFaceIsThePairInsideTheCell
   }
 }
 
+// A grain's displacement across a face follows its image counter (x + h (n - n0) - X), also
+// beyond half a cell length; a reference without counters (an older checkpoint) takes the
+// minimum image, which folds that one.
+TEST(PeriodicFields, DisplacementFollowsTheGrainAcrossTheFaces) {
+  const dem::PeriodicCell cell = upgrain::test::periodic_cube(0.02);
+  dem::ParticleStore p;
+  p.add_sphere(0, 1e-3, 2650, Vec3(0.0195, 0.01, 0.01), Vec3::Zero(), Vec3::Zero());
+  p.add_sphere(1, 1e-3, 2650, Vec3(0.0195, 0.005, 0.01), Vec3::Zero(), Vec3::Zero());
+  for (Vec3& x : p.x) dem::snap(cell, x);
+  const ReferencePositions ref = reference_from(p, 0.0, &cell);
+  ASSERT_EQ(ref.image.size(), 2u);
+  // Grain 0 moves 0.8 mm through the face x = L, grain 1 moves 14 mm (0.7 L) through it.
+  p.x[0] = Vec3(0.0003, 0.01, 0.01);
+  p.x[1] = Vec3(0.0135, 0.005, 0.01);
+  for (Vec3& x : p.x) dem::snap(cell, x);
+  p.image = {{1, 0, 0}, {1, 0, 0}};
+  const GrainState s = state_from(p, {}, Vec3::Zero(), 1.0, &ref, &cell);
+  EXPECT_NEAR(s.displacement[0].x(), 0.8e-3, 1e-15);
+  EXPECT_NEAR(s.displacement[1].x(), 14e-3, 1e-15);
+  ReferencePositions without_counters = ref;
+  without_counters.image.clear();
+  const GrainState folded = state_from(p, {}, Vec3::Zero(), 1.0, &without_counters, &cell);
+  EXPECT_NEAR(folded.displacement[0].x(), 0.8e-3, 1e-15);
+  EXPECT_NEAR(folded.displacement[1].x(), -6e-3, 1e-15);
+  // A bounded box: x - X as it is.
+  EXPECT_EQ(state_from(p, {}, Vec3::Zero(), 1.0, &ref).displacement[1], p.x[1] - ref.x[1]);
+}
+
+// The images' lattice vectors: the 26 neighbours of a fully periodic cell for a reach below half
+// its length, 8 with two periodic axes, more for a longer reach or a sheared cell.
+TEST(PeriodicFields, ImageShiftsAreTheNeighbouringCells) {
+  dem::PeriodicCell cell = upgrain::test::periodic_cube(0.02);
+  EXPECT_EQ(image_shifts(cell, 0.006).size(), 26u);
+  EXPECT_EQ(image_shifts(cell, 0.03).size(), 124u);  // two cells along each axis: 5^3 - 1
+  cell.shear = {0, 2, 0.003, 0};
+  EXPECT_EQ(image_shifts(cell, 0.006).size(), 44u);  // 5 x 3 x 3 - 1: the slid images
+  cell = dem::make_periodic_cell(cell.box, {true, true, false});
+  EXPECT_EQ(image_shifts(cell, 0.006).size(), 8u);
+}
+
 // A simple cubic lattice of 10 x 10 x 10 grains filling a periodic cube: the density and volume
 // fraction at the centre, on a face, an edge and a corner (the same place relative to the
 // lattice) agree to round-off; without the images the corner sees an eighth of it.
