@@ -6,7 +6,7 @@ void StateCapture::at_step(dem::Simulation& sim) {
   if (!options_.enabled || !options_.displacement || reference_taken_) return;
   if (sim.time() < options_.reference_time - 0.5 * sim.time_step()) return;
   const dem::ParticleStore& all = sim.whole_state();  // collective
-  if (sim.is_root()) reference_ = upscale::cg::reference_from(all, sim.time());
+  if (sim.is_root()) reference_ = upscale::cg::reference_from(all, sim.time(), &sim.decomposition().cell());
   reference_taken_ = true;
 }
 
@@ -23,8 +23,8 @@ upscale::cg::GrainState StateCapture::capture(dem::Simulation& sim) const {
   const std::vector<dem::ContactRecord> contacts = sim.gather_contacts_by_id();
   upscale::cg::GrainState s;
   sim.on_root([&] {
-    s = upscale::cg::state_from(all, contacts, sim.gravity(), sim.time(),
-                                reference_ ? &*reference_ : nullptr);
+    s = upscale::cg::state_from(all, contacts, sim.gravity(), sim.time(), reference_ ? &*reference_ : nullptr,
+                                &sim.decomposition().cell());
   });
   return s;
 }

@@ -157,6 +157,13 @@ fs::path write_checkpoint(const fs::path& folder, const Checkpoint& c, int keep)
       hdf5::write_attribute(g, "time", ref.time);
       hdf5::write_dataset(g, "id", ref.id.data(), ref.id.size());
       hdf5::write_vectors(g, "position", ref.x);
+      // A periodic cell's counters (a bounded box keeps its checkpoints' bytes).
+      if (!ref.image.empty()) {
+        std::vector<std::int32_t> image(3 * ref.image.size());
+        for (std::size_t i = 0; i < ref.image.size(); ++i)
+          for (int d = 0; d < 3; ++d) image[3 * i + d] = ref.image[i][d];
+        hdf5::write_dataset(g, "image", image.data(), ref.image.size(), 3);
+      }
     }
     // Its checksum in its first block, written and synced: only then does it get its name.
     // The image leaves the user block out: it goes first, stamped with the rest's checksum.
@@ -254,6 +261,13 @@ Checkpoint read_checkpoint(const fs::path& file) {
     if (ref.x.size() != ref.id.size())
       throw Error(in.where() + "/run/cg_reference: " + std::to_string(ref.id.size()) + " ids but " +
                   std::to_string(ref.x.size()) + " positions");
+    if (in.exists("/run/cg_reference/image")) {
+      const std::vector<std::int32_t> image =
+          in.read<std::int32_t>("/run/cg_reference/image", H5T_NATIVE_INT32, ref.id.size(), 3);
+      ref.image.resize(ref.id.size());
+      for (std::size_t i = 0; i < ref.id.size(); ++i)
+        ref.image[i] = {image[3 * i], image[3 * i + 1], image[3 * i + 2]};
+    }
     r.cg_reference = std::move(ref);
   }
   return c;

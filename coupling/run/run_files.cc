@@ -46,7 +46,9 @@ void RunFiles::write_snapshot(dem::Simulation& sim) {
   // count with the deterministic summation.
   const dem::ParticleStore& all = sim.whole_state();
   const std::vector<dem::ContactRecord> contacts = sim.gather_contacts_by_id();
-  sim.on_root([&] { network_->write(all, sim.walls(), contacts, sim.time(), sim.step_count()); });
+  sim.on_root([&] {
+    network_->write(all, sim.walls(), contacts, sim.decomposition().cell(), sim.time(), sim.step_count());
+  });
 }
 
 dem::io::RunRecorder::State RunFiles::state() {

@@ -58,6 +58,7 @@ void write_contacts(hid_t file, const char* group_name, const std::vector<Networ
   }
   write_vectors(g, "point", cs, &NetworkContact::point);
   write_vectors(g, "normal", cs, &NetworkContact::normal);
+  if (pairs) write_vectors(g, "branch", cs, &NetworkContact::branch);
   write_vectors(g, "normal_force", cs, &NetworkContact::normal_force);
   write_vectors(g, "tangential_force", cs, &NetworkContact::tangential_force);
   write_dataset(g, "overlap", overlap.data(), m, 1);
@@ -68,7 +69,8 @@ void write_contacts(hid_t file, const char* group_name, const std::vector<Networ
 }  // namespace
 
 std::vector<NetworkContact> force_network(const ParticleStore& p, const std::vector<PlaneWall>& walls,
-                                          const std::vector<ContactRecord>& records) {
+                                          const std::vector<ContactRecord>& records,
+                                          const PeriodicCell& cell) {
   std::vector<NetworkContact> out;
   out.reserve(records.size());
   ContactSolverStats stats;
@@ -81,7 +83,13 @@ std::vector<NetworkContact> force_network(const ParticleStore& p, const std::vec
     if (r.b >= 0) {
       const auto b = static_cast<std::size_t>(r.b);
       c.b = r.b;
-      const ContactGeometry g = pair_contact(p, a, b, stats);  // the pair's row of the geometry table
+      // The centres a cell apart for a pair across a face: b's image next to a instead, moved
+      // by a lattice vector (exact on the cell's grid: the bits of the pair inside the cell).
+      const Vec3 d = p.x[b] - p.x[a];
+      c.branch = minimum_image(cell, d);
+      c.shift = c.branch - d;
+      const ContactGeometry g =
+          pair_contact(p, a, b, stats, c.shift);  // the pair's row of the geometry table
       c.normal = g.normal;
       c.overlap = g.depth;
     } else {
@@ -97,11 +105,28 @@ std::vector<NetworkContact> force_network(const ParticleStore& p, const std::vec
   return out;
 }
 
+LineNodes line_nodes(const ParticleStore& p, const std::vector<NetworkContact>& pairs) {
+  LineNodes l;
+  l.position = p.x;
+  l.nodes.reserve(2 * pairs.size());
+  for (const NetworkContact& c : pairs) {
+    l.nodes.push_back(c.a);
+    if (c.shift.isZero(0.0)) {
+      l.nodes.push_back(c.b);
+    } else {
+      l.nodes.push_back(static_cast<std::int64_t>(l.position.size()));
+      l.position.push_back(p.x[static_cast<std::size_t>(c.b)] + c.shift);
+    }
+  }
+  return l;
+}
+
 NetworkInfo write_force_network(const std::filesystem::path& path, const ParticleStore& p,
                                 const std::vector<NetworkContact>& contacts, double time, long step) {
   std::vector<NetworkContact> pairs, walls;
   for (const NetworkContact& c : contacts) (c.wall < 0 ? pairs : walls).push_back(c);
   AtomicFile target(path);
+  long nodes = 0;
   {
     Handle file(hdf5::create_file(target.temporary_path()), H5Fclose, "create " + path.string());
     write_attribute(file, "time", time);
@@ -117,10 +142,16 @@ NetworkInfo write_force_network(const std::filesystem::path& path, const Particl
     write_dataset(parts, "position", x.data(), p.size(), 3);
     write_contacts(file, "contacts", pairs, true);
     write_contacts(file, "wall_contacts", walls, false);
+    Handle lines(hdf5::create_group(file, "lines"), H5Gclose, "create group lines");
+    const LineNodes l = line_nodes(p, pairs);
+    hdf5::write_vectors(lines, "position", l.position);
+    write_dataset(lines, "nodes", l.nodes.data(), pairs.size(), 2);
+    nodes = static_cast<long>(l.position.size());
     hdf5::flush(file, target.final_path().string());
   }
   target.commit();
-  return {path.filename().string(), time, step, static_cast<long>(p.size()), static_cast<long>(pairs.size())};
+  return {path.filename().string(),        time, step, static_cast<long>(p.size()),
+          static_cast<long>(pairs.size()), nodes};
 }
 
 void write_force_network_xdmf(const std::filesystem::path& path, const std::vector<NetworkInfo>& files) {
@@ -141,27 +172,33 @@ void write_force_network_xdmf(const std::filesystem::path& path, const std::vect
       return std::string("    <Attribute Name=\"") + name + "\" AttributeType=\"" + kind +
              "\" Center=\"Cell\">" + item(std::string("contacts/") + name, f.pairs, cols) + "</Attribute>\n";
     };
+    // A file written before /lines existed is drawn between the wrapped centres, as then.
+    const bool lines = f.line_nodes >= 0;
     x << "   <Grid Name=\"step_" << f.step << "\" GridType=\"Uniform\">\n"
       << "    <Time Value=\"" << f.time << "\"/>\n"
       << "    <Topology TopologyType=\"Polyline\" NodesPerElement=\"2\" NumberOfElements=\"" << f.pairs
-      << "\">" << item("contacts/ids", f.pairs, 2, "Int") << "</Topology>\n"
-      << "    <Geometry GeometryType=\"XYZ\">" << item("particles/position", f.particles, 3)
+      << "\">" << item(lines ? "lines/nodes" : "contacts/ids", f.pairs, 2, "Int") << "</Topology>\n"
+      << "    <Geometry GeometryType=\"XYZ\">"
+      << item(lines ? "lines/position" : "particles/position", lines ? f.line_nodes : f.particles, 3)
       << "</Geometry>\n"
       << cell("normal_force_magnitude", "Scalar", 1) << cell("tangential_force_magnitude", "Scalar", 1)
       << cell("overlap", "Scalar", 1) << cell("normal_force", "Vector", 3)
-      << cell("tangential_force", "Vector", 3) << cell("normal", "Vector", 3) << "   </Grid>\n";
+      << cell("tangential_force", "Vector", 3) << cell("normal", "Vector", 3);
+    if (lines) x << cell("branch", "Vector", 3);
+    x << "   </Grid>\n";
   }
   x << "  </Grid>\n </Domain>\n</Xdmf>\n";
   write_text_atomically(path, x.str());
 }
 
 void ForceNetworkRecorder::write(const ParticleStore& p, const std::vector<PlaneWall>& walls,
-                                 const std::vector<ContactRecord>& records, double time, long step) {
+                                 const std::vector<ContactRecord>& records, const PeriodicCell& cell,
+                                 double time, long step) {
   create_folder(folder_ / "force_network");
   char name[64];
   std::snprintf(name, sizeof name, "contacts_%09ld.h5", step);
-  files_.push_back(
-      write_force_network(folder_ / "force_network" / name, p, force_network(p, walls, records), time, step));
+  files_.push_back(write_force_network(folder_ / "force_network" / name, p,
+                                       force_network(p, walls, records, cell), time, step));
   write_force_network_xdmf(folder_ / "force_network.xdmf", files_);
 }
 
@@ -174,7 +211,8 @@ void ForceNetworkRecorder::resume() {
     const hdf5::Reader r(e.path(), "force-network file");
     files_.push_back({e.path().filename().string(), r.attribute("time"), r.whole_attribute("step"),
                       static_cast<long>(r.rows("/particles/position")),
-                      static_cast<long>(r.rows("/contacts/ids"))});
+                      static_cast<long>(r.rows("/contacts/ids")),
+                      r.exists("/lines/position") ? static_cast<long>(r.rows("/lines/position")) : -1});
   }
   std::sort(files_.begin(), files_.end(),
             [](const NetworkInfo& a, const NetworkInfo& b) { return a.step < b.step; });

@@ -1,14 +1,17 @@
 #pragma once
 // The force network of a recorded step: every contact once, with its normal and tangential
 // force and its overlap, written per snapshot as HDF5 with an XDMF file that draws each
-// particle-particle contact as a line between the two centres (ParaView: force chains).
-// docs/output.md, "Force network".
+// particle-particle contact as a line between the two centres (ParaView: force chains). In a
+// periodic cell a pair across a face is evaluated, and drawn, with the second grain at its
+// minimum image next to the first (docs/periodic.md). docs/output.md, "Force network".
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "dem/core/particle_store.h"
+#include "dem/core/periodic_cell.h"
 #include "dem/core/plane_wall.h"
 #include "dem/parallel/records.h"
 
@@ -22,6 +25,11 @@ struct NetworkContact {
   int wall = -1;    // the wall's index, or -1 for a pair
   Vec3 point = Vec3::Zero();
   Vec3 normal = Vec3::UnitZ();
+  // A pair's branch x_b - x_a, the minimum image in a periodic cell (Allen and Tildesley 2017,
+  // sec. 1.6.2); zero for a wall. shift = branch - (x_b - x_a): the lattice vector that takes b
+  // next to a, zero inside the cell (and always in a bounded box).
+  Vec3 branch = Vec3::Zero();
+  Vec3 shift = Vec3::Zero();
   Vec3 normal_force = Vec3::Zero();      // on a: (f . n) n
   Vec3 tangential_force = Vec3::Zero();  // on a: f - (f . n) n
   double overlap = 0.0;                  // m, > 0 in contact
@@ -30,9 +38,20 @@ struct NetworkContact {
 // The contacts of `records` (Simulation::gather_contacts_by_id: every contact once, sorted by
 // key) resolved against the whole state sorted by id (ids 0..N-1 index `particles`): the normal
 // and overlap from the contact geometry of the two shapes (docs/ellipsoid-contact.md; spheres
-// in closed form), the force split along it.
+// in closed form), the force split along it. A pair's geometry takes b at its minimum image in
+// `cell` (a bounded cell: as it is).
 std::vector<NetworkContact> force_network(const ParticleStore& particles, const std::vector<PlaneWall>& walls,
-                                          const std::vector<ContactRecord>& records);
+                                          const std::vector<ContactRecord>& records,
+                                          const PeriodicCell& cell);
+
+// The lines the XDMF draws: the N grains by id, then, for each pair whose b is an image (a
+// non-zero shift), one node more at x_b + shift, next to a; nodes (M x 2) indexes them, so that
+// no line crosses the cell. In a bounded box the positions are the grains' and the nodes the ids.
+struct LineNodes {
+  std::vector<Vec3> position;
+  std::vector<std::int64_t> nodes;  // 2 per pair
+};
+LineNodes line_nodes(const ParticleStore& sorted_by_id, const std::vector<NetworkContact>& pairs);
 
 struct NetworkInfo {
   std::string file;  // relative to the XDMF file's folder
@@ -40,18 +59,20 @@ struct NetworkInfo {
   long step = 0;
   long particles = 0;
   long pairs = 0;
+  long line_nodes = -1;  // rows of /lines/position; -1: a file written before /lines existed
 };
 
-// force_network/contacts_<step>.h5: /particles/position (N x 3, by id: the lines' ends) and
-// /contacts/{ids (M x 2), point, normal, normal_force, tangential_force (M x 3), overlap,
+// force_network/contacts_<step>.h5: /particles/position (N x 3, by id) and
+// /contacts/{ids (M x 2), point, normal, branch, normal_force, tangential_force (M x 3), overlap,
 // normal_force_magnitude, tangential_force_magnitude (M)} for the pairs; /wall_contacts/{particle,
-// wall, point, normal, normal_force, tangential_force, overlap} for the walls. Root attributes
-// time and step. Atomic (atomic_file.h).
+// wall, point, normal, normal_force, tangential_force, overlap} for the walls; what the XDMF
+// draws, /lines/{position, nodes} (line_nodes()). Root attributes time and step. Atomic
+// (atomic_file.h).
 NetworkInfo write_force_network(const std::filesystem::path& path, const ParticleStore& particles,
                                 const std::vector<NetworkContact>& contacts, double time, long step);
 
-// An XDMF 3 temporal collection: each pair a two-node polyline between the centres, with the
-// contact's values as cell data.
+// An XDMF 3 temporal collection: each pair a two-node polyline (/lines), with the contact's
+// values as cell data.
 void write_force_network_xdmf(const std::filesystem::path& path, const std::vector<NetworkInfo>& files);
 
 // The force network files of a run: force_network/contacts_<step>.h5 and force_network.xdmf in
@@ -60,7 +81,7 @@ class ForceNetworkRecorder {
  public:
   explicit ForceNetworkRecorder(std::filesystem::path folder) : folder_(std::move(folder)) {}
   void write(const ParticleStore& sorted_by_id, const std::vector<PlaneWall>& walls,
-             const std::vector<ContactRecord>& records, double time, long step);
+             const std::vector<ContactRecord>& records, const PeriodicCell& cell, double time, long step);
   // A restart: the files already in the folder (those after the checkpoint are gone) listed
   // again, by step.
   void resume();

@@ -13,6 +13,7 @@
 #include "dem/engine/simulation.h"
 #include "dem/parallel/exchange.h"
 #include "upscale/cg/coarse_grained_fields.h"
+#include "upscale/cg/periodic_images.h"
 #include "upscale/cg/state_distribution.h"
 
 namespace upgrain::upscale::cg {
@@ -59,16 +60,15 @@ class DistributionTest : public ::testing::Test {};
 using Kernels = ::testing::Types<GaussianKernel, LucyKernel>;
 TYPED_TEST_SUITE(DistributionTest, Kernels);
 
-TYPED_TEST(DistributionTest, FieldsAreTheSameBitsOnAnyNumberOfRanks) {
+// Rank r takes the points of the r-th slab in y (as a mesh partition would: a region), its part
+// of `whole` through state_for_points, and evaluates them: the same bits as `reference` (the
+// whole state as rank 0 sums it) at every point, and more than `nonzero` points with a density.
+template <class K>
+void expect_same_bits_on_every_rank(const GrainState& whole, const GrainState& reference, const K& kernel,
+                                    const std::vector<Vec3>& points, int nonzero_at_least) {
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
-  GrainState whole = test::random_state(17, 400);
-  whole.with_displacement = true;
-  for (std::size_t i = 0; i < whole.grains(); ++i) whole.displacement.push_back(1e-3 * whole.v[i]);
-  const std::vector<Vec3> points = test::random_points(18, 3000);
-  const TypeParam kernel(1.5e-3);
-  // Rank r takes the points of the r-th slab in y (as a mesh partition would: a region).
   std::vector<Vec3> mine;
   std::vector<long> index;
   for (std::size_t q = 0; q < points.size(); ++q) {
@@ -81,22 +81,52 @@ TYPED_TEST(DistributionTest, FieldsAreTheSameBitsOnAnyNumberOfRanks) {
   const GrainState part =
       state_for_points(rank == 0 ? whole : GrainState{}, mine, kernel.cutoff(), MPI_COMM_WORLD);
   if (size > 1) {
-    EXPECT_LT(part.grains(), whole.grains());
+    EXPECT_LT(part.grains(), reference.grains());
   }
+  EXPECT_FALSE(part.cell.any());
   const CoarseGrainedFields f = coarse_grain(part, mine, kernel);
   std::vector<PointRecord> records;
   for (std::size_t q = 0; q < mine.size(); ++q) records.push_back(record(f, q, index[q]));
   const std::vector<PointRecord> all = dem::gather_to_root(records, MPI_COMM_WORLD);
   if (rank != 0) return;
   ASSERT_EQ(all.size(), points.size());
-  const CoarseGrainedFields reference = coarse_grain(whole, points, kernel);
+  const CoarseGrainedFields expected_fields = coarse_grain(reference, points, kernel);
   int nonzero = 0;
   for (const PointRecord& r : all) {
-    const PointRecord expected = record(reference, static_cast<std::size_t>(r.index), r.index);
+    const PointRecord expected = record(expected_fields, static_cast<std::size_t>(r.index), r.index);
     EXPECT_EQ(std::memcmp(r.values, expected.values, sizeof(r.values)), 0) << "point " << r.index;
     if (expected.values[0] != 0.0) ++nonzero;
   }
-  EXPECT_GT(nonzero, 2000);
+  EXPECT_GT(nonzero, nonzero_at_least);
+}
+
+TYPED_TEST(DistributionTest, FieldsAreTheSameBitsOnAnyNumberOfRanks) {
+  GrainState whole = test::random_state(17, 400);
+  whole.with_displacement = true;
+  for (std::size_t i = 0; i < whole.grains(); ++i) whole.displacement.push_back(1e-3 * whole.v[i]);
+  expect_same_bits_on_every_rank(whole, whole, TypeParam(1.5e-3), test::random_points(18, 3000), 2000);
+}
+
+// The same state in a cell periodic along x and y (docs/coarse-graining.md, "Periodic cells"):
+// rank 0 adds the images once, in the whole state's order, before it cuts the parts, so every
+// rank's fields are the bits of the imaged whole state; and the images change the fields near
+// the faces.
+TYPED_TEST(DistributionTest, PeriodicFieldsAreTheSameBitsOnAnyNumberOfRanks) {
+  GrainState whole = test::random_state(17, 400);
+  whole.with_displacement = true;
+  for (std::size_t i = 0; i < whole.grains(); ++i) whole.displacement.push_back(1e-3 * whole.v[i]);
+  dem::Box box;
+  box.hi = Vec3(0.02, 0.02, 0.012);
+  whole.cell = dem::make_periodic_cell(box, {true, true, false});
+  const TypeParam kernel(1.5e-3);
+  const GrainState imaged = with_periodic_images(whole, kernel.cutoff());
+  ASSERT_GT(imaged.grains(), whole.grains());
+  ASSERT_GT(imaged.branches(), whole.branches());
+  const std::vector<Vec3> points = test::random_points(18, 3000);
+  expect_same_bits_on_every_rank(whole, imaged, kernel, points, 2000);
+  const Vec3 on_face(0.0, 0.01, 0.003);
+  EXPECT_GT(coarse_grain(imaged, std::vector{on_face}, kernel).density[0],
+            1.2 * coarse_grain(whole, std::vector{on_face}, kernel).density[0]);
 }
 
 // 200 grains falling into a box, mid-deposition (colliding, spinning), on every rank of the

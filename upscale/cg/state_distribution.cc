@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <optional>
 
 #include "dem/core/error.h"
 #include "dem/parallel/exchange.h"
+#include "upscale/cg/periodic_images.h"
 
 namespace upgrain::upscale::cg {
 
@@ -34,6 +36,8 @@ void take(const std::vector<char>& in, std::size_t& at, std::vector<T>& v, std::
 }  // namespace
 
 std::vector<char> pack(const GrainState& s) {
+  // The cell is not sent: the images go into the state before it is cut (state_for_points).
+  if (s.cell.any()) throw Error("coarse graining: a state is sent before its periodic images were added");
   const Header h{s.time,
                  {s.gravity[0], s.gravity[1], s.gravity[2]},
                  s.longest_branch,
@@ -96,11 +100,16 @@ GrainState state_for_points(const GrainState& whole, std::span<const Vec3> point
   const std::vector<BoxRecord> boxes = dem::gather_to_root(std::vector<BoxRecord>{mine}, comm);
   GrainState own;
   if (rank == 0) {
+    // A periodic cell's images first, once, in the whole state's order: a point near a face
+    // then sees the grains across it, on any rank.
+    std::optional<GrainState> imaged;
+    if (whole.cell.any()) imaged = with_periodic_images(whole, range);
+    const GrainState& source = imaged ? *imaged : whole;
     for (int r = 0; r < size; ++r) {
       dem::Box b;
       b.lo = Vec3(boxes[r].lo[0], boxes[r].lo[1], boxes[r].lo[2]);
       b.hi = Vec3(boxes[r].hi[0], boxes[r].hi[1], boxes[r].hi[2]);
-      GrainState part = part_near(whole, b, range);
+      GrainState part = part_near(source, b, range);
       if (r == 0) {
         own = std::move(part);
         continue;

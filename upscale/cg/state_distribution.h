@@ -16,7 +16,8 @@ namespace upgrain::upscale::cg {
 // Collective. `whole` is read on rank 0 only (the others may pass an empty state); returns
 // the part of it within `range` of the bounding box of this rank's `points` (empty when the
 // rank has none). The parts keep the whole state's order and longest branch, so the fields
-// are the same bits on any number of ranks.
+// are the same bits on any number of ranks. A periodic state (its cell) gets its images within
+// `range` of the cell first (with_periodic_images): the parts hold them, with a bounded cell.
 GrainState state_for_points(const GrainState& whole, std::span<const Vec3> points, double range,
                             MPI_Comm comm);
 

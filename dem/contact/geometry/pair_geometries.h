@@ -164,10 +164,13 @@ decltype(auto) with_pair_geometry(ShapeKind a, ShapeKind b, F&& f) {
 
 // Contacts outside the force loop (the force network, the packing checks), by the same table:
 // one pair at a time, cold (no warm start, no radius held from first touch).
-// The geometry of grains i and j of `p`: body 1 is i, the normal from i to j.
+// The geometry of grains i and j of `p`: body 1 is i, the normal from i to j. `shift_j` moves j
+// by a lattice vector of a periodic cell, to its image next to i (the force network's pairs
+// across a face: docs/periodic.md); zero leaves the position's bits as they are.
 inline ContactGeometry pair_contact(const ParticleStore& p, std::size_t i, std::size_t j,
-                                    ContactSolverStats& stats) {
-  return with_pair_geometry(p.kind(i), p.kind(j), [&]<class G>() { return G::contact(p, i, j, stats); });
+                                    ContactSolverStats& stats, const Vec3& shift_j = Vec3::Zero()) {
+  return with_pair_geometry(p.kind(i), p.kind(j),
+                            [&]<class G>() { return G::contact(p, i, j, shift_j, stats); });
 }
 // How far grain i of `p` reaches behind `wall` (> 0: overlap).
 inline double wall_depth(const ParticleStore& p, std::size_t i, const PlaneWall& wall) {

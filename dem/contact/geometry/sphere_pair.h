@@ -41,9 +41,11 @@ struct SpherePair {
   static constexpr bool closed_form = true;
   static constexpr const char* name = "sphere-sphere, closed form";
 
-  // Grains i and j of `p` outside the force loop (body 1 is i; pair_contact()).
-  static ContactGeometry contact(const ParticleStore& p, std::size_t i, std::size_t j, ContactSolverStats&) {
-    return sphere_sphere_contact(p.x[i], p.radius[i], p.x[j], p.radius[j]);
+  // Grains i and j of `p` outside the force loop (body 1 is i, j moved by shift_j;
+  // pair_contact()).
+  static ContactGeometry contact(const ParticleStore& p, std::size_t i, std::size_t j, const Vec3& shift_j,
+                                 ContactSolverStats&) {
+    return sphere_sphere_contact(p.x[i], p.radius[i], p.x[j] + shift_j, p.radius[j]);
   }
 };
 

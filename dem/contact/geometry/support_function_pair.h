@@ -86,11 +86,13 @@ struct SupportFunctionPair {
     if (!p.oriented(i)) return Ellipsoid::sphere(p.x[i], p.radius[i]);
     return {p.x[i], p.orientation[i], p.semi_axes[i]};
   }
-  // Grains i and j of `p` outside the force loop (body 1 is i; pair_contact()): a cold start,
-  // nothing held.
-  static ContactGeometry contact(const ParticleStore& p, std::size_t i, std::size_t j,
+  // Grains i and j of `p` outside the force loop (body 1 is i, j moved by shift_j;
+  // pair_contact()): a cold start, nothing held.
+  static ContactGeometry contact(const ParticleStore& p, std::size_t i, std::size_t j, const Vec3& shift_j,
                                  ContactSolverStats& stats) {
-    return ellipsoid_contact(body(p, i), body(p, j), stats);
+    Ellipsoid j_body = body(p, j);
+    j_body.centre += shift_j;
+    return ellipsoid_contact(body(p, i), j_body, stats);
   }
 };
 
