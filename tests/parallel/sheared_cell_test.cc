@@ -14,6 +14,7 @@
 #include "dem/core/error.h"
 #include "dem/engine/simulation.h"
 #include "dem/scene/fill.h"
+#include "dem/stress/grid_stress.h"
 #include "helpers.h"
 #include "upscale/strain/deformation_fit.h"
 #include "upscale/strain/periodic_kinematics.h"
@@ -111,6 +112,50 @@ TEST(ShearedCell, ShearedBedIsBitwiseIdenticalOnAnyRankCount) {
   if (test::world_rank() == 0) {
     EXPECT_GT(crossed, 5) << "grains crossed the sliding faces";
   }
+}
+
+// Grid stress over a sheared cell: the orthorhombic box is a unit cell of the sheared lattice
+// (docs/periodic.md, "Shear"), so a grid over it tiles the cell. The cell's stress is the Weber
+// grid stress of one grid cell that is the box, less the kinetic part; and a 2 x 2 x 2 grid's
+// mean is the one cell's for Bagi's formula (each grain's share in the cell of its centroid, the
+// contacts across the grid's faces, the sliding ones included, with their minimum-image
+// branches), to round-off. Weber's counts only the contacts inside a cell: not additive.
+TEST(ShearedCell, GridStressTilesTheShearedCell) {
+  SceneConfig s = test::compressing_cell_scene(300, Vec3(0.5, -0.4, -0.5));
+  s.cell.shear = {{0, 1}, 25.0};
+  const ParticleStore fill = fill_container(s);
+  Simulation sim(s, fill, make_open_box(s.container), MPI_COMM_WORLD);
+  sim.run(1500);
+  sim.request_contacts();
+  sim.step();
+  const Box box = sim.decomposition().cell().box;
+  RegularGrid one;
+  one.lo = box.lo;
+  one.hi = box.hi;
+  RegularGrid eight = one;
+  eight.n[0] = eight.n[1] = eight.n[2] = 2;
+  const GridStress g1 = sim.grid_stress(one), g8 = sim.grid_stress(eight);
+  const ParticleStore all = sim.gather_sorted_by_id();
+  ASSERT_GT(std::abs(sim.cell_matrix()(0, 1)), 0.3 * 0.03) << "sheared";
+  if (test::world_rank() != 0) return;
+  ASSERT_EQ(g1.particles[0], static_cast<long>(all.size()));
+  Mat3 kinetic = Mat3::Zero();
+  for (std::size_t i = 0; i < all.size(); ++i) kinetic += all.mass(i) * all.v[i] * all.v[i].transpose();
+  const Mat3 weber = g1.sigma[static_cast<int>(StressFormula::weber)][0];
+  const Mat3 expected = weber - kinetic / g1.cell_volume;
+  const double scale = expected.cwiseAbs().maxCoeff();
+  EXPECT_GT(scale, 1.0);
+  EXPECT_LT((sim.cell_stress() - expected).cwiseAbs().maxCoeff(), 1e-12 * scale);
+  EXPECT_GT(std::abs(weber(0, 1)), 1e-3 * scale) << "a shear stress to tile";
+  long external = 0;
+  for (long e : g8.external_contacts) external += e;
+  EXPECT_GT(external, 20) << "contacts across the grid's faces";
+  const auto bagi = static_cast<int>(StressFormula::bagi);
+  Mat3 mean = Mat3::Zero();
+  for (std::size_t c = 0; c < 8; ++c) mean += g8.sigma[bagi][c] / 8.0;
+  const Mat3& whole = g1.sigma[bagi][0];
+  EXPECT_LT((mean - whole).cwiseAbs().maxCoeff(), 1e-12 * whole.cwiseAbs().maxCoeff()) << mean << "\nwhole\n"
+                                                                                       << whole;
 }
 
 namespace {
