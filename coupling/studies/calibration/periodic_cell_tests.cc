@@ -40,9 +40,7 @@ long hold_steps(const OedometerOptions& o, double dt) { return steps_of(o.hold_t
 long seating_steps(const OedometerOptions& o, double dt) { return std::lround(o.seating_time / dt); }
 
 long shearing_steps(const TriaxialOptions& x, double dt) {
-  // eps_1 = 1 - exp(-rate t) at L_zz = -rate; a whole number of steps per record.
-  const double time = -std::log1p(-x.final_strain) / x.strain_rate;
-  return std::max(1L, steps_of(time, dt) / x.records) * x.records;
+  return compression_steps(x.final_strain, x.strain_rate, dt, x.records);
 }
 
 dem::CellMotion oedometric(double target, const CellServo& s) {
@@ -117,10 +115,7 @@ std::vector<TriaxialRecord> run_cell_triaxial(const dem::SceneConfig& scene, con
     r.lid_stress = kNaN;
     r.side_stress = {kNaN, kNaN, kNaN, kNaN};
     r.bagi = c.stress;
-    r.state.axial_strain = 1.0 - c.lengths[2] / start.lengths[2];
-    r.state.volumetric_strain = 1.0 - c.volume / start.volume;
-    r.state.axial_stress = -c.stress(2, 2);
-    r.state.lateral_stress = -0.5 * (c.stress(0, 0) + c.stress(1, 1));
+    r.state = triaxial_state(c, start);
     out.push_back(r);
   }
   return out;

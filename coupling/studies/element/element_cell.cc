@@ -59,6 +59,15 @@ CellSample sample_of(ElementCell& cell, double time, const dem::Mat3& stress) {
 
 }  // namespace
 
+dem::TriaxialState triaxial_state(const CellSample& c, const CellSample& start) {
+  dem::TriaxialState s;
+  s.axial_strain = 1.0 - c.lengths[2] / start.lengths[2];
+  s.volumetric_strain = 1.0 - c.volume / start.volume;
+  s.axial_stress = -c.stress(2, 2);
+  s.lateral_stress = 0.5 * (-c.stress(0, 0) + -c.stress(1, 1));
+  return s;
+}
+
 std::vector<CellSample> drained_triaxial(ElementCell& cell, const dem::CellAxisControl& lateral,
                                          double axial_rate, long steps, long records) {
   dem::CellMotion m;

@@ -12,6 +12,7 @@
 #include <memory>
 #include <vector>
 
+#include "dem/analysis/triaxial.h"
 #include "dem/core/cell_motion.h"
 #include "dem/engine/simulation.h"
 
@@ -70,6 +71,11 @@ struct CellSample {
   dem::Mat3 stress = dem::Mat3::Zero();
   long contacts = 0;
 };
+
+// A sample of drained triaxial compression as a triaxial state (compression positive): eps_1 =
+// 1 - h_z / h_z0 and eps_v = 1 - V / V0 from `start`, sigma_1 = -sigma_zz, sigma_3 =
+// -(sigma_xx + sigma_yy) / 2.
+dem::TriaxialState triaxial_state(const CellSample& c, const CellSample& start);
 
 // Drained triaxial compression (docs/element-tests.md): x and y under `lateral` (a servo to
 // sigma_3), z shortened at `axial_rate` (> 0) for `steps` steps. Sample 0 is the cell as it

@@ -57,11 +57,16 @@ inline long isotropic_steps(const ElementOptions& o, double dt) {
 // The states the triaxial path records after its consolidated state.
 inline constexpr long kTriaxialRecords = 100;
 
-// The triaxial compression's steps, a multiple of kTriaxialRecords: L_zz = -rate shortens the
-// cell as exp(-rate t), eps_1 = 1 - exp(-rate t).
+// The steps of a compression of the cell at the true strain rate `rate` (L_zz = -rate shortens it
+// as exp(-rate t), eps_1 = 1 - exp(-rate t)) to `final_strain`, a multiple of `records`.
+inline long compression_steps(double final_strain, double rate, double dt, long records) {
+  const double time = -std::log1p(-final_strain) / rate;
+  return std::max(1L, steps_of(time, dt) / records) * records;
+}
+
+// The triaxial compression's steps, a multiple of kTriaxialRecords.
 inline long triaxial_steps(const ElementOptions& o, double dt) {
-  const double time = -std::log1p(-o.final_axial_strain) / o.axial_strain_rate;
-  return std::max(1L, steps_of(time, dt) / kTriaxialRecords) * kTriaxialRecords;
+  return compression_steps(o.final_axial_strain, o.axial_strain_rate, dt, kTriaxialRecords);
 }
 
 // The states recorded over the shear at one inertial number.

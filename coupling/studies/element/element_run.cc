@@ -184,11 +184,7 @@ ElementResult run_element_tests(const dem::SceneConfig& scene_in, dem::ParticleS
   for (const CellSample& c : samples) {
     ElementTriaxialRecord t;
     t.time = c.time;
-    const dem::Vec3 pressure = -c.stress.diagonal();
-    t.state.axial_strain = 1.0 - c.lengths[2] / start.lengths[2];
-    t.state.volumetric_strain = 1.0 - c.volume / start.volume;
-    t.state.axial_stress = pressure[2];
-    t.state.lateral_stress = 0.5 * (pressure[0] + pressure[1]);
+    t.state = triaxial_state(c, start);
     t.mean_stress = (t.state.axial_stress + 2.0 * t.state.lateral_stress) / 3.0;
     t.deviator = t.state.axial_stress - t.state.lateral_stress;
     t.solid_fraction = solid.volume / c.volume;
