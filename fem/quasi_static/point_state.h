@@ -1,0 +1,40 @@
+#pragma once
+// The material at one quadrature point of a quasi-static continuum solved by Newton's method
+// (docs/femxdem.md): a state that answers a trial displacement gradient with a stress and a
+// tangent, always from its last converged state, and keeps the answer only when the global
+// iteration converges (commit). The elastic stand-ins (fem/quasi_static/elastic_point.h) and the
+// DEM cell of FEM x DEM (coupling/femxdem/) are such states; the solver holds one per point in
+// deal.II's CellDataStorage, as step-18 and step-42 hold their quadrature-point histories.
+//
+// Small strain: the trial is the total displacement gradient H = grad u from the reference
+// configuration (3 x 3; a plane-strain problem in x-y passes zeros in the z row and column), the
+// strain its symmetric part. A state may use the whole of H (a DEM cell deforms by F = 1 + H);
+// the stress it returns is the Cauchy stress in the solver's frame. Plain C++ and Eigen.
+#include <memory>
+#include <string>
+
+#include "fem/plasticity/mandel.h"
+
+namespace upgrain::fem {
+
+struct PointResponse {
+  Vec6 stress = Vec6::Zero();   // sigma, tension positive (Pa), Mandel (mandel.h)
+  Mat6 tangent = Mat6::Zero();  // d sigma / d eps in Mandel notation: what Newton's matrix uses
+  bool converged = true;        // false: the point could not reach its answer (a cap)
+  std::string failure;          // why not, in words, when !converged
+  double cost = 0.0;            // work spent on this answer (DEM grain-steps; 0 for a closed form)
+};
+
+class PointState {
+ public:
+  virtual ~PointState() = default;
+  // The response to the total displacement gradient `h`, from the last committed state; the
+  // state keeps it as its trial.
+  virtual PointResponse respond(const Mat3x3& h) = 0;
+  // The last trial becomes the committed state.
+  virtual void commit() = 0;
+  // An independent copy (committed state and trial).
+  [[nodiscard]] virtual std::unique_ptr<PointState> clone() const = 0;
+};
+
+}  // namespace upgrain::fem
