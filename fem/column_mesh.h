@@ -29,6 +29,7 @@
 #include "dem/files/output_journal.h"
 #include "dem/files/undated_vtk.h"
 #include "fem/elastic_column.h"
+#include "fem/pvtu_pieces.h"
 
 namespace upgrain::fem::column_mesh {
 
@@ -107,55 +108,6 @@ inline const std::array<std::pair<unsigned int, unsigned int>, 6> stress_compone
 inline const std::array<const char*, 6> stress_names = {"sigma_xx", "sigma_yy", "sigma_zz",
                                                         "sigma_xy", "sigma_xz", "sigma_yz"};
 
-// One .vtu piece per rank and a .pvtu record, each written under a temporary name and
-// renamed (dem/files/atomic_file.h). The record is written last, after every rank reported
-// its piece complete, so a reader never finds a record that points at a missing piece.
-// Every rank reports failure through an all-reduce instead of throwing alone, which would
-// leave the other ranks waiting in the next collective call. `data_out` has its patches
-// built.
-inline void write_pieces_and_record(const dealii::DataOut<dim>& data_out, const std::string& folder,
-                                    MPI_Comm comm) {
-  const unsigned int rank = dealii::Utilities::MPI::this_mpi_process(comm);
-  const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
-  const auto piece_name = [](unsigned int r) {
-    return "column.proc" + dealii::Utilities::int_to_string(r, 4) + ".vtu";
-  };
-  const auto all_succeeded = [comm](const std::string& local_error) {
-    return dealii::Utilities::MPI::min(local_error.empty() ? 1 : 0, comm) == 1;
-  };
-  const std::filesystem::path dir(folder);
-  std::vector<std::filesystem::path> piece_paths;
-  for (unsigned int r = 0; r < n_ranks; ++r) piece_paths.push_back(dir / piece_name(r));
-  dem::io::note_pieces_writing(comm, dir, piece_paths);  // docs/output.md, "Manifest"
-  std::string error;
-  try {
-    if (!std::filesystem::is_directory(dir)) throw std::runtime_error("cannot create folder " + folder);
-    std::ostringstream vtu;
-    data_out.write_vtu(vtu);
-    dem::io::write_text_atomically(dir / piece_name(rank), dem::io::undated_vtk(vtu.str()));
-  } catch (const std::exception& e) {
-    error = e.what();
-  }
-  if (!all_succeeded(error))
-    throw std::runtime_error("fem output: " +
-                             (error.empty() ? "another rank failed to write its piece" : error));
-
-  if (rank == 0) {
-    try {
-      std::vector<std::string> pieces;
-      for (unsigned int r = 0; r < n_ranks; ++r) pieces.push_back(piece_name(r));
-      std::ostringstream pvtu;
-      data_out.write_pvtu_record(pvtu, pieces);
-      dem::io::write_text_atomically(dir / "column.pvtu", dem::io::undated_vtk(pvtu.str()));
-    } catch (const std::exception& e) {
-      error = e.what();
-    }
-  }
-  if (!all_succeeded(error))
-    throw std::runtime_error("fem output: " + (error.empty() ? "rank 0 failed to write column.pvtu" : error));
-  dem::io::note_pieces_written(comm, piece_paths);
-}
-
 // What both solvers write: the displacement, the cell averages of sigma, any further cell
 // fields, and the subdomain, through write_pieces_and_record. Each cell is subdivided
 // degree times so that Q2 displacements are drawn as such.
@@ -180,7 +132,7 @@ void write_column(const dealii::DoFHandler<dim>& dof_handler, const Displacement
   for (auto& s : subdomain) s = static_cast<float>(triangulation.locally_owned_subdomain());
   data_out.add_data_vector(subdomain, "subdomain");
   data_out.build_patches(dof_handler.get_fe().degree);
-  write_pieces_and_record(data_out, folder, comm);
+  write_pieces_and_record(data_out, folder, "column", comm);
 }
 
 }  // namespace upgrain::fem::column_mesh

@@ -3,7 +3,7 @@
 // (docs/femxdem.md): a state that answers a trial displacement gradient with a stress and a
 // tangent, always from its last converged state, and keeps the answer only when the global
 // iteration converges (commit). The elastic stand-ins (fem/quasi_static/elastic_point.h) and the
-// DEM cell of FEM x DEM (coupling/femxdem/) are such states; the solver holds one per point in
+// DEM cell of FEM x DEM (docs/femxdem.md) are such states; the solver holds one per point in
 // deal.II's CellDataStorage, as step-18 and step-42 hold their quadrature-point histories.
 //
 // Small strain: the trial is the total displacement gradient H = grad u from the reference

@@ -1,0 +1,110 @@
+#pragma once
+// A quasi-static boundary value problem on a box whose material is a state per quadrature point
+// (point_state.h): 2D plane strain in x-y or 3D, small strain, solved load step by load step by
+// Newton's method with the points' tangents (docs/femxdem.md, "The continuum"). The points are
+// the DEM cells of FEM x DEM, or closed-form stand-ins. This header is deal.II-free; deal.II
+// lives in quasi_static_solver.cc.
+#include <mpi.h>
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fem/quasi_static/point_state.h"
+
+namespace upgrain::fem {
+
+// What holds a face of the box. A platen moves along the face's normal by the load's
+// displacement; a rough one holds the tangential components at zero, a smooth one leaves them
+// free. A roller holds the normal component at zero; `fixed` holds every component.
+enum class FaceSupport { free, pressure, roller, fixed, smooth_platen, rough_platen };
+
+struct FaceCondition {
+  FaceSupport support = FaceSupport::free;
+  double pressure = 0.0;  // pressure: the traction -p n (Pa, > 0 pushes on the face)
+};
+
+struct QuasiStaticProblem {
+  int dimension = 2;                          // 2: plane strain in x-y (per unit thickness along z); 3
+  std::array<double, 3> size{1.0, 1.0, 1.0};  // the box [0, size] (m)
+  std::array<unsigned, 3> cells{1, 1, 1};     // subdivisions per axis
+  unsigned degree = 1;                        // FE_Q degree of the displacement
+  // Gauss points per direction in each cell (0: degree + 1, the full rule); one point per cell is
+  // the reduced rule of a Q1 element, one DEM cell per element.
+  unsigned quadrature_points = 0;
+  // Faces 2d (x_d = 0) and 2d + 1 (x_d = size_d), as deal.II's colorized boxes number them.
+  std::array<FaceCondition, 6> faces{};
+  double density = 0.0;                          // the body force rho g (kg/m^3)
+  std::array<double, 3> gravity{0.0, 0.0, 0.0};  // (m/s^2)
+  // The platens' displacement along their outward normal at the end of the loading (m; < 0
+  // pushes into the body), reached in `load_steps` equal steps after an equilibrium step 0 that
+  // applies the body force and the pressures.
+  double platen_displacement = 0.0;
+  unsigned load_steps = 1;
+  // Newton converges when the out-of-balance force is below `residual_tolerance` times the
+  // internal force (both Euclidean norms over the degrees of freedom), or the correction below
+  // `correction_tolerance` times the step's displacement increment (the criterion of Guo and
+  // Zhao 2014 for noisy DEM stresses; 0: not used).
+  double residual_tolerance = 1e-10;
+  double correction_tolerance = 0.0;
+  unsigned max_newton_iterations = 25;
+  // A load step that fails (a point that does not converge, or Newton) is retried with half its
+  // increment, up to this many times in a row.
+  unsigned max_step_cuts = 4;
+};
+
+// Where a point is: its cell (deal.II's id, "level_index"), its index in the cell, its position.
+struct PointPlace {
+  std::string cell;
+  unsigned index = 0;
+  std::array<double, 3> position{};
+};
+
+using PointFactory = std::function<std::unique_ptr<PointState>(const PointPlace&)>;
+
+// One load step as it converged.
+struct LoadStepRecord {
+  unsigned step = 0;                 // 0: the equilibrium step
+  double platen_displacement = 0.0;  // m
+  double platen_force = 0.0;         // the platens' reaction along their outward normal (N; per
+                                     // unit thickness in 2D, N/m), summed over the platens
+  unsigned newton_iterations = 0;
+  std::vector<double> residuals;  // the relative out-of-balance force at each iteration
+  unsigned cuts = 0;              // halvings before it converged
+  double cost = 0.0;              // the points' cost (point_state.h), summed over the ranks
+};
+
+// Every point's state at the end, gathered on every rank in the order of the cells' ids.
+struct PointSummary {
+  PointPlace place;
+  Vec6 stress = Vec6::Zero();
+  Mat3x3 displacement_gradient = Mat3x3::Zero();
+};
+
+struct QuasiStaticResult {
+  std::vector<LoadStepRecord> steps;
+  std::vector<PointSummary> points;
+  std::uint64_t n_dofs = 0;
+  std::uint64_t n_cells = 0;
+};
+
+// What to write: each converged step's displacement and cell-averaged stress and strain as
+// `name`-NNNN.pvtu in `folder` (nothing when empty).
+struct QuasiStaticOutput {
+  std::string folder;
+  std::string name = "continuum";
+};
+
+// Throws std::invalid_argument naming the first bad parameter.
+void validate(const QuasiStaticProblem& problem);
+
+// Solves the problem on the ranks of `comm` (collective), each rank's points made by `make_point`
+// on the rank that owns their cell. Throws std::runtime_error naming the load step, the cell and
+// the point when a step still fails after its cuts.
+QuasiStaticResult solve_quasi_static(const QuasiStaticProblem& problem, const PointFactory& make_point,
+                                     MPI_Comm comm, const QuasiStaticOutput& output = {});
+
+}  // namespace upgrain::fem

@@ -1,0 +1,634 @@
+// The quasi-static continuum whose material is a state per quadrature point (docs/femxdem.md,
+// "The continuum"). It reads like deal.II's step-18 (a history per quadrature point, load steps)
+// and step-42 (Newton's method on the points' tangents, Trilinos, p4est): per load step the
+// platens move, and each Newton iteration hands every point the trial displacement gradient from
+// its last converged state, assembles the points' stresses and tangents, and solves for the
+// correction. The points are committed only when the step converges; a step that fails is retried
+// with half its increment. deal.II is confined to this translation unit.
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/quadrature_point_data.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/trilinos_solver.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <boost/serialization/string.hpp>
+#include <boost/serialization/utility.hpp>
+#include <boost/serialization/vector.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "dem/files/atomic_file.h"
+#include "fem/column_mesh.h"
+#include "fem/pvtu_pieces.h"
+#include "fem/quasi_static/quasi_static_problem.h"
+
+namespace upgrain::fem {
+
+namespace {
+
+using namespace dealii;
+using DistributedVector = TrilinosWrappers::MPI::Vector;
+
+// The point's history in deal.II's CellDataStorage: its state, its latest answer, and the answer
+// it was committed with (the predictor's stress and tangent, and what the output shows).
+struct PointRecord {
+  std::unique_ptr<PointState> state;
+  PointResponse response;
+  Mat3x3 displacement_gradient = Mat3x3::Zero();  // of the latest trial
+  PointResponse committed_response;
+  Mat3x3 committed_gradient = Mat3x3::Zero();
+};
+
+// The symmetric gradient of a vector shape function as a Mandel vector (plane strain: the z
+// components zero).
+template <int dim>
+Vec6 mandel_strain(const Tensor<2, dim>& grad) {
+  Mat3x3 h = Mat3x3::Zero();
+  for (int i = 0; i < dim; ++i)
+    for (int j = 0; j < dim; ++j) h(i, j) = grad[i][j];
+  return mandel::from_matrix(0.5 * (h + h.transpose()));
+}
+
+template <int dim>
+Mat3x3 padded(const Tensor<2, dim>& grad) {
+  Mat3x3 h = Mat3x3::Zero();
+  for (int i = 0; i < dim; ++i)
+    for (int j = 0; j < dim; ++j) h(i, j) = grad[i][j];
+  return h;
+}
+
+// Which displacement components a face's support prescribes.
+bool prescribes(const FaceCondition& f, int face_axis, int component) {
+  switch (f.support) {
+    case FaceSupport::fixed:
+    case FaceSupport::rough_platen:
+      return true;
+    case FaceSupport::roller:
+    case FaceSupport::smooth_platen:
+      return component == face_axis;
+    case FaceSupport::free:
+    case FaceSupport::pressure:
+      return false;
+  }
+  return false;
+}
+
+bool is_platen(const FaceCondition& f) {
+  return f.support == FaceSupport::smooth_platen || f.support == FaceSupport::rough_platen;
+}
+
+// The step's failure: which point (or Newton), on every rank the same words.
+struct StepFailure {
+  bool failed = false;
+  std::string what;
+};
+
+template <int dim>
+class QuasiStaticSolver {
+ public:
+  QuasiStaticSolver(const QuasiStaticProblem& p, const PointFactory& make_point, MPI_Comm comm,
+                    const QuasiStaticOutput& output)
+      : p_(p),
+        make_point_(make_point),
+        comm_(comm),
+        output_(output),
+        triangulation_(comm),
+        fe_(FE_Q<dim>(p.degree), dim),
+        dofs_(triangulation_),
+        quadrature_(p.quadrature_points > 0 ? p.quadrature_points : p.degree + 1),
+        face_quadrature_(p.degree + 1) {}
+
+  QuasiStaticResult run();
+
+ private:
+  void make_mesh();
+  void setup_system();
+  void make_points();
+  // The platens' and rollers' values of u at a platen displacement `delta`.
+  std::map<types::global_dof_index, double> boundary_values(double delta) const;
+  // Assembles at u_trial_: every point answers; fills the residual and the matrix with the
+  // constrained rows taken out by `constraints`. Returns the relative out-of-balance force, or a
+  // failure. `committed`: the points' committed answers instead, with no new trial (the
+  // predictor, at the converged state).
+  double assemble(const AffineConstraints<double>& constraints, bool committed, StepFailure& failure);
+  // The correction's constraints with the prescribed values' change from `from` to `to` as their
+  // inhomogeneities.
+  AffineConstraints<double> increment_constraints(double from, double to) const;
+  StepFailure newton(double delta, LoadStepRecord& record);
+  void commit(double delta);
+  double platen_force() const;
+  void write_step(unsigned step);
+  std::vector<PointSummary> point_summaries() const;
+
+  QuasiStaticProblem p_;
+  PointFactory make_point_;
+  MPI_Comm comm_;
+  QuasiStaticOutput output_;
+  parallel::distributed::Triangulation<dim> triangulation_;
+  FESystem<dim> fe_;
+  DoFHandler<dim> dofs_;
+  QGauss<dim> quadrature_;
+  QGauss<dim - 1> face_quadrature_;
+  IndexSet owned_, relevant_;
+  AffineConstraints<double> update_constraints_;  // the correction's: zero where u is prescribed
+  IndexSet platen_dofs_;                          // the normal components on the platens
+  std::map<types::global_dof_index, double> platen_sign_;
+  TrilinosWrappers::SparseMatrix matrix_;
+  DistributedVector u_committed_, u_trial_, residual_, internal_full_, external_full_;
+  CellDataStorage<typename Triangulation<dim>::cell_iterator, PointRecord> history_;
+  double cost_ = 0.0;  // this rank's points' cost since the last record
+  double committed_delta_ = 0.0;
+  bool committed_answers_ = false;  // the points have answered at the committed state
+  std::vector<std::string> pvd_entries_;
+};
+
+template <int dim>
+void QuasiStaticSolver<dim>::make_mesh() {
+  std::vector<unsigned int> repetitions(dim);
+  Point<dim> hi;
+  for (int d = 0; d < dim; ++d) {
+    repetitions[d] = p_.cells[d];
+    hi[d] = p_.size[d];
+  }
+  GridGenerator::subdivided_hyper_rectangle(triangulation_, repetitions, Point<dim>(), hi, /*colorize=*/true);
+}
+
+template <int dim>
+std::map<types::global_dof_index, double> QuasiStaticSolver<dim>::boundary_values(double delta) const {
+  std::map<types::global_dof_index, double> values;
+  for (unsigned face = 0; face < 2 * dim; ++face) {
+    const FaceCondition& f = p_.faces[face];
+    const int axis = static_cast<int>(face / 2);
+    const double outward = face % 2 == 0 ? -1.0 : 1.0;
+    std::vector<bool> mask(dim, false);
+    dealii::Vector<double> value(dim);
+    bool any = false;
+    for (int c = 0; c < dim; ++c) {
+      if (!prescribes(f, axis, c)) continue;
+      mask[c] = any = true;
+      if (is_platen(f) && c == axis) value[c] = outward * delta;
+    }
+    if (!any) continue;
+    VectorTools::interpolate_boundary_values(dofs_, static_cast<types::boundary_id>(face),
+                                             Functions::ConstantFunction<dim>(value), values,
+                                             ComponentMask(mask));
+  }
+  return values;
+}
+
+template <int dim>
+void QuasiStaticSolver<dim>::setup_system() {
+  dofs_.distribute_dofs(fe_);
+  owned_ = dofs_.locally_owned_dofs();
+  DoFTools::extract_locally_relevant_dofs(dofs_, relevant_);
+
+  update_constraints_.clear();
+  update_constraints_.reinit(relevant_);
+  for (const auto& [dof, value] : boundary_values(0.0)) {
+    (void)value;
+    if (relevant_.is_element(dof)) update_constraints_.add_line(dof);
+  }
+  // Components that no face holds would leave rigid motions free: pin them at the origin's
+  // vertex, and a rotation in the plane of two such components at the vertex along the first.
+  std::array<bool, 3> held{false, false, false};
+  for (unsigned face = 0; face < 2 * dim; ++face)
+    for (int c = 0; c < dim; ++c)
+      held[c] = held[c] || prescribes(p_.faces[face], static_cast<int>(face / 2), c);
+  std::vector<std::pair<Point<dim>, int>> pins;
+  for (int c = 0; c < dim; ++c)
+    if (!held[c]) pins.emplace_back(Point<dim>(), c);
+  for (int a = 0; a < dim; ++a)
+    for (int b = a + 1; b < dim; ++b)
+      if (!held[a] && !held[b]) {
+        Point<dim> corner;
+        corner[a] = p_.size[a];
+        pins.emplace_back(corner, b);
+      }
+  const double tolerance = 1e-10 * *std::max_element(p_.size.begin(), p_.size.begin() + dim);
+  for (const auto& cell : dofs_.active_cell_iterators()) {
+    if (cell->is_artificial()) continue;
+    for (const unsigned v : cell->vertex_indices())
+      for (const auto& [x, c] : pins)
+        if (cell->vertex(v).distance(x) < tolerance) {
+          const auto dof = cell->vertex_dof_index(v, c);
+          if (!update_constraints_.is_constrained(dof)) update_constraints_.add_line(dof);
+        }
+  }
+  update_constraints_.close();
+
+  platen_dofs_ = IndexSet(dofs_.n_dofs());
+  for (unsigned face = 0; face < 2 * dim; ++face) {
+    if (!is_platen(p_.faces[face])) continue;
+    std::vector<bool> mask(dim, false);
+    mask[face / 2] = true;
+    const IndexSet on_face =
+        DoFTools::extract_boundary_dofs(dofs_, ComponentMask(mask), {static_cast<types::boundary_id>(face)});
+    for (const auto dof : on_face) platen_sign_[dof] = face % 2 == 0 ? -1.0 : 1.0;
+    platen_dofs_.add_indices(on_face);
+  }
+
+  DynamicSparsityPattern dsp(relevant_);
+  DoFTools::make_sparsity_pattern(dofs_, dsp, update_constraints_, false);
+  SparsityTools::distribute_sparsity_pattern(dsp, owned_, comm_, relevant_);
+  matrix_.reinit(owned_, owned_, dsp, comm_);
+  for (DistributedVector* v : {&u_committed_, &residual_, &internal_full_, &external_full_})
+    v->reinit(owned_, comm_);
+  u_trial_.reinit(owned_, comm_);
+}
+
+template <int dim>
+void QuasiStaticSolver<dim>::make_points() {
+  FEValues<dim> fv(fe_, quadrature_, update_quadrature_points);
+  for (const auto& cell : triangulation_.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
+    history_.initialize(cell, quadrature_.size());
+    fv.reinit(cell);
+    auto records = history_.get_data(cell);
+    for (unsigned q = 0; q < quadrature_.size(); ++q) {
+      PointPlace place;
+      place.cell = cell->id().to_string();
+      place.index = q;
+      for (int d = 0; d < dim; ++d) place.position[d] = fv.quadrature_point(q)[d];
+      records[q]->state = make_point_(place);
+      if (!records[q]->state) throw std::runtime_error("femxdem: no material made for cell " + place.cell);
+    }
+  }
+}
+
+template <int dim>
+double QuasiStaticSolver<dim>::assemble(const AffineConstraints<double>& constraints, bool committed,
+                                        StepFailure& failure) {
+  DistributedVector ghosted(owned_, relevant_, comm_);
+  ghosted = u_trial_;
+  matrix_ = 0.0;
+  residual_ = 0.0;
+  internal_full_ = 0.0;
+  external_full_ = 0.0;
+
+  FEValues<dim> fv(fe_, quadrature_, update_gradients | update_values | update_JxW_values);
+  FEFaceValues<dim> ffv(fe_, face_quadrature_, update_values | update_JxW_values | update_normal_vectors);
+  const FEValuesExtractors::Vector u(0);
+  const unsigned n = fe_.n_dofs_per_cell(), nq = quadrature_.size();
+  FullMatrix<double> cell_matrix(n, n);
+  dealii::Vector<double> cell_internal(n), cell_external(n), cell_residual(n);
+  std::vector<types::global_dof_index> local(n);
+  std::vector<Tensor<2, dim>> grads(nq);
+  std::vector<Vec6> shape_strain(n);
+  Tensor<1, dim> body;
+  for (int d = 0; d < dim; ++d) body[d] = p_.density * p_.gravity[d];
+  std::string local_failure;
+
+  for (const auto& cell : dofs_.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
+    fv.reinit(cell);
+    cell->get_dof_indices(local);
+    cell_matrix = 0.0;
+    cell_internal = 0.0;
+    cell_external = 0.0;
+    fv[u].get_function_gradients(ghosted, grads);
+    const auto records = history_.get_data(typename Triangulation<dim>::cell_iterator(cell));
+    for (unsigned q = 0; q < nq; ++q) {
+      PointRecord& r = *records[q];
+      if (!committed && local_failure.empty()) {
+        r.displacement_gradient = padded<dim>(grads[q]);
+        r.response = r.state->respond(r.displacement_gradient);
+        cost_ += r.response.cost;
+        if (!r.response.converged)
+          local_failure = "the material at point " + std::to_string(q) + " of cell " +
+                          cell->id().to_string() + " did not converge: " + r.response.failure;
+      }
+      const PointResponse& answer = committed ? r.committed_response : r.response;
+      const double jxw = fv.JxW(q);
+      for (unsigned i = 0; i < n; ++i) shape_strain[i] = mandel_strain<dim>(fv[u].gradient(i, q));
+      for (unsigned i = 0; i < n; ++i) {
+        cell_internal(i) += answer.stress.dot(shape_strain[i]) * jxw;
+        cell_external(i) += fv[u].value(i, q) * body * jxw;
+        const Vec6 d_eps = answer.tangent.transpose() * shape_strain[i];
+        for (unsigned j = 0; j < n; ++j) cell_matrix(i, j) += d_eps.dot(shape_strain[j]) * jxw;
+      }
+    }
+    for (const unsigned f : cell->face_indices()) {
+      if (!cell->at_boundary(f)) continue;
+      const FaceCondition& c = p_.faces[cell->face(f)->boundary_id()];
+      if (c.support != FaceSupport::pressure) continue;
+      ffv.reinit(cell, f);
+      for (unsigned q = 0; q < face_quadrature_.size(); ++q)
+        for (unsigned i = 0; i < n; ++i)
+          cell_external(i) += -c.pressure * (ffv[u].value(i, q) * ffv.normal_vector(q)) * ffv.JxW(q);
+    }
+    for (unsigned i = 0; i < n; ++i) cell_residual(i) = cell_external(i) - cell_internal(i);
+    internal_full_.add(local, cell_internal);
+    external_full_.add(local, cell_external);
+    constraints.distribute_local_to_global(cell_matrix, cell_residual, local, matrix_, residual_);
+  }
+  matrix_.compress(VectorOperation::add);
+  for (DistributedVector* v : {&residual_, &internal_full_, &external_full_})
+    v->compress(VectorOperation::add);
+
+  // The failure's words from the lowest rank that has one, on every rank.
+  const unsigned rank = Utilities::MPI::this_mpi_process(comm_);
+  const unsigned first =
+      Utilities::MPI::min(local_failure.empty() ? Utilities::MPI::n_mpi_processes(comm_) : rank, comm_);
+  if (first < Utilities::MPI::n_mpi_processes(comm_)) {
+    failure.failed = true;
+    failure.what = Utilities::MPI::broadcast(comm_, local_failure, first);
+    return 0.0;
+  }
+  const double reference = std::max(internal_full_.l2_norm(), external_full_.l2_norm());
+  return reference > 0.0 ? residual_.l2_norm() / reference : 0.0;
+}
+
+template <int dim>
+AffineConstraints<double> QuasiStaticSolver<dim>::increment_constraints(double from, double to) const {
+  AffineConstraints<double> c;
+  c.reinit(relevant_);
+  for (const auto& line : update_constraints_.get_lines()) c.add_line(line.index);
+  const auto before = boundary_values(from);
+  for (const auto& [dof, value] : boundary_values(to))
+    if (c.is_constrained(dof)) c.set_inhomogeneity(dof, value - before.at(dof));
+  c.close();
+  return c;
+}
+
+template <int dim>
+StepFailure QuasiStaticSolver<dim>::newton(double delta, LoadStepRecord& record) {
+  DistributedVector step_increment(owned_, comm_), correction(owned_, comm_);
+  SolverControl control(1, 0);
+  TrilinosWrappers::SolverDirect solver(control,
+                                        TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Klu"));
+  const auto solve = [&](const AffineConstraints<double>& constraints) {
+    solver.solve(matrix_, correction, residual_);
+    constraints.distribute(correction);
+    u_trial_ += correction;
+    step_increment = u_trial_;
+    step_increment -= u_committed_;
+  };
+  record.residuals.clear();
+  u_trial_ = u_committed_;
+  StepFailure failure;
+  if (committed_answers_) {
+    // The predictor: the converged state's tangent, and the prescribed values' change as the
+    // correction's inhomogeneous constraints, so that the whole mesh, not only the elements along
+    // the platens, takes the step's first strain (as deal.II's step-44 applies its Dirichlet
+    // increments). The points answer nothing new.
+    const AffineConstraints<double> predictor = increment_constraints(committed_delta_, delta);
+    assemble(predictor, true, failure);
+    solve(predictor);
+  } else {
+    for (const auto& [dof, value] : boundary_values(delta))
+      if (owned_.is_element(dof)) u_trial_[dof] = value;
+    u_trial_.compress(VectorOperation::insert);
+  }
+  bool small_correction = false;
+  for (unsigned it = 0;; ++it) {
+    const double r = assemble(update_constraints_, false, failure);
+    if (failure.failed) return failure;
+    record.residuals.push_back(r);
+    record.newton_iterations = it;
+    if (r <= p_.residual_tolerance || small_correction) return {};
+    if (it == p_.max_newton_iterations)
+      return {true, "Newton's method did not converge in " + std::to_string(it) +
+                        " iterations: out-of-balance force " + std::to_string(r) + " of the internal force"};
+    solve(update_constraints_);
+    const double scale = step_increment.l2_norm();
+    small_correction = p_.correction_tolerance > 0.0 && scale > 0.0 &&
+                       correction.l2_norm() <= p_.correction_tolerance * scale;
+  }
+}
+
+template <int dim>
+void QuasiStaticSolver<dim>::commit(double delta) {
+  for (const auto& cell : triangulation_.active_cell_iterators())
+    if (cell->is_locally_owned())
+      for (const auto& r : history_.get_data(cell)) {
+        r->state->commit();
+        r->committed_response = r->response;
+        r->committed_gradient = r->displacement_gradient;
+      }
+  u_committed_ = u_trial_;
+  committed_delta_ = delta;
+  committed_answers_ = true;
+}
+
+template <int dim>
+double QuasiStaticSolver<dim>::platen_force() const {
+  double sum = 0.0;
+  for (const auto& [dof, sign] : platen_sign_)
+    if (owned_.is_element(dof)) sum += sign * (internal_full_[dof] - external_full_[dof]);
+  unsigned platens = 0;
+  for (unsigned face = 0; face < 2 * dim; ++face) platens += is_platen(p_.faces[face]) ? 1 : 0;
+  return Utilities::MPI::sum(sum, comm_) / std::max(platens, 1u);
+}
+
+template <int dim>
+void QuasiStaticSolver<dim>::write_step(unsigned step) {
+  if (output_.folder.empty()) return;
+  const unsigned n_cells = triangulation_.n_active_cells();
+  std::array<dealii::Vector<double>, 6> stress, strain;
+  for (unsigned k = 0; k < 6; ++k) {
+    stress[k].reinit(n_cells);
+    strain[k].reinit(n_cells);
+  }
+  dealii::Vector<double> mean_pressure(n_cells), deviator(n_cells);
+  for (const auto& cell : triangulation_.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
+    Vec6 s = Vec6::Zero(), e = Vec6::Zero();
+    const auto records = history_.get_data(cell);
+    for (const auto& r : records) {
+      s += r->committed_response.stress;
+      e += mandel::from_matrix(0.5 * (r->committed_gradient + r->committed_gradient.transpose()));
+    }
+    s /= static_cast<double>(records.size());
+    e /= static_cast<double>(records.size());
+    const Mat3x3 sm = mandel::to_matrix(s), em = mandel::to_matrix(e);
+    const unsigned c = cell->active_cell_index();
+    for (unsigned k = 0; k < 6; ++k) {
+      const auto [i, j] = column_mesh::stress_components[k];
+      stress[k][c] = sm(i, j);
+      strain[k][c] = em(i, j);
+    }
+    mean_pressure[c] = -mandel::trace(s) / 3.0;
+    deviator[c] = std::sqrt(1.5) * mandel::deviator(s).norm();
+  }
+  DataOut<dim> out;
+  out.attach_dof_handler(dofs_);
+  DistributedVector ghosted(owned_, relevant_, comm_);
+  ghosted = u_committed_;
+  const std::vector<std::string> names(dim, "displacement");
+  const std::vector<DataComponentInterpretation::DataComponentInterpretation> kinds(
+      dim, DataComponentInterpretation::component_is_part_of_vector);
+  out.add_data_vector(ghosted, names, DataOut<dim>::type_dof_data, kinds);
+  static const std::array<const char*, 6> strain_names = {"eps_xx", "eps_yy", "eps_zz",
+                                                          "eps_xy", "eps_xz", "eps_yz"};
+  for (unsigned k = 0; k < 6; ++k) {
+    out.add_data_vector(stress[k], column_mesh::stress_names[k], DataOut<dim>::type_cell_data);
+    out.add_data_vector(strain[k], strain_names[k], DataOut<dim>::type_cell_data);
+  }
+  out.add_data_vector(mean_pressure, "p", DataOut<dim>::type_cell_data);
+  out.add_data_vector(deviator, "q", DataOut<dim>::type_cell_data);
+  dealii::Vector<float> subdomain(n_cells);
+  for (auto& s : subdomain) s = static_cast<float>(triangulation_.locally_owned_subdomain());
+  out.add_data_vector(subdomain, "subdomain");
+  out.build_patches(p_.degree);
+  const std::string name = output_.name + "-" + Utilities::int_to_string(step, 4);
+  write_pieces_and_record(out, output_.folder, name, comm_);
+  pvd_entries_.push_back(name + ".pvtu");
+  if (Utilities::MPI::this_mpi_process(comm_) == 0) {
+    std::ostringstream pvd;
+    pvd << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
+    for (std::size_t k = 0; k < pvd_entries_.size(); ++k)
+      pvd << "<DataSet timestep=\"" << k << "\" file=\"" << pvd_entries_[k] << "\"/>\n";
+    pvd << "</Collection>\n</VTKFile>\n";
+    dem::io::write_text_atomically(std::filesystem::path(output_.folder) / (output_.name + ".pvd"),
+                                   pvd.str());
+  }
+}
+
+template <int dim>
+std::vector<PointSummary> QuasiStaticSolver<dim>::point_summaries() const {
+  using Packed = std::pair<std::string, std::vector<double>>;
+  std::vector<Packed> local;
+  FEValues<dim> fv(fe_, quadrature_, update_quadrature_points);
+  for (const auto& cell : triangulation_.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
+    fv.reinit(cell);
+    const auto records = history_.get_data(cell);
+    for (unsigned q = 0; q < records.size(); ++q) {
+      std::vector<double> v{static_cast<double>(q)};
+      for (int d = 0; d < 3; ++d) v.push_back(d < dim ? fv.quadrature_point(q)[d] : 0.0);
+      for (int k = 0; k < 6; ++k) v.push_back(records[q]->committed_response.stress[k]);
+      for (int k = 0; k < 9; ++k) v.push_back(records[q]->committed_gradient(k / 3, k % 3));
+      local.emplace_back(cell->id().to_string(), std::move(v));
+    }
+  }
+  std::vector<Packed> all;
+  for (auto& part : Utilities::MPI::all_gather(comm_, local)) all.insert(all.end(), part.begin(), part.end());
+  std::sort(all.begin(), all.end(), [](const Packed& a, const Packed& b) {
+    const CellId ca(a.first), cb(b.first);
+    return ca == cb ? a.second[0] < b.second[0] : ca < cb;
+  });
+  std::vector<PointSummary> out;
+  for (const auto& [id, v] : all) {
+    PointSummary s;
+    s.place.cell = id;
+    s.place.index = static_cast<unsigned>(v[0]);
+    for (int d = 0; d < 3; ++d) s.place.position[d] = v[1 + d];
+    for (int k = 0; k < 6; ++k) s.stress[k] = v[4 + k];
+    for (int k = 0; k < 9; ++k) s.displacement_gradient(k / 3, k % 3) = v[10 + k];
+    out.push_back(s);
+  }
+  return out;
+}
+
+template <int dim>
+QuasiStaticResult QuasiStaticSolver<dim>::run() {
+  make_mesh();
+  setup_system();
+  make_points();
+  if (!output_.folder.empty() && Utilities::MPI::this_mpi_process(comm_) == 0)
+    std::filesystem::create_directories(output_.folder);
+
+  QuasiStaticResult result;
+  result.n_dofs = dofs_.n_dofs();
+  result.n_cells = triangulation_.n_global_active_cells();
+  const auto record_step = [&](LoadStepRecord record, double delta) {
+    record.platen_displacement = delta;
+    record.platen_force = platen_force();
+    record.cost = Utilities::MPI::sum(cost_, comm_);
+    cost_ = 0.0;
+    result.steps.push_back(std::move(record));
+    write_step(result.steps.back().step);
+  };
+
+  // Step 0: the body force and the pressures on the points' initial stresses.
+  {
+    LoadStepRecord record;
+    const StepFailure failure = newton(0.0, record);
+    if (failure.failed) throw std::runtime_error("femxdem: the equilibrium step 0 failed: " + failure.what);
+    commit(0.0);
+    record_step(record, 0.0);
+  }
+  double reached = 0.0;
+  for (unsigned step = 1; step <= p_.load_steps; ++step) {
+    const double target = p_.platen_displacement * step / p_.load_steps;
+    LoadStepRecord record;
+    record.step = step;
+    double increment = target - reached;
+    unsigned iterations = 0;
+    while (reached != target) {
+      const bool last = std::abs(increment) >= std::abs(target - reached);
+      const double delta = last ? target : reached + increment;
+      const StepFailure failure = newton(delta, record);
+      iterations += record.newton_iterations;
+      if (!failure.failed) {
+        commit(delta);
+        reached = delta;
+        continue;
+      }
+      if (++record.cuts > p_.max_step_cuts)
+        throw std::runtime_error("femxdem: load step " + std::to_string(step) + " failed after " +
+                                 std::to_string(p_.max_step_cuts) +
+                                 " cuts of its increment: " + failure.what);
+      increment /= 2.0;
+    }
+    record.newton_iterations = iterations;
+    record_step(record, reached);
+  }
+  result.points = point_summaries();
+  return result;
+}
+
+}  // namespace
+
+void validate(const QuasiStaticProblem& p) {
+  const auto fail = [](const std::string& what) { throw std::invalid_argument(what); };
+  if (p.dimension != 2 && p.dimension != 3) fail("dimension must be 2 (plane strain) or 3");
+  for (int d = 0; d < p.dimension; ++d) {
+    if (!(p.size[d] > 0.0) || !std::isfinite(p.size[d]))
+      fail("size along axis " + std::to_string(d) + " must be > 0");
+    if (p.cells[d] == 0) fail("cells along axis " + std::to_string(d) + " must be >= 1");
+  }
+  if (p.degree < 1 || p.degree > 4) fail("degree must be 1 to 4");
+  if (p.quadrature_points > 5) fail("quadrature points must be 0 (degree + 1) to 5 per direction");
+  if (p.load_steps == 0) fail("load steps must be >= 1");
+  if (!(p.residual_tolerance >= 0.0) || !(p.correction_tolerance >= 0.0))
+    fail("the Newton tolerances must be >= 0");
+  if (p.residual_tolerance == 0.0 && p.correction_tolerance == 0.0)
+    fail("one of the Newton tolerances must be > 0");
+  for (int f = 2 * p.dimension; f < 6; ++f)
+    if (p.faces[f].support != FaceSupport::free) fail("a 2D problem has no faces along z");
+  if (p.platen_displacement != 0.0 &&
+      std::none_of(p.faces.begin(), p.faces.end(), [](const FaceCondition& f) { return is_platen(f); }))
+    fail("a platen displacement needs a face that is a platen");
+}
+
+QuasiStaticResult solve_quasi_static(const QuasiStaticProblem& problem, const PointFactory& make_point,
+                                     MPI_Comm comm, const QuasiStaticOutput& output) {
+  validate(problem);
+  column_mesh::silence_p4est();
+  if (problem.dimension == 2) return QuasiStaticSolver<2>(problem, make_point, comm, output).run();
+  return QuasiStaticSolver<3>(problem, make_point, comm, output).run();
+}
+
+}  // namespace upgrain::fem

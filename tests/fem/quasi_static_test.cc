@@ -1,0 +1,309 @@
+// The quasi-static solver of FEM x DEM (fem/quasi_static/, docs/femxdem.md) with the elastic
+// stand-ins of its DEM cells: it must reproduce linear elasticity (the exact column, which Q2
+// elements hold exactly, and deal.II's own column solver on the same mesh), converge
+// quadratically with an exact tangent, keep a homogeneous state homogeneous, and cut a failing
+// load step. Every test runs on all ranks of MPI_COMM_WORLD (CTest: plain and under
+// `mpiexec -n 2`); EXPECT_* only around collective calls.
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <cmath>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+#include "../common/world.h"
+#include "fem/analytic/confined_column.h"
+#include "fem/elastic_column.h"
+#include "fem/quasi_static/elastic_point.h"
+#include "fem/quasi_static/quasi_static_problem.h"
+
+namespace upgrain::fem {
+namespace {
+
+constexpr double kDensity = 1600.0, kGravity = 9.81, kYoungs = 5.0e7, kPoisson = 0.3;
+
+Elasticity elasticity() { return Elasticity::from_youngs(kYoungs, kPoisson); }
+
+PointFactory linear_points() {
+  return [](const PointPlace&) { return std::make_unique<LinearElasticPoint>(elasticity()); };
+}
+
+// The confined column under its weight: rollers on the sides and the floor, the top free; the
+// vertical axis is the last.
+QuasiStaticProblem confined_column(int dimension, unsigned degree) {
+  QuasiStaticProblem p;
+  p.dimension = dimension;
+  p.size = {0.045, dimension == 2 ? 0.06 : 0.045, 0.06};
+  p.cells = {2, dimension == 2 ? 3u : 2u, 3};
+  p.degree = degree;
+  for (int f = 0; f < 2 * dimension - 1; ++f) p.faces[f].support = FaceSupport::roller;
+  p.density = kDensity;
+  p.gravity[dimension - 1] = -kGravity;
+  return p;
+}
+
+ConfinedColumn exact_column(const QuasiStaticProblem& p) {
+  return {kDensity * kGravity, p.size[p.dimension - 1], kYoungs, kPoisson};
+}
+
+// Q2 holds the exact solution (u quadratic in the height, eq. (3) of confined_column.h), so the
+// stress at every point is the exact one to round-off, in plane strain and in 3D.
+TEST(QuasiStatic, QuadraticElementsHoldTheConfinedColumnExactly) {
+  for (const int dimension : {2, 3}) {
+    const QuasiStaticProblem p = confined_column(dimension, 2);
+    const QuasiStaticResult r = solve_quasi_static(p, linear_points(), MPI_COMM_WORLD);
+    const ConfinedColumn exact = exact_column(p);
+    const double scale = exact.unit_weight * exact.height;
+    const int v = dimension - 1;
+    ASSERT_EQ(r.points.size(), r.n_cells * (dimension == 2 ? 9u : 27u));
+    double worst = 0.0;
+    for (const PointSummary& s : r.points) {
+      const Mat3x3 sigma = mandel::to_matrix(s.stress);
+      const double z = s.place.position[v];
+      Mat3x3 expected = Mat3x3::Zero();
+      expected(v, v) = exact.vertical_stress(z);
+      for (int d = 0; d < 3; ++d)
+        if (d != v) expected(d, d) = exact.k0() * exact.vertical_stress(z);
+      worst = std::max(worst, (sigma - expected).cwiseAbs().maxCoeff() / scale);
+    }
+    EXPECT_LT(worst, 1e-10) << dimension << "D";
+    // A linear law: one Newton iteration; the step's out-of-balance force then at round-off.
+    ASSERT_EQ(r.steps.size(), 2u);
+    EXPECT_EQ(r.steps[0].newton_iterations, 1u);
+    EXPECT_LT(r.steps[0].residuals.back(), 1e-12);
+  }
+}
+
+// The same mesh, elements and law as deal.II's elastic column solver (fem/elastic_column.cc,
+// CG with AMG to its tolerance): the stress averaged over each cell agrees to that solver's
+// tolerance.
+TEST(QuasiStatic, ReproducesTheElasticColumnSolver) {
+  QuasiStaticProblem p = confined_column(3, 1);
+  p.cells = {3, 3, 4};
+  const QuasiStaticResult r = solve_quasi_static(p, linear_points(), MPI_COMM_WORLD);
+
+  ColumnProblem c;
+  c.length_x = p.size[0];
+  c.length_y = p.size[1];
+  c.height = p.size[2];
+  c.density = kDensity;
+  c.gravity = kGravity;
+  c.youngs_modulus = kYoungs;
+  c.poisson_ratio = kPoisson;
+  c.cells = {3, 3, 4};
+  c.refinements = 0;
+  c.degree = 1;
+  const ColumnSolution column = solve_column(c, MPI_COMM_WORLD, "");
+
+  const double scale = kDensity * kGravity * p.size[2];
+  const double h[3] = {p.size[0] / 3, p.size[1] / 3, p.size[2] / 4};
+  std::vector<std::array<double, 9>> mean(n_coarse_cells(c), std::array<double, 9>{});
+  for (const PointSummary& s : r.points) {
+    unsigned index[3];
+    for (int d = 0; d < 3; ++d) index[d] = static_cast<unsigned>(s.place.position[d] / h[d]);
+    const Mat3x3 sigma = mandel::to_matrix(s.stress);
+    for (int k = 0; k < 9; ++k)
+      mean[coarse_cell_index(c, index[0], index[1], index[2])][k] += sigma(k / 3, k % 3) / 8.0;
+  }
+  double worst = 0.0;
+  for (std::size_t cell = 0; cell < mean.size(); ++cell)
+    for (int k = 0; k < 9; ++k)
+      worst = std::max(worst, std::abs(mean[cell][k] - column.cell_average_stress[cell][k]));
+  EXPECT_LT(worst / scale, 1e-8);
+  // Q1 is not exact at its Gauss points (its sigma_zz is the exact one at the cell's mid-height
+  // only): the agreement is not that of two exact solutions.
+  const ConfinedColumn exact = exact_column(p);
+  double off = 0.0;
+  for (const PointSummary& s : r.points)
+    off = std::max(off,
+                   std::abs(mandel::to_matrix(s.stress)(2, 2) - exact.vertical_stress(s.place.position[2])));
+  EXPECT_GT(off / scale, 1e-3);
+}
+
+// A 50 x 100 mm specimen in plane strain between rough platens, 100 kPa on its free sides, Q2,
+// shortened by 4 % in two steps.
+QuasiStaticProblem plane_strain_compression() {
+  QuasiStaticProblem p;
+  p.dimension = 2;
+  p.size = {0.05, 0.1, 1.0};
+  p.cells = {2, 4, 1};
+  p.degree = 2;
+  p.faces[0] = {FaceSupport::pressure, 1.0e5};
+  p.faces[1] = {FaceSupport::pressure, 1.0e5};
+  p.faces[2].support = FaceSupport::fixed;
+  p.faces[3].support = FaceSupport::rough_platen;
+  p.platen_displacement = -0.004;
+  p.load_steps = 2;
+  p.residual_tolerance = 1e-13;
+  return p;
+}
+
+PointFactory stiffening_points() {
+  return [](const PointPlace&) { return std::make_unique<StiffeningElasticPoint>(elasticity(), 1.0e4); };
+}
+
+// Plane-strain compression between rough platens with a confining pressure on the free sides,
+// on the stiffening law: strongly nonlinear, and Newton with its exact tangent converges
+// quadratically (the order estimate log(r_k+1 / r_k) / log(r_k / r_k-1) near 2).
+TEST(QuasiStatic, NewtonConvergesQuadraticallyWithTheExactTangent) {
+  const QuasiStaticProblem p = plane_strain_compression();
+  const QuasiStaticResult r = solve_quasi_static(p, stiffening_points(), MPI_COMM_WORLD);
+  ASSERT_EQ(r.steps.size(), 3u);
+  for (unsigned s = 1; s <= 2; ++s) {
+    const std::vector<double>& res = r.steps[s].residuals;
+    ASSERT_GE(res.size(), 4u) << "step " << s;
+    double best_order = 0.0;
+    for (std::size_t k = 1; k + 1 < res.size(); ++k) {
+      if (res[k + 1] < 1e-12 || res[k] > 1e-2) continue;  // past round-off, or before the quadratic range
+      best_order = std::max(best_order, std::log(res[k + 1] / res[k]) / std::log(res[k] / res[k - 1]));
+    }
+    EXPECT_GT(best_order, 1.8) << "step " << s;
+    EXPECT_LE(r.steps[s].newton_iterations, 8u);
+  }
+  // Compression: the platen pushes (negative reaction along its outward normal).
+  EXPECT_LT(r.steps[2].platen_force, r.steps[1].platen_force);
+  EXPECT_LT(r.steps[1].platen_force, 0.0);
+}
+
+// The load-displacement curve on all ranks against each rank's own solve on MPI_COMM_SELF (on
+// 1 rank the same solve twice). Not bitwise: the matrix entries that two ranks' cells share are
+// summed in another order when the ranks exchange them (deal.II's compress), and the platens'
+// reaction is an MPI sum. Measured on 2 and 3 ranks: 3e-16 of the force; bounded here at 1e-12.
+TEST(QuasiStatic, LoadDisplacementCurveAgreesOnAnyRankCount) {
+  const QuasiStaticProblem p = plane_strain_compression();
+  const QuasiStaticResult all = solve_quasi_static(p, stiffening_points(), MPI_COMM_WORLD);
+  const QuasiStaticResult own = solve_quasi_static(p, stiffening_points(), MPI_COMM_SELF);
+  ASSERT_EQ(all.steps.size(), own.steps.size());
+  for (std::size_t k = 1; k < all.steps.size(); ++k) {
+    EXPECT_EQ(all.steps[k].platen_displacement, own.steps[k].platen_displacement);
+    EXPECT_NEAR(all.steps[k].platen_force, own.steps[k].platen_force,
+                1e-12 * std::abs(own.steps[k].platen_force));
+  }
+}
+
+// Rollers on two faces, a smooth platen and a pressure on the other two: the exact solution is
+// homogeneous, and every point's displacement gradient and stress stay equal to round-off.
+TEST(QuasiStatic, HomogeneousLoadingStaysHomogeneous) {
+  for (const int dimension : {2, 3}) {
+    QuasiStaticProblem p;
+    p.dimension = dimension;
+    p.size = {0.05, 0.1, 0.07};
+    p.cells = {3, 4, 2};
+    p.degree = 1;
+    const int v = dimension - 1;
+    for (int d = 0; d < dimension; ++d) {
+      p.faces[2 * d].support = FaceSupport::roller;
+      p.faces[2 * d + 1] = d == v ? FaceCondition{FaceSupport::smooth_platen, 0.0}
+                                  : FaceCondition{FaceSupport::pressure, 2.0e5};
+    }
+    p.platen_displacement = -0.002;
+    p.load_steps = 3;
+    const QuasiStaticResult r = solve_quasi_static(p, stiffening_points(), MPI_COMM_WORLD);
+    const PointSummary& first = r.points.front();
+    double h_spread = 0.0, s_spread = 0.0;
+    for (const PointSummary& s : r.points) {
+      h_spread =
+          std::max(h_spread, (s.displacement_gradient - first.displacement_gradient).cwiseAbs().maxCoeff());
+      s_spread = std::max(s_spread, (s.stress - first.stress).cwiseAbs().maxCoeff());
+    }
+    EXPECT_LT(h_spread / first.displacement_gradient.cwiseAbs().maxCoeff(), 1e-13) << dimension << "D";
+    EXPECT_LT(s_spread / first.stress.cwiseAbs().maxCoeff(), 1e-13) << dimension << "D";
+    // The vertical strain is the platen's over the height; the lateral stress the pressure.
+    EXPECT_NEAR(first.displacement_gradient(v, v), p.platen_displacement / p.size[v], 1e-12);
+    EXPECT_NEAR(mandel::to_matrix(first.stress)(0, 0), -2.0e5, 1e-6);
+  }
+}
+
+// A material that cannot answer a trial displacement gradient beyond a strain: the load step
+// that asks for it is cut until it can, and one it never can ends with the cell and the point.
+class BrittlePoint final : public PointState {
+ public:
+  explicit BrittlePoint(double limit) : limit_(limit) {}
+  PointResponse respond(const Mat3x3& h) override {
+    PointResponse r = inner_.respond(h);
+    const double increment = (h - committed_).cwiseAbs().maxCoeff();
+    if (increment > limit_) {
+      r.converged = false;
+      r.failure = "increment " + std::to_string(increment) + " beyond " + std::to_string(limit_);
+    }
+    trial_ = h;
+    return r;
+  }
+  void commit() override { committed_ = trial_; }
+  [[nodiscard]] std::unique_ptr<PointState> clone() const override {
+    return std::make_unique<BrittlePoint>(*this);
+  }
+
+ private:
+  LinearElasticPoint inner_{elasticity()};
+  double limit_;
+  Mat3x3 committed_ = Mat3x3::Zero(), trial_ = Mat3x3::Zero();
+};
+
+QuasiStaticProblem uniaxial() {
+  QuasiStaticProblem p;
+  p.dimension = 2;
+  p.size = {0.1, 0.1, 1.0};
+  p.cells = {2, 2, 1};
+  p.faces[0].support = FaceSupport::roller;
+  p.faces[2].support = FaceSupport::roller;
+  p.faces[3].support = FaceSupport::smooth_platen;
+  p.platen_displacement = -0.001;  // a strain of 1e-2 in one step
+  return p;
+}
+
+TEST(QuasiStatic, AFailingStepIsCutAndTheCutsCounted) {
+  QuasiStaticProblem p = uniaxial();
+  p.max_step_cuts = 3;
+  const QuasiStaticResult r = solve_quasi_static(
+      p, [](const PointPlace&) { return std::make_unique<BrittlePoint>(3e-3); }, MPI_COMM_WORLD);
+  ASSERT_EQ(r.steps.size(), 2u);
+  EXPECT_EQ(r.steps[1].cuts, 2u);  // 1e-2 -> 5e-3 -> 2.5e-3, four sub-steps of 2.5e-3
+  EXPECT_DOUBLE_EQ(r.steps[1].platen_displacement, -0.001);
+  EXPECT_NEAR(r.points.front().displacement_gradient(1, 1), -0.01, 1e-14);
+}
+
+TEST(QuasiStatic, AStepThatFailsAfterItsCutsNamesTheCellAndThePoint) {
+  QuasiStaticProblem p = uniaxial();
+  p.max_step_cuts = 2;
+  try {
+    solve_quasi_static(
+        p, [](const PointPlace&) { return std::make_unique<BrittlePoint>(1e-3); }, MPI_COMM_WORLD);
+    ADD_FAILURE() << "no exception";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("load step 1 failed after 2 cuts"), std::string::npos) << what;
+    EXPECT_NE(what.find("the material at point "), std::string::npos) << what;
+    EXPECT_NE(what.find(" of cell "), std::string::npos) << what;
+    EXPECT_NE(what.find("beyond"), std::string::npos) << what;
+  }
+}
+
+TEST(QuasiStatic, WritesEachStepAndASeries) {
+  const std::string folder =
+      std::filesystem::temp_directory_path() / ("upgrain_quasi_static_" + std::to_string(test::world_size()));
+  if (test::world_rank() == 0) std::filesystem::remove_all(folder);
+  MPI_Barrier(MPI_COMM_WORLD);
+  QuasiStaticProblem p = uniaxial();
+  p.load_steps = 2;
+  solve_quasi_static(p, linear_points(), MPI_COMM_WORLD, {folder, "biaxial"});
+  for (const char* f : {"biaxial-0000.pvtu", "biaxial-0001.pvtu", "biaxial-0002.pvtu", "biaxial.pvd",
+                        "biaxial-0002.proc0000.vtu"})
+    EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(folder) / f)) << f;
+}
+
+TEST(QuasiStatic, RefusesBadProblems) {
+  QuasiStaticProblem p = uniaxial();
+  p.faces[3].support = FaceSupport::roller;
+  EXPECT_THROW(validate(p), std::invalid_argument);  // a platen displacement and no platen
+  p = uniaxial();
+  p.faces[4].support = FaceSupport::fixed;
+  EXPECT_THROW(validate(p), std::invalid_argument);  // a z face in 2D
+  p = uniaxial();
+  p.cells[1] = 0;
+  EXPECT_THROW(validate(p), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace upgrain::fem
