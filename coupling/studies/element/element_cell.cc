@@ -20,7 +20,7 @@ ElementCell::ElementCell(dem::SceneConfig scene, dem::ParticleStore grains, MPI_
                                            engine);
 }
 
-void ElementCell::resume(dem::EngineState s, const dem::CellMotion& m) {
+void continue_under(dem::SceneConfig& scene, dem::EngineState& s, const dem::CellMotion& m) {
   for (int d = 0; d < 3; ++d)
     if (m.axis[d].mode == dem::CellAxisMode::rate) s.cell.velocity_gradient(d, d) = m.axis[d].rate;
   if (m.shear.any()) {
@@ -30,9 +30,13 @@ void ElementCell::resume(dem::EngineState s, const dem::CellMotion& m) {
       s.cell.offset_at_build = 0.0;
     }
   }
-  const double growth = scene_.cell.max_growth;
-  scene_.cell = m;
-  scene_.cell.max_growth = growth;
+  const double growth = scene.cell.max_growth;
+  scene.cell = m;
+  scene.cell.max_growth = growth;
+}
+
+void ElementCell::resume(dem::EngineState s, const dem::CellMotion& m) {
+  continue_under(scene_, s, m);
   const dem::EngineOptions engine = sim_->options();
   sim_.reset();
   sim_ = std::make_unique<dem::Simulation>(scene_, s, comm_, engine);

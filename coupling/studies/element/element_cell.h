@@ -18,6 +18,13 @@
 
 namespace upgrain::coupling {
 
+// What a change of control does to a captured state and its scene: the prescribed rates of `m`
+// into the velocity gradient of the next step (a shear rate too: a cell not yet sheared starts
+// with its images unslid, the same lattice), and `m` as the scene's cell motion, its max_growth
+// kept (the position grid was sized for it). ElementCell::resume() and the FEM x DEM cell
+// (coupling/femxdem/rve_point.h) continue their engines so.
+void continue_under(dem::SceneConfig& scene, dem::EngineState& s, const dem::CellMotion& m);
+
 class ElementCell {
  public:
   // `grains` are rank 0's (the other ranks may pass an empty store); `after_step` is called after

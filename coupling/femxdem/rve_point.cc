@@ -1,0 +1,112 @@
+#include "coupling/femxdem/rve_point.h"
+
+#include <cstdio>
+#include <string>
+#include <utility>
+
+#include "coupling/femxdem/cell_increment.h"
+#include "coupling/femxdem/held_cell.h"
+#include "coupling/femxdem/rve_tangent.h"
+#include "coupling/studies/element/element_cell.h"
+#include "dem/core/error.h"
+
+namespace upgrain::coupling {
+
+namespace {
+
+std::string number(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3g", v);
+  return b;
+}
+
+}  // namespace
+
+RveCell::RveCell(std::shared_ptr<const RveTemplate> prepared, const RveOptions& o)
+    : prepared_(std::move(prepared)),
+      options_(o),
+      committed_(prepared_->state),
+      committed_cell_(prepared_->reference_cell) {}
+
+RveCell::Trial RveCell::run_trial(const fem::Mat3x3& h) const {
+  const CellFactor f = upper_triangular_factor(fem::Mat3x3::Identity() + h);
+  check_one_tilt(f.stretch);
+  const dem::Mat3 target = f.stretch * prepared_->reference_cell;
+  const double dt = prepared_->scene.time_step;
+  const long n = increment_steps(h - committed_h_, options_);
+  const dem::Mat3 l = increment_velocity_gradient(committed_cell_, target, n, dt);
+  dem::CellMotion m;
+  m.axis = {cell_rate(l(0, 0)), cell_rate(l(1, 1)), cell_rate(l(2, 2))};
+  m.shear = {{kTiltShear, kTiltGradient}, l(kTiltShear, kTiltGradient)};
+  dem::SceneConfig scene = prepared_->scene;
+  dem::EngineState s = committed_;
+  continue_under(scene, s, m);
+  dem::Simulation sim(scene, s, MPI_COMM_SELF, prepared_->engine);
+  sim.run(n);
+  const HeldCellRelaxation r =
+      relax_held_cell(sim, options_.unbalanced_force_tolerance, options_.relaxation_step_cap);
+  Trial t;
+  t.h = h;
+  t.record = {n, r.steps, r.unbalanced_force, sim.diagnostics().particle_contacts, sim.cell_matrix()};
+  t.converged = r.converged;
+  t.grain_steps = sim.particle_count() * (n + r.steps);
+  // The stress of the cell R h0, turned back into the solver's frame: that of F h0.
+  const dem::Mat3 sigma = f.rotation * sim.cell_stress() * f.rotation.transpose();
+  t.stress = fem::mandel::from_matrix(0.5 * (sigma + sigma.transpose()));
+  t.contact_tangent = contact_tangent(sim, f.rotation);
+  t.state = sim.capture_state();
+  return t;
+}
+
+fem::PointResponse RveCell::respond(const fem::Mat3x3& h) {
+  Trial t = run_trial(h);
+  fem::PointResponse out;
+  out.stress = t.stress;
+  out.cost = static_cast<double>(t.grain_steps);
+  std::string failure;
+  if (!t.converged)
+    failure = "the DEM cell did not relax: unbalanced-force ratio " + number(t.record.unbalanced_force) +
+              " above the tolerance " + number(options_.unbalanced_force_tolerance) + " after the cap of " +
+              std::to_string(options_.relaxation_step_cap) + " relaxation steps";
+  switch (options_.tangent) {
+    case RveTangent::contact_stiffness:
+      out.tangent = t.contact_tangent;
+      break;
+    case RveTangent::elastic:
+      out.tangent = prepared_->elastic_tangent;
+      break;
+    case RveTangent::perturbation: {
+      // Forward differences in the strain components the cell can take (xx, yy, zz, xy); the
+      // out-of-plane shears xz and yz would tilt the cell across z (refused), so their columns
+      // are the trial's contact-stiffness tangent's.
+      out.tangent = t.contact_tangent;
+      const double e = options_.perturbation;
+      for (int k = 0; k < 4; ++k) {
+        const Trial p = run_trial(h + e * fem::mandel::to_matrix(fem::Vec6::Unit(k)));
+        out.tangent.col(k) = (p.stress - t.stress) / e;
+        out.cost += static_cast<double>(p.grain_steps);
+        if (!p.converged && failure.empty())
+          failure = "the DEM cell did not relax in the perturbation of strain component " +
+                    std::to_string(k) + ": unbalanced-force ratio " + number(p.record.unbalanced_force) +
+                    " after the cap of " + std::to_string(options_.relaxation_step_cap) + " relaxation steps";
+      }
+      break;
+    }
+  }
+  out.converged = failure.empty();
+  out.failure = failure;
+  record_ = t.record;
+  trial_ = std::move(t);
+  return out;
+}
+
+void RveCell::commit() {
+  if (!trial_) return;
+  committed_ = trial_->state;
+  committed_h_ = trial_->h;
+  committed_cell_ = trial_->record.cell;
+}
+
+std::unique_ptr<fem::PointState> RveCell::clone() const { return std::make_unique<RveCell>(*this); }
+
+}  // namespace upgrain::coupling

@@ -1,0 +1,63 @@
+#pragma once
+// The DEM cell at one quadrature point of FEM x DEM (Guo and Zhao 2014, IJNME 99, 789;
+// docs/femxdem.md, "The DEM cell at a quadrature point"): a fully periodic cell of grains that
+// answers a trial displacement gradient H (fem/quasi_static/point_state.h) with its Love-Weber
+// stress and a tangent. Each trial starts from the committed engine state, deforms the cell from
+// its committed shape to R h0 (F = 1 + H = Q R, coupling/femxdem/cell_increment.h) at a constant
+// velocity gradient over the increment's steps, holds it still and relaxes it (held_cell.h); the
+// stress is turned back by Q. Plane strain in x-y (and any stretch along z) only: a tilt of R
+// other than (x, y) is refused (std::invalid_argument). The engine runs on MPI_COMM_SELF.
+#include <memory>
+#include <optional>
+
+#include "coupling/femxdem/rve_options.h"
+#include "coupling/femxdem/rve_preparation.h"
+#include "fem/quasi_static/point_state.h"
+
+namespace upgrain::coupling {
+
+// What a trial cost and reached besides the response (for the solver's account and the tests).
+struct RveTrialRecord {
+  long increment_steps = 0;   // the steps of the deformation
+  long relaxation_steps = 0;  // the held cell's
+  double unbalanced_force = 0.0;
+  long contacts = 0;
+  dem::Mat3 cell = dem::Mat3::Zero();  // the cell matrix reached
+};
+
+class RveCell : public fem::PointState {
+ public:
+  // A copy of the prepared cell, its committed H zero. The template is shared, read only.
+  RveCell(std::shared_ptr<const RveTemplate> prepared, const RveOptions& o);
+
+  fem::PointResponse respond(const fem::Mat3x3& h) override;
+  void commit() override;
+  [[nodiscard]] std::unique_ptr<fem::PointState> clone() const override;
+
+  // The last respond()'s main trial (not the perturbations').
+  [[nodiscard]] const RveTrialRecord& last_trial() const { return record_; }
+  [[nodiscard]] const fem::Mat3x3& committed_displacement_gradient() const { return committed_h_; }
+
+ private:
+  struct Trial {
+    dem::EngineState state;
+    fem::Mat3x3 h = fem::Mat3x3::Zero();
+    fem::Vec6 stress = fem::Vec6::Zero();
+    fem::Mat6 contact_tangent = fem::Mat6::Zero();
+    RveTrialRecord record;
+    bool converged = true;
+    long grain_steps = 0;
+  };
+  // A trial from the committed state, without keeping it.
+  [[nodiscard]] Trial run_trial(const fem::Mat3x3& h) const;
+
+  std::shared_ptr<const RveTemplate> prepared_;
+  RveOptions options_;
+  dem::EngineState committed_;
+  fem::Mat3x3 committed_h_ = fem::Mat3x3::Zero();
+  dem::Mat3 committed_cell_;
+  std::optional<Trial> trial_;
+  RveTrialRecord record_;
+};
+
+}  // namespace upgrain::coupling

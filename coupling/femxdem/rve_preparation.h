@@ -1,0 +1,35 @@
+#pragma once
+// The DEM cell that every quadrature point of FEM x DEM starts from (docs/femxdem.md, "The DEM
+// cell at a quadrature point"): made once, copied to every point. N grains of the scene's
+// material, gradation and contact law are placed at random in a fully periodic cube, squeezed by
+// a servo on every axis to the isotropic stress p0 (as the element study's isotropic state,
+// docs/element-tests.md), then held still and relaxed (as Guo and Zhao 2014: one packing
+// prepared isotropically, copied to every Gauss point).
+#include <memory>
+
+#include "coupling/femxdem/rve_options.h"
+#include "dem/engine/engine_state.h"
+#include "dem/engine/simulation.h"
+#include "dem/scene/scene_config.h"
+#include "fem/plasticity/mandel.h"
+
+namespace upgrain::coupling {
+
+struct RveTemplate {
+  dem::SceneConfig scene;     // the cell's scene: a periodic cube, no gravity, no walls
+  dem::EngineOptions engine;  // the options its engine was made with
+  dem::EngineState state;     // the prepared cell, held still and relaxed
+  dem::Mat3 reference_cell = dem::Mat3::Identity();  // its matrix h0: the reference of F = 1 + H
+  fem::Vec6 stress = fem::Vec6::Zero();              // its stress (tension positive, Mandel)
+  fem::Mat6 elastic_tangent = fem::Mat6::Zero();     // its contact-stiffness tangent
+  long grains = 0;
+  long contacts = 0;            // touching pairs at the end
+  long steps = 0;               // the preparation's steps (servo and relaxation)
+  double unbalanced_force = 0;  // the ratio at the end
+};
+
+// Collective over nothing: the cell runs on MPI_COMM_SELF. Throws upgrain::Error when the servo
+// or the relaxation does not reach its target within RveOptions::preparation_step_cap steps.
+[[nodiscard]] RveTemplate prepare_rve(const dem::SceneConfig& scene, const RveOptions& o);
+
+}  // namespace upgrain::coupling
