@@ -37,7 +37,8 @@ struct RveOptions {
   // The fill's seed (a per-point seed, one packing a point, is not offered yet: every point is a
   // copy of the one prepared cell).
   std::uint64_t seed = 12345;
-  // The preparation: the grains are placed at random at this solid fraction in a cube, then a
+  // The preparation: the grains are placed at random at this solid fraction of the region their
+  // centres may take in a cube (rve_preparation.cc), then a
   // servo on every axis (L_dd = gain (p_dd - p0) / p0, bounded by max_strain_rate; cell_motion.h)
   // squeezes them until every axis is within servo_tolerance of p0 and the cell is relaxed, or
   // for at most preparation_step_cap steps (then the preparation throws).

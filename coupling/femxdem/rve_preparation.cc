@@ -1,5 +1,6 @@
 #include "coupling/femxdem/rve_preparation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -17,22 +18,28 @@ namespace {
 // The servo's progress is looked at every this many steps.
 constexpr long kServoCheckEvery = 100;
 
-// The scene's grains in a fully periodic cube that holds them at the fill's solid fraction, no
-// gravity, no pour, squeezed by a servo to p0 on every axis.
+// The scene's grains in a fully periodic cube, no gravity, no pour, squeezed by a servo to p0 on
+// every axis. The random fill keeps each grain a radius from the box's faces (dem/scene/fill.cc), so
+// the cube is sized for the fill's solid fraction over the region the centres may take,
+// solids / (L - 2 r_max)^3: for a few dozen equal grains the whole cube at that fraction leaves
+// the centres too little room to be placed at all.
 dem::SceneConfig cell_scene(dem::SceneConfig scene, const RveOptions& o) {
   scene.particles.count = o.grains;
   scene.particles.packing = nullptr;
   scene.insertion = {};
   scene.effects.gravity = false;
   scene.fill.method = dem::FillMethod::random;
-  scene.fill.solid_fraction = o.fill_solid_fraction;
   scene.fill.bottom_gap = 0.0;
   scene.fill.velocity = dem::Vec3::Zero();
   scene.fill.velocity_jitter = 0.0;
   scene.fill.seed = o.seed;
-  double solids = 0.0;
-  for (double r : dem::plan_fill(scene).radii) solids += 4.0 / 3.0 * std::numbers::pi * r * r * r;
-  const double side = std::cbrt(solids / o.fill_solid_fraction);
+  double solids = 0.0, r_max = 0.0;
+  for (double r : dem::plan_fill(scene).radii) {
+    solids += 4.0 / 3.0 * std::numbers::pi * r * r * r;
+    r_max = std::max(r_max, r);
+  }
+  const double side = std::cbrt(solids / o.fill_solid_fraction) + 2.0 * r_max;
+  scene.fill.solid_fraction = solids / (side * side * side);  // the fill's height is then the side
   scene.container.lx = scene.container.ly = scene.container.height = side;
   scene.container.periodic = {true, true, true};
   scene.cell = every_axis(cell_servo(o.mean_stress, o.servo_gain, o.max_strain_rate));

@@ -13,6 +13,7 @@
 #include "coupling/studies/calibration/calibration_options.h"
 #include "coupling/studies/continuum/study_options.h"
 #include "coupling/studies/element/element_options.h"
+#include "coupling/studies/femxdem/femxdem_options.h"
 #include "dem/scene/effect_choice.h"
 #include "dem/scene/scene_config.h"
 
@@ -75,6 +76,7 @@ struct SceneInput {
   AccuracyOptions accuracy;        // the Accuracy section (upgrain --study accuracy)
   CalibrationOptions calibration;  // the Calibration section (upgrain --study calibration)
   ElementOptions element;          // the Element test section (upgrain --study element)
+  FemxdemOptions femxdem;          // the FEMxDEM section (upgrain --study femxdem)
   ParallelInput parallel;
   // A restart (upgrain --restart): the run continues from `resume` (rank 0's; null elsewhere)
   // in its own output folder, which then holds results by design.

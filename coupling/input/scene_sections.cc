@@ -23,6 +23,7 @@ const std::vector<Section>& scene_sections() {
                                              accuracy_section(),
                                              calibration_section(),
                                              element_section(),
+                                             femxdem_section(),
                                              coarse_graining_section(),
                                              continuum_section()};
   return table;

@@ -38,6 +38,7 @@ Section study_section();
 Section accuracy_section();
 Section calibration_section();
 Section element_section();
+Section femxdem_section();
 Section coarse_graining_section();
 Section continuum_section();
 

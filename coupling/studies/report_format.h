@@ -1,5 +1,8 @@
 #pragma once
-// Numbers in report.md: the shortest form with a given count of significant digits.
+// Numbers in report.md: the shortest form with a given count of significant digits; and in the
+// studies' CSV tables.
+#include <cmath>
+#include <cstdio>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -13,6 +16,14 @@ inline std::string fmt(double v, int digits = 4) {
   s.precision(digits);
   s << v;
   return s.str();
+}
+
+// A number in a study's CSV table: 9 significant digits; empty when not finite.
+inline std::string table_number(double v) {
+  if (!std::isfinite(v)) return "";
+  char b[40];
+  std::snprintf(b, sizeof b, "%.9g", v);
+  return b;
 }
 
 // The grains of a scene in its parameter table, before their size: " spheres, radius " or

@@ -8,6 +8,8 @@
 #include "coupling/studies/continuum/continuum_study.h"
 #include "coupling/studies/element/element_checks.h"
 #include "coupling/studies/element/element_study.h"
+#include "coupling/studies/femxdem/femxdem_checks.h"
+#include "coupling/studies/femxdem/femxdem_study.h"
 #include "dem/core/error.h"
 
 namespace upgrain::coupling {
@@ -37,6 +39,11 @@ const Study kStudies[] = {
      "drained triaxial compression (its Element test section,\n"
      "docs/element-tests.md), into <Output/folder>/element/",
      run_element_study},
+    {kFemxdemUse,
+     "FEM x DEM: a biaxial specimen meshed by deal.II whose every\n"
+     "Gauss point is a periodic DEM cell of the scene's grains (its\n"
+     "FEMxDEM section, docs/femxdem.md), into <Output/folder>/femxdem/",
+     run_femxdem_study},
 };
 
 }  // namespace

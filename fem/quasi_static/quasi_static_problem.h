@@ -19,8 +19,11 @@ namespace upgrain::fem {
 
 // What holds a face of the box. A platen moves along the face's normal by the load's
 // displacement; a rough one holds the tangential components at zero, a smooth one leaves them
-// free. A roller holds the normal component at zero; `fixed` holds every component.
-enum class FaceSupport { free, pressure, roller, fixed, smooth_platen, rough_platen };
+// free. A roller holds the normal component at zero; `fixed` holds every component; an `affine`
+// face follows the homogeneous displacement u = G x of the problem's boundary gradient, every
+// component (a specimen whose whole boundary is affine can only deform homogeneously, whatever its
+// material's anisotropy: the test of a mesh of identical points).
+enum class FaceSupport { free, pressure, roller, fixed, smooth_platen, rough_platen, affine };
 
 struct FaceCondition {
   FaceSupport support = FaceSupport::free;
@@ -43,6 +46,9 @@ struct QuasiStaticProblem {
   // pushes into the body), reached in `load_steps` equal steps after an equilibrium step 0 that
   // applies the body force and the pressures.
   double platen_displacement = 0.0;
+  // The displacement gradient G of the affine faces at the end of the loading, reached with the
+  // platens' displacement (u = lambda G x, lambda = 0 at step 0 and 1 at the end).
+  Mat3x3 boundary_gradient = Mat3x3::Zero();
   unsigned load_steps = 1;
   // Newton converges when the out-of-balance force is below `residual_tolerance` times the
   // internal force (both Euclidean norms over the degrees of freedom), or the correction below
@@ -70,11 +76,12 @@ struct LoadStepRecord {
   unsigned step = 0;                 // 0: the equilibrium step
   double platen_displacement = 0.0;  // m
   double platen_force = 0.0;         // the platens' reaction along their outward normal (N; per
-                                     // unit thickness in 2D, N/m), summed over the platens
+                                     // unit thickness in 2D, N/m), averaged over the platens
   unsigned newton_iterations = 0;
   std::vector<double> residuals;  // the relative out-of-balance force at each iteration
   unsigned cuts = 0;              // halvings before it converged
   double cost = 0.0;              // the points' cost (point_state.h), summed over the ranks
+  double seconds = 0.0;           // wall time of the step, the slowest rank's
 };
 
 // Every point's state at the end, gathered on every rank in the order of the cells' ids.
@@ -96,6 +103,8 @@ struct QuasiStaticResult {
 struct QuasiStaticOutput {
   std::string folder;
   std::string name = "continuum";
+  // Called on every rank after each converged step (a progress line).
+  std::function<void(const LoadStepRecord&)> on_step;
 };
 
 // Throws std::invalid_argument naming the first bad parameter.

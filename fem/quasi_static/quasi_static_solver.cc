@@ -32,6 +32,7 @@
 #include <boost/serialization/vector.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -83,6 +84,7 @@ bool prescribes(const FaceCondition& f, int face_axis, int component) {
   switch (f.support) {
     case FaceSupport::fixed:
     case FaceSupport::rough_platen:
+    case FaceSupport::affine:
       return true;
     case FaceSupport::roller:
     case FaceSupport::smooth_platen:
@@ -97,6 +99,21 @@ bool prescribes(const FaceCondition& f, int face_axis, int component) {
 bool is_platen(const FaceCondition& f) {
   return f.support == FaceSupport::smooth_platen || f.support == FaceSupport::rough_platen;
 }
+
+// u = G x on a face that follows a homogeneous displacement gradient G.
+template <int dim>
+class AffineDisplacement : public Function<dim> {
+ public:
+  explicit AffineDisplacement(const Mat3x3& g) : Function<dim>(dim), g_(g) {}
+  double value(const Point<dim>& x, const unsigned component) const override {
+    double u = 0.0;
+    for (int j = 0; j < dim; ++j) u += g_(component, j) * x[j];
+    return u;
+  }
+
+ private:
+  Mat3x3 g_;
+};
 
 // The step's failure: which point (or Newton), on every rank the same words.
 struct StepFailure {
@@ -125,8 +142,8 @@ class QuasiStaticSolver {
   void make_mesh();
   void setup_system();
   void make_points();
-  // The platens' and rollers' values of u at a platen displacement `delta`.
-  std::map<types::global_dof_index, double> boundary_values(double delta) const;
+  // The prescribed values of u at the load factor `lambda` (0 at step 0, 1 at the end).
+  std::map<types::global_dof_index, double> boundary_values(double lambda) const;
   // Assembles at u_trial_: every point answers; fills the residual and the matrix with the
   // constrained rows taken out by `constraints`. Returns the relative out-of-balance force, or a
   // failure. `committed`: the points' committed answers instead, with no new trial (the
@@ -135,8 +152,8 @@ class QuasiStaticSolver {
   // The correction's constraints with the prescribed values' change from `from` to `to` as their
   // inhomogeneities.
   AffineConstraints<double> increment_constraints(double from, double to) const;
-  StepFailure newton(double delta, LoadStepRecord& record);
-  void commit(double delta);
+  StepFailure newton(double lambda, LoadStepRecord& record);
+  void commit(double lambda);
   double platen_force() const;
   void write_step(unsigned step);
   std::vector<PointSummary> point_summaries() const;
@@ -158,7 +175,7 @@ class QuasiStaticSolver {
   DistributedVector u_committed_, u_trial_, residual_, internal_full_, external_full_;
   CellDataStorage<typename Triangulation<dim>::cell_iterator, PointRecord> history_;
   double cost_ = 0.0;  // this rank's points' cost since the last record
-  double committed_delta_ = 0.0;
+  double committed_lambda_ = 0.0;
   bool committed_answers_ = false;  // the points have answered at the committed state
   std::vector<std::string> pvd_entries_;
 };
@@ -175,7 +192,7 @@ void QuasiStaticSolver<dim>::make_mesh() {
 }
 
 template <int dim>
-std::map<types::global_dof_index, double> QuasiStaticSolver<dim>::boundary_values(double delta) const {
+std::map<types::global_dof_index, double> QuasiStaticSolver<dim>::boundary_values(double lambda) const {
   std::map<types::global_dof_index, double> values;
   for (unsigned face = 0; face < 2 * dim; ++face) {
     const FaceCondition& f = p_.faces[face];
@@ -187,12 +204,17 @@ std::map<types::global_dof_index, double> QuasiStaticSolver<dim>::boundary_value
     for (int c = 0; c < dim; ++c) {
       if (!prescribes(f, axis, c)) continue;
       mask[c] = any = true;
-      if (is_platen(f) && c == axis) value[c] = outward * delta;
+      if (is_platen(f) && c == axis) value[c] = outward * lambda * p_.platen_displacement;
     }
     if (!any) continue;
-    VectorTools::interpolate_boundary_values(dofs_, static_cast<types::boundary_id>(face),
-                                             Functions::ConstantFunction<dim>(value), values,
-                                             ComponentMask(mask));
+    if (f.support == FaceSupport::affine)
+      VectorTools::interpolate_boundary_values(dofs_, static_cast<types::boundary_id>(face),
+                                               AffineDisplacement<dim>(lambda * p_.boundary_gradient),
+                                               values);
+    else
+      VectorTools::interpolate_boundary_values(dofs_, static_cast<types::boundary_id>(face),
+                                               Functions::ConstantFunction<dim>(value), values,
+                                               ComponentMask(mask));
   }
   return values;
 }
@@ -372,7 +394,7 @@ AffineConstraints<double> QuasiStaticSolver<dim>::increment_constraints(double f
 }
 
 template <int dim>
-StepFailure QuasiStaticSolver<dim>::newton(double delta, LoadStepRecord& record) {
+StepFailure QuasiStaticSolver<dim>::newton(double lambda, LoadStepRecord& record) {
   DistributedVector step_increment(owned_, comm_), correction(owned_, comm_);
   SolverControl control(1, 0);
   TrilinosWrappers::SolverDirect solver(control,
@@ -392,11 +414,11 @@ StepFailure QuasiStaticSolver<dim>::newton(double delta, LoadStepRecord& record)
     // correction's inhomogeneous constraints, so that the whole mesh, not only the elements along
     // the platens, takes the step's first strain (as deal.II's step-44 applies its Dirichlet
     // increments). The points answer nothing new.
-    const AffineConstraints<double> predictor = increment_constraints(committed_delta_, delta);
+    const AffineConstraints<double> predictor = increment_constraints(committed_lambda_, lambda);
     assemble(predictor, true, failure);
     solve(predictor);
   } else {
-    for (const auto& [dof, value] : boundary_values(delta))
+    for (const auto& [dof, value] : boundary_values(lambda))
       if (owned_.is_element(dof)) u_trial_[dof] = value;
     u_trial_.compress(VectorOperation::insert);
   }
@@ -418,7 +440,7 @@ StepFailure QuasiStaticSolver<dim>::newton(double delta, LoadStepRecord& record)
 }
 
 template <int dim>
-void QuasiStaticSolver<dim>::commit(double delta) {
+void QuasiStaticSolver<dim>::commit(double lambda) {
   for (const auto& cell : triangulation_.active_cell_iterators())
     if (cell->is_locally_owned())
       for (const auto& r : history_.get_data(cell)) {
@@ -427,7 +449,7 @@ void QuasiStaticSolver<dim>::commit(double delta) {
         r->committed_gradient = r->displacement_gradient;
       }
   u_committed_ = u_trial_;
-  committed_delta_ = delta;
+  committed_lambda_ = lambda;
   committed_answers_ = true;
 }
 
@@ -552,13 +574,18 @@ QuasiStaticResult QuasiStaticSolver<dim>::run() {
   QuasiStaticResult result;
   result.n_dofs = dofs_.n_dofs();
   result.n_cells = triangulation_.n_global_active_cells();
-  const auto record_step = [&](LoadStepRecord record, double delta) {
-    record.platen_displacement = delta;
+  auto started = std::chrono::steady_clock::now();
+  const auto record_step = [&](LoadStepRecord record, double lambda) {
+    const auto now = std::chrono::steady_clock::now();
+    record.seconds = Utilities::MPI::max(std::chrono::duration<double>(now - started).count(), comm_);
+    started = now;
+    record.platen_displacement = lambda * p_.platen_displacement;
     record.platen_force = platen_force();
     record.cost = Utilities::MPI::sum(cost_, comm_);
     cost_ = 0.0;
     result.steps.push_back(std::move(record));
     write_step(result.steps.back().step);
+    if (output_.on_step) output_.on_step(result.steps.back());
   };
 
   // Step 0: the body force and the pressures on the points' initial stresses.
@@ -571,19 +598,19 @@ QuasiStaticResult QuasiStaticSolver<dim>::run() {
   }
   double reached = 0.0;
   for (unsigned step = 1; step <= p_.load_steps; ++step) {
-    const double target = p_.platen_displacement * step / p_.load_steps;
+    const double target = static_cast<double>(step) / p_.load_steps;
     LoadStepRecord record;
     record.step = step;
     double increment = target - reached;
     unsigned iterations = 0;
     while (reached != target) {
       const bool last = std::abs(increment) >= std::abs(target - reached);
-      const double delta = last ? target : reached + increment;
-      const StepFailure failure = newton(delta, record);
+      const double lambda = last ? target : reached + increment;
+      const StepFailure failure = newton(lambda, record);
       iterations += record.newton_iterations;
       if (!failure.failed) {
-        commit(delta);
-        reached = delta;
+        commit(lambda);
+        reached = lambda;
         continue;
       }
       if (++record.cuts > p_.max_step_cuts)
@@ -618,6 +645,10 @@ void validate(const QuasiStaticProblem& p) {
     fail("one of the Newton tolerances must be > 0");
   for (int f = 2 * p.dimension; f < 6; ++f)
     if (p.faces[f].support != FaceSupport::free) fail("a 2D problem has no faces along z");
+  const bool affine = std::any_of(p.faces.begin(), p.faces.end(),
+                                  [](const FaceCondition& f) { return f.support == FaceSupport::affine; });
+  if (!p.boundary_gradient.isZero() && !affine)
+    fail("a boundary gradient needs a face that follows it (affine)");
   if (p.platen_displacement != 0.0 &&
       std::none_of(p.faces.begin(), p.faces.end(), [](const FaceCondition& f) { return is_platen(f); }))
     fail("a platen displacement needs a face that is a platen");

@@ -287,7 +287,7 @@ TEST(QuasiStatic, WritesEachStepAndASeries) {
   MPI_Barrier(MPI_COMM_WORLD);
   QuasiStaticProblem p = uniaxial();
   p.load_steps = 2;
-  solve_quasi_static(p, linear_points(), MPI_COMM_WORLD, {folder, "biaxial"});
+  solve_quasi_static(p, linear_points(), MPI_COMM_WORLD, {folder, "biaxial", nullptr});
   for (const char* f : {"biaxial-0000.pvtu", "biaxial-0001.pvtu", "biaxial-0002.pvtu", "biaxial.pvd",
                         "biaxial-0002.proc0000.vtu"})
     EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(folder) / f)) << f;

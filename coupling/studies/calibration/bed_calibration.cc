@@ -9,6 +9,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "coupling/studies/report_format.h"
 #include "dem/boundary/container.h"
 #include "dem/core/error.h"
 #include "dem/core/out_of_memory.h"
@@ -75,13 +76,6 @@ const dem::OedometerStep* step_ending_at(const OedometerOptions& o,
   return k >= first_step && k - first_step < steps.size() ? &steps[k - first_step] : nullptr;
 }
 
-std::string number(double v) {
-  if (!std::isfinite(v)) return "";
-  char b[40];
-  std::snprintf(b, sizeof b, "%.9g", v);
-  return b;
-}
-
 std::string path_table(const OedometerOptions& o, const std::vector<OedometerRecord>& rec,
                        const std::vector<dem::OedometerStep>& steps) {
   std::ostringstream t;
@@ -123,17 +117,18 @@ std::string path_table(const OedometerOptions& o, const std::vector<OedometerRec
   for (std::size_t k = 0; k < rec.size(); ++k) {
     const OedometerRecord& r = rec[k];
     const dem::OedometerState& s = r.state;
-    t << k << ',' << number(r.time) << ',';
+    t << k << ',' << table_number(r.time) << ',';
     if (o.loading == OedometerLoading::gravity)
-      t << number(r.gravity_factor) << ',' << (r.at_rest ? 1 : 0) << ',' << number(r.centroid) << ','
-        << number(r.side_wall_share);
+      t << table_number(r.gravity_factor) << ',' << (r.at_rest ? 1 : 0) << ',' << table_number(r.centroid)
+        << ',' << table_number(r.side_wall_share);
     else
-      t << number(r.target) << ',' << number(r.lid_stress) << ',' << (r.at_rest ? 1 : 0) << ','
-        << number(r.height);
-    t << ',' << number(s.vertical_strain) << ',' << number(s.vertical_stress) << ','
-      << number(s.horizontal_stress) << ',' << number(s.horizontal_stress / s.vertical_stress);
+      t << table_number(r.target) << ',' << table_number(r.lid_stress) << ',' << (r.at_rest ? 1 : 0) << ','
+        << table_number(r.height);
+    t << ',' << table_number(s.vertical_strain) << ',' << table_number(s.vertical_stress) << ','
+      << table_number(s.horizontal_stress) << ',' << table_number(s.horizontal_stress / s.vertical_stress);
     if (const dem::OedometerStep* q = step_ending_at(o, steps, k)) {
-      t << ',' << number(q->modulus) << ',' << number(q->poisson) << ',' << number(q->youngs);
+      t << ',' << table_number(q->modulus) << ',' << table_number(q->poisson) << ','
+        << table_number(q->youngs);
     } else {
       t << ",,,";
     }
@@ -174,13 +169,14 @@ std::string triaxial_table(const std::vector<TriaxialRecord>& rec, bool periodic
     const TriaxialRecord& r = rec[k];
     const dem::TriaxialState& s = r.state;
     const double sum = s.axial_stress + s.lateral_stress;
-    t << k << ',' << number(r.time) << ',' << number(s.axial_strain) << ',' << number(s.volumetric_strain)
-      << ',' << number(-r.bagi(0, 0)) << ',' << number(-r.bagi(1, 1)) << ',' << number(-r.bagi(2, 2)) << ','
-      << number(s.axial_stress) << ',' << number(s.lateral_stress) << ','
-      << (sum > 0.0 ? number(dem::mobilised_friction_angle(s.axial_stress, s.lateral_stress)) : "") << ','
-      << number(r.height) << ',' << number(r.width_x) << ',' << number(r.width_y) << ','
-      << number(r.lid_stress);
-    for (double w : r.side_stress) t << ',' << number(w);
+    t << k << ',' << table_number(r.time) << ',' << table_number(s.axial_strain) << ','
+      << table_number(s.volumetric_strain) << ',' << table_number(-r.bagi(0, 0)) << ','
+      << table_number(-r.bagi(1, 1)) << ',' << table_number(-r.bagi(2, 2)) << ','
+      << table_number(s.axial_stress) << ',' << table_number(s.lateral_stress) << ','
+      << (sum > 0.0 ? table_number(dem::mobilised_friction_angle(s.axial_stress, s.lateral_stress)) : "")
+      << ',' << table_number(r.height) << ',' << table_number(r.width_x) << ',' << table_number(r.width_y)
+      << ',' << table_number(r.lid_stress);
+    for (double w : r.side_stress) t << ',' << table_number(w);
     t << '\n';
   }
   return t.str();
@@ -248,12 +244,12 @@ std::string BedCalibration::material_error(const fs::path& folder) const {
   if (!strength_error.empty())
     return strength_error + "; the path is in " + (folder / "triaxial.csv").string();
   if (!(elastic.poisson >= 0.0 && elastic.poisson <= 0.499) || !(elastic.youngs > 0.0))
-    return "the equivalent elastic material (E = " + number(elastic.youngs) +
-           " Pa, nu = " + number(elastic.poisson) + " from K0 = " + number(elastic.k0) +
+    return "the equivalent elastic material (E = " + table_number(elastic.youngs) +
+           " Pa, nu = " + table_number(elastic.poisson) + " from K0 = " + table_number(elastic.k0) +
            ") is not one the continuum takes (E > 0, 0 <= nu <= 0.499); see " +
            (folder / "oedometer.csv").string();
   if (!(friction_angle >= 0.1 && friction_angle <= 89.0))
-    return "the friction angle " + number(friction_angle) +
+    return "the friction angle " + table_number(friction_angle) +
            " degrees is not one the continuum takes ([0.1, 89]); see " + (folder / "triaxial.csv").string();
   return "";
 }
@@ -367,23 +363,23 @@ void write_bed_calibration(const fs::path& folder, const std::string& source, co
         : b.oedometer.loading == OedometerLoading::lid   ? "by a servo lid"
                                                          : "in a periodic cell (without walls)")
     << " at the bed's mean vertical stress\n"
-    << "# sigma_v = " << number(b.sigma_mean) << " Pa: M = " << number(eq.modulus)
-    << " Pa (power law M ~ sigma^" << number(eq.exponent) << " through the states at rest, taken at "
-    << number(eq.modulus_stress) << " Pa), K0 = " << number(eq.k0)
-    << " (the deposited bed's: " << number(b.k0_deposited) << ").\n"
+    << "# sigma_v = " << table_number(b.sigma_mean) << " Pa: M = " << table_number(eq.modulus)
+    << " Pa (power law M ~ sigma^" << table_number(eq.exponent) << " through the states at rest, taken at "
+    << table_number(eq.modulus_stress) << " Pa), K0 = " << table_number(eq.k0)
+    << " (the deposited bed's: " << table_number(b.k0_deposited) << ").\n"
     << "# nu = K0 / (1 + K0), E = M (1 + nu)(1 - 2 nu) / (1 - nu). The path: oedometer.csv.\n"
-    << "# Strength from the friction-angle test at sigma_3 = " << number(b.triaxial.confining_stress)
-    << " Pa (triaxial.csv): peak phi = " << number(s.peak_angle) << " deg at axial strain "
-    << number(s.peak_strain) << " with psi = " << number(s.peak_dilatancy_angle)
-    << " deg; critical state phi = " << number(s.critical_angle) << " +- " << number(s.critical_spread)
-    << " deg.\n"
+    << "# Strength from the friction-angle test at sigma_3 = " << table_number(b.triaxial.confining_stress)
+    << " Pa (triaxial.csv): peak phi = " << table_number(s.peak_angle) << " deg at axial strain "
+    << table_number(s.peak_strain) << " with psi = " << table_number(s.peak_dilatancy_angle)
+    << " deg; critical state phi = " << table_number(s.critical_angle) << " +- "
+    << table_number(s.critical_spread) << " deg.\n"
     << "# The continuum takes the " << (b.critical_state_strength ? "critical state's" : "peak's")
-    << " (Calibration/continuum strength). Jaky's K0 = 1 - sin(phi_cs) = " << number(b.jaky_k0) << ".\n"
+    << " (Calibration/continuum strength). Jaky's K0 = 1 - sin(phi_cs) = " << table_number(b.jaky_k0) << ".\n"
     << "subsection Continuum\n"
-    << "  set youngs modulus = " << number(eq.youngs) << "\n"
-    << "  set poisson ratio = " << number(eq.poisson) << "\n"
-    << "  set friction angle = " << number(b.friction_angle) << "\n"
-    << "  set dilatancy angle = " << number(b.dilatancy_angle) << "\n"
+    << "  set youngs modulus = " << table_number(eq.youngs) << "\n"
+    << "  set poisson ratio = " << table_number(eq.poisson) << "\n"
+    << "  set friction angle = " << table_number(b.friction_angle) << "\n"
+    << "  set dilatancy angle = " << table_number(b.dilatancy_angle) << "\n"
     << "end\n";
   dem::io::write_text_atomically(folder / "material.prm", m.str());
 }

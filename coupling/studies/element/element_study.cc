@@ -9,6 +9,7 @@
 #include "coupling/studies/dem_run.h"
 #include "coupling/studies/element/element_run.h"
 #include "coupling/studies/figure_script.h"
+#include "coupling/studies/report_format.h"
 #include "dem/files/atomic_file.h"
 #include "dem/files/json_number.h"
 
@@ -17,14 +18,6 @@ namespace upgrain::coupling {
 namespace fs = std::filesystem;
 
 namespace {
-
-// 9 significant digits in the tables; empty when not finite.
-std::string number(double v) {
-  if (!std::isfinite(v)) return "";
-  char b[40];
-  std::snprintf(b, sizeof b, "%.9g", v);
-  return b;
-}
 
 std::string isotropic_table(const ElementResult& r) {
   std::ostringstream t;
@@ -36,11 +29,12 @@ std::string isotropic_table(const ElementResult& r) {
        "target,p_x,p_y,p_z,p,relative_error,solid_fraction,contacts,coordination,p_before,p_after,"
        "volumetric_strain,bulk_modulus\n";
   for (const IsotropicRecord& k : r.isotropic)
-    t << number(k.target) << ',' << number(k.pressure[0]) << ',' << number(k.pressure[1]) << ','
-      << number(k.pressure[2]) << ',' << number(k.mean_pressure) << ','
-      << number(k.mean_pressure / k.target - 1.0) << ',' << number(k.solid_fraction) << ',' << k.contacts
-      << ',' << number(k.coordination) << ',' << number(k.pressure_before) << ',' << number(k.pressure_after)
-      << ',' << number(k.volumetric_strain) << ',' << number(k.bulk_modulus) << '\n';
+    t << table_number(k.target) << ',' << table_number(k.pressure[0]) << ',' << table_number(k.pressure[1])
+      << ',' << table_number(k.pressure[2]) << ',' << table_number(k.mean_pressure) << ','
+      << table_number(k.mean_pressure / k.target - 1.0) << ',' << table_number(k.solid_fraction) << ','
+      << k.contacts << ',' << table_number(k.coordination) << ',' << table_number(k.pressure_before) << ','
+      << table_number(k.pressure_after) << ',' << table_number(k.volumetric_strain) << ','
+      << table_number(k.bulk_modulus) << '\n';
   return t.str();
 }
 
@@ -58,11 +52,12 @@ std::string triaxial_table(const ElementResult& r) {
     const ElementTriaxialRecord& x = r.triaxial[k];
     const dem::TriaxialState& s = x.state;
     const double sum = s.axial_stress + s.lateral_stress;
-    t << k << ',' << number(x.time) << ',' << number(s.axial_strain) << ',' << number(s.volumetric_strain)
-      << ',' << number(s.axial_stress) << ',' << number(s.lateral_stress) << ',' << number(x.mean_stress)
-      << ',' << number(x.deviator) << ',' << number(x.deviator / x.mean_stress) << ','
-      << (sum > 0.0 ? number(dem::mobilised_friction_angle(s.axial_stress, s.lateral_stress)) : "") << ','
-      << number(x.solid_fraction) << ',' << number(x.coordination) << '\n';
+    t << k << ',' << table_number(x.time) << ',' << table_number(s.axial_strain) << ','
+      << table_number(s.volumetric_strain) << ',' << table_number(s.axial_stress) << ','
+      << table_number(s.lateral_stress) << ',' << table_number(x.mean_stress) << ','
+      << table_number(x.deviator) << ',' << table_number(x.deviator / x.mean_stress) << ','
+      << (sum > 0.0 ? table_number(dem::mobilised_friction_angle(s.axial_stress, s.lateral_stress)) : "")
+      << ',' << table_number(x.solid_fraction) << ',' << table_number(x.coordination) << '\n';
   }
   return t.str();
 }
@@ -83,13 +78,14 @@ std::string shear_table(const ElementResult& r) {
        "fraction\n";
   const bool fitted = r.rheology_error.empty();
   for (const ShearSteadyState& x : r.shear)
-    t << number(x.target_inertial_number) << ',' << number(x.shear_rate) << ',' << x.steps << ','
-      << number(x.inertial_number) << ',' << number(x.friction) << ',' << number(x.friction_spread) << ','
-      << number(x.normal_stress) << ',' << number(x.mean_stress) << ',' << number(x.mobilised_angle) << ','
-      << number(x.intermediate_ratio) << ',' << number(x.matsuoka_nakai_angle) << ','
-      << number(x.solid_fraction) << ',' << number(x.coordination) << ','
-      << (fitted ? number(r.mu_of_i(x.inertial_number)) : "") << ','
-      << (fitted ? number(r.phi_of_i(x.inertial_number)) : "") << '\n';
+    t << table_number(x.target_inertial_number) << ',' << table_number(x.shear_rate) << ',' << x.steps << ','
+      << table_number(x.inertial_number) << ',' << table_number(x.friction) << ','
+      << table_number(x.friction_spread) << ',' << table_number(x.normal_stress) << ','
+      << table_number(x.mean_stress) << ',' << table_number(x.mobilised_angle) << ','
+      << table_number(x.intermediate_ratio) << ',' << table_number(x.matsuoka_nakai_angle) << ','
+      << table_number(x.solid_fraction) << ',' << table_number(x.coordination) << ','
+      << (fitted ? table_number(r.mu_of_i(x.inertial_number)) : "") << ','
+      << (fitted ? table_number(r.phi_of_i(x.inertial_number)) : "") << '\n';
   return t.str();
 }
 
@@ -101,11 +97,12 @@ std::string shear_path_table(const ElementResult& r) {
        "target_inertial_number,shear_strain,tau,normal_stress,p,friction,phi_mobilised,b,phi_matsuoka_nakai,"
        "solid_fraction,coordination\n";
   for (const ShearPathRecord& x : r.shear_path)
-    t << number(x.target_inertial_number) << ',' << number(x.shear_strain) << ',' << number(x.shear_stress)
-      << ',' << number(x.normal_stress) << ',' << number(x.mean_stress) << ','
-      << number(x.shear_stress / x.normal_stress) << ',' << number(x.mobilised_angle) << ','
-      << number(x.intermediate_ratio) << ',' << number(x.matsuoka_nakai_angle) << ','
-      << number(x.solid_fraction) << ',' << number(x.coordination) << '\n';
+    t << table_number(x.target_inertial_number) << ',' << table_number(x.shear_strain) << ','
+      << table_number(x.shear_stress) << ',' << table_number(x.normal_stress) << ','
+      << table_number(x.mean_stress) << ',' << table_number(x.shear_stress / x.normal_stress) << ','
+      << table_number(x.mobilised_angle) << ',' << table_number(x.intermediate_ratio) << ','
+      << table_number(x.matsuoka_nakai_angle) << ',' << table_number(x.solid_fraction) << ','
+      << table_number(x.coordination) << '\n';
   return t.str();
 }
 
@@ -130,19 +127,21 @@ std::string material_file(const std::string& source, const ElementResult& r) {
   const dem::FrictionStrength& s = r.strength;
   std::ostringstream m;
   m << "# Upgrain material from the element tests (docs/element-tests.md) of " << source << " on a periodic\n"
-    << "# cell: the bulk modulus K = " << number(last.bulk_modulus)
-    << " Pa at p = " << number(last.mean_pressure)
-    << " Pa (isotropic.csv), the secant modulus E50 = " << number(r.e50) << " Pa of the drained\n"
-    << "# triaxial compression at sigma_3 = " << number(r.confining_pressure)
-    << " Pa (triaxial.csv); nu = (3 K - E50) / (6 K). Peak phi = " << number(s.peak_angle)
-    << " deg at axial strain " << number(s.peak_strain) << "\n# with psi = " << number(s.peak_dilatancy_angle)
-    << " deg; critical state phi = " << number(s.critical_angle) << " +- " << number(s.critical_spread)
-    << " deg. The continuum takes the peak's (psi clamped to [0, phi]).\n"
+    << "# cell: the bulk modulus K = " << table_number(last.bulk_modulus)
+    << " Pa at p = " << table_number(last.mean_pressure)
+    << " Pa (isotropic.csv), the secant modulus E50 = " << table_number(r.e50) << " Pa of the drained\n"
+    << "# triaxial compression at sigma_3 = " << table_number(r.confining_pressure)
+    << " Pa (triaxial.csv); nu = (3 K - E50) / (6 K). Peak phi = " << table_number(s.peak_angle)
+    << " deg at axial strain " << table_number(s.peak_strain)
+    << "\n# with psi = " << table_number(s.peak_dilatancy_angle)
+    << " deg; critical state phi = " << table_number(s.critical_angle) << " +- "
+    << table_number(s.critical_spread) << " deg. The continuum takes the peak's (psi clamped to [0, phi]).\n"
     << "subsection Continuum\n"
-    << "  set youngs modulus = " << number(r.e50) << "\n"
-    << "  set poisson ratio = " << number(r.poisson_ratio) << "\n"
-    << "  set friction angle = " << number(s.peak_angle) << "\n"
-    << "  set dilatancy angle = " << number(std::clamp(s.peak_dilatancy_angle, 0.0, s.peak_angle)) << "\n"
+    << "  set youngs modulus = " << table_number(r.e50) << "\n"
+    << "  set poisson ratio = " << table_number(r.poisson_ratio) << "\n"
+    << "  set friction angle = " << table_number(s.peak_angle) << "\n"
+    << "  set dilatancy angle = " << table_number(std::clamp(s.peak_dilatancy_angle, 0.0, s.peak_angle))
+    << "\n"
     << "end\n";
   return m.str();
 }
@@ -178,7 +177,7 @@ std::string report_section(const ElementResult& r, const std::string& why_no_mat
   m << (why_no_material.empty() ? "Material: `material.prm`.\n"
                                 : "No material file: " + why_no_material + ".\n");
   if (!r.shear.empty()) {
-    m << "\n### Simple shear at a constant normal stress\n\nP = " << number(r.confining_pressure)
+    m << "\n### Simple shear at a constant normal stress\n\nP = " << table_number(r.confining_pressure)
       << " Pa; each inertial number sheared from the one before (the first from the last isotropic state), "
          "the steady state over the last half of its strain.\n\n"
       << "| I | friction tau/P | spread | phi mobilised (deg) | b | phi Matsuoka-Nakai (deg) | solid "

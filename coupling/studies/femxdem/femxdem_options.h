@@ -1,0 +1,34 @@
+#pragma once
+// The FEMxDEM section of a scene file (docs/femxdem.md): the specimen, its mesh and loading, the
+// Newton iteration, and the DEM cell at each quadrature point (coupling/femxdem/rve_options.h).
+// Each default written here once.
+#include "coupling/femxdem/rve_options.h"
+
+namespace upgrain::coupling {
+
+struct FemxdemOptions {
+  // A biaxial (plane-strain) specimen [0, width] x [0, height] in x-y, per unit thickness along z,
+  // as Guo and Zhao's (2014) 50 x 100 mm. 3D needs DEM cells with more than one tilt (planned).
+  double width = 0.05;  // m
+  double height = 0.1;  // m
+  int cells_x = 2;
+  int cells_y = 4;
+  int degree = 1;
+  int quadrature_points = 0;  // per direction; 0: degree + 1
+  bool rough_platens = true;
+  // The top platen shortens the specimen by this strain in load_steps equal steps; the bottom one
+  // is fixed. The sides carry the confining pressure, which is also the DEM cells' initial
+  // isotropic stress (RveOptions::mean_stress), so the specimen starts in equilibrium.
+  double axial_strain = 0.02;
+  int load_steps = 10;
+  // Newton: the criteria of fem/quasi_static/quasi_static_problem.h; a DEM cell's stress is only
+  // as balanced as its relaxation, so the out-of-balance force stops near its tolerance, and the
+  // correction criterion (Guo and Zhao 2014: 1e-2) ends the iteration instead.
+  double residual_tolerance = 1e-4;
+  double correction_tolerance = 1e-2;
+  int max_newton_iterations = 15;
+  int max_step_cuts = 4;
+  RveOptions rve;
+};
+
+}  // namespace upgrain::coupling

@@ -1,0 +1,75 @@
+// The FEMxDEM section: the specimen, mesh, loading and DEM cells of `upgrain --study femxdem`
+// (docs/femxdem.md).
+#include "coupling/input/scene_input.h"
+#include "coupling/input/scene_sections.h"
+
+namespace upgrain::coupling::input {
+
+namespace {
+
+template <class... Members>
+auto femxdem(Members... m) {
+  return at(&SceneInput::femxdem, m...);
+}
+
+}  // namespace
+
+Section femxdem_section() {
+  return {
+      "FEMxDEM",
+      {real("width", femxdem(&FemxdemOptions::width), 1e-6, 1e6, "m",
+            "The specimen [0, width] x [0, height] in plane strain in x-y, per unit thickness along z. The "
+            "bottom (y = 0) is fixed, the top a platen, the sides carry the confining pressure "
+            "(docs/femxdem.md)."),
+       real("height", femxdem(&FemxdemOptions::height), 1e-6, 1e6, "m", "The specimen's extent along y."),
+       integer("cells x", femxdem(&FemxdemOptions::cells_x), 1, 1000, "-",
+               "Elements across the width; each has (quadrature points)^2 DEM cells, one per Gauss point."),
+       integer("cells y", femxdem(&FemxdemOptions::cells_y), 1, 1000, "-", "Elements along the height."),
+       integer("degree", femxdem(&FemxdemOptions::degree), 1, 4, "-", "FE_Q degree of the displacement."),
+       integer("quadrature points", femxdem(&FemxdemOptions::quadrature_points), 0, 5, "-",
+               "Gauss points per direction in an element (0: degree + 1). One, with degree 1, is the reduced "
+               "rule of a single-element test: a mesh of such elements has hourglass modes."),
+       choice("platens", femxdem(&FemxdemOptions::rough_platens), {{"rough", true}, {"smooth", false}},
+              "Rough platens hold the specimen's ends (no tangential motion), smooth ones let them slide."),
+       real("confining pressure", femxdem(&FemxdemOptions::rve, &RveOptions::mean_stress), 1.0, 1e9, "Pa",
+            "The pressure on the specimen's sides, and the isotropic stress every DEM cell is prepared at."),
+       real("axial strain", femxdem(&FemxdemOptions::axial_strain), 1e-7, 0.5, "-",
+            "The top platen's shortening of the specimen over the loading."),
+       integer("load steps", femxdem(&FemxdemOptions::load_steps), 1, 100000, "-",
+               "Equal steps of the axial strain; a step whose Newton iteration or DEM cell fails is cut in "
+               "half, up to 'max step cuts' times."),
+       real("residual tolerance", femxdem(&FemxdemOptions::residual_tolerance), 0.0, 1.0, "-",
+            "Newton ends when the out-of-balance force is below this fraction of the internal force ..."),
+       real("correction tolerance", femxdem(&FemxdemOptions::correction_tolerance), 0.0, 1.0, "-",
+            "... or when the last correction is below this fraction of the step's displacement increment "
+            "(Guo and Zhao 2014: 1e-2; 0: not used)."),
+       integer("max newton iterations", femxdem(&FemxdemOptions::max_newton_iterations), 1, 1000, "-",
+               "Newton iterations of a step before it is cut."),
+       integer("max step cuts", femxdem(&FemxdemOptions::max_step_cuts), 0, 30, "-",
+               "Halvings of a failing step in a row before the study stops with the step, cell and point."),
+       integer("grains per cell", femxdem(&FemxdemOptions::rve, &RveOptions::grains), 10, 100000, "-",
+               "Grains in each DEM cell (a fully periodic cube of the scene's particles, prepared once and "
+               "copied to every Gauss point)."),
+       real("steps per unit strain", femxdem(&FemxdemOptions::rve, &RveOptions::steps_per_unit_strain), 1.0,
+            1e9, "-",
+            "A DEM cell deforms by an increment Delta H in max(this max|Delta H_ij|, 2) steps (Guo and Zhao "
+            "2014: 1e5)."),
+       real("unbalanced force tolerance",
+            femxdem(&FemxdemOptions::rve, &RveOptions::unbalanced_force_tolerance), 1e-12, 1.0, "-",
+            "A deformed DEM cell is held still until its mean resultant force is below this fraction of its "
+            "mean contact force (Yade's unbalancedForce) ..."),
+       integer("relaxation step cap", femxdem(&FemxdemOptions::rve, &RveOptions::relaxation_step_cap), 1, 1e9,
+               "-",
+               "... or for at most this many steps: then the cell has not converged and the step is cut."),
+       choice(
+           "tangent", femxdem(&FemxdemOptions::rve, &RveOptions::tangent),
+           {{"contact stiffness", RveTangent::contact_stiffness},
+            {"perturbation", RveTangent::perturbation},
+            {"elastic", RveTangent::elastic}},
+           "The DEM cell's tangent: (1/V) sum over contacts of the contact stiffness (Kruyt and Rothenburg "
+           "1998), forward differences of six extra trials, or the prepared cell's contact tangent kept "
+           "fixed (docs/femxdem.md).")},
+      nullptr};
+}
+
+}  // namespace upgrain::coupling::input

@@ -1,0 +1,164 @@
+#include "coupling/studies/femxdem/femxdem_study.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <sstream>
+
+#include "coupling/femxdem/rve_point.h"
+#include "coupling/studies/dem_run.h"
+#include "coupling/studies/figure_script.h"
+#include "coupling/studies/report_format.h"
+#include "dem/files/atomic_file.h"
+#include "dem/files/json_number.h"
+
+namespace upgrain::coupling {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The platen's mean axial stress, compression positive: its reaction per unit thickness over
+// the width.
+double axial_stress(const fem::LoadStepRecord& s, const FemxdemOptions& o) {
+  return -s.platen_force / o.width;
+}
+
+std::string load_displacement_table(const fem::QuasiStaticResult& r, const FemxdemOptions& o) {
+  std::ostringstream t;
+  t << "# Upgrain FEM x DEM biaxial compression (docs/femxdem.md). SI units, compression positive. "
+       "axial_strain = -platen displacement / height; sigma_1 = the top platen's reaction per unit "
+       "thickness over the width; sigma_3 = the confining pressure; newton_iterations summed over the "
+       "step's sub-steps; grain_steps = the DEM cells' work (grain-steps, every rank); wall_s = the "
+       "step's wall time (the slowest rank's)\n"
+       "step,platen_displacement,axial_strain,sigma_1,sigma_3,q,q_over_p,newton_iterations,cuts,"
+       "grain_steps,wall_s\n";
+  const double s3 = o.rve.mean_stress;
+  for (const fem::LoadStepRecord& s : r.steps) {
+    const double s1 = axial_stress(s, o);
+    const double p = (s1 + 2.0 * s3) / 3.0, q = s1 - s3;
+    t << s.step << ',' << table_number(s.platen_displacement) << ','
+      << table_number(0.0 - s.platen_displacement / o.height) << ',' << table_number(s1) << ','
+      << table_number(s3) << ',' << table_number(q) << ',' << table_number(q / p) << ','
+      << s.newton_iterations << ',' << s.cuts << ',' << table_number(s.cost) << ',' << table_number(s.seconds)
+      << '\n';
+  }
+  return t.str();
+}
+
+std::string points_table(const fem::QuasiStaticResult& r) {
+  std::ostringstream t;
+  t << "# Upgrain FEM x DEM: every Gauss point's DEM cell at the last load step (docs/femxdem.md). SI "
+       "units, tension positive; eps the small strain of the point's displacement gradient; p = -tr "
+       "sigma / 3, q = sqrt(3/2) |dev sigma|\n"
+       "cell,point,x,y,sigma_xx,sigma_yy,sigma_zz,sigma_xy,eps_xx,eps_yy,eps_xy,p,q\n";
+  for (const fem::PointSummary& s : r.points) {
+    const fem::Mat3x3 sigma = fem::mandel::to_matrix(s.stress);
+    const fem::Mat3x3 eps = 0.5 * (s.displacement_gradient + s.displacement_gradient.transpose());
+    t << s.place.cell << ',' << s.place.index << ',' << table_number(s.place.position[0]) << ','
+      << table_number(s.place.position[1]) << ',' << table_number(sigma(0, 0)) << ','
+      << table_number(sigma(1, 1)) << ',' << table_number(sigma(2, 2)) << ',' << table_number(sigma(0, 1))
+      << ',' << table_number(eps(0, 0)) << ',' << table_number(eps(1, 1)) << ',' << table_number(eps(0, 1))
+      << ',' << table_number(-sigma.trace() / 3.0) << ','
+      << table_number(std::sqrt(1.5) * fem::mandel::deviator(s.stress).norm()) << '\n';
+  }
+  return t.str();
+}
+
+}  // namespace
+
+fem::QuasiStaticProblem biaxial_problem(const FemxdemOptions& o) {
+  fem::QuasiStaticProblem p;
+  p.dimension = 2;
+  p.size = {o.width, o.height, 1.0};
+  p.cells = {static_cast<unsigned>(o.cells_x), static_cast<unsigned>(o.cells_y), 1};
+  p.degree = static_cast<unsigned>(o.degree);
+  p.quadrature_points = static_cast<unsigned>(o.quadrature_points);
+  p.faces[0] = {fem::FaceSupport::pressure, o.rve.mean_stress};
+  p.faces[1] = {fem::FaceSupport::pressure, o.rve.mean_stress};
+  p.faces[2].support = fem::FaceSupport::fixed;
+  p.faces[3].support = o.rough_platens ? fem::FaceSupport::rough_platen : fem::FaceSupport::smooth_platen;
+  if (!o.rough_platens) p.faces[2].support = fem::FaceSupport::roller;
+  p.platen_displacement = -o.axial_strain * o.height;
+  p.load_steps = static_cast<unsigned>(o.load_steps);
+  p.residual_tolerance = o.residual_tolerance;
+  p.correction_tolerance = o.correction_tolerance;
+  p.max_newton_iterations = static_cast<unsigned>(o.max_newton_iterations);
+  p.max_step_cuts = static_cast<unsigned>(o.max_step_cuts);
+  return p;
+}
+
+int run_femxdem_study(const SceneInput& in, MPI_Comm comm, const StudyHooks&) {
+  const FemxdemOptions& o = in.femxdem;
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  const fs::path folder = fs::path(in.output.folder) / "femxdem";
+  on_rank0(comm, [&] { dem::io::create_folder(folder); });
+
+  // Every rank prepares the same cell (deterministic, on MPI_COMM_SELF) rather than receiving it.
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto prepared = std::make_shared<const RveTemplate>(prepare_rve(in.scene, o.rve));
+  const double preparation_seconds = seconds_since(t0);
+  if (rank == 0)
+    std::printf(
+        "  femxdem: the DEM cell: %ld grains, %ld contacts, p %.6g Pa, prepared in %ld steps (%.1f s)\n",
+        prepared->grains, prepared->contacts, -fem::mandel::trace(prepared->stress) / 3.0, prepared->steps,
+        preparation_seconds);
+
+  const fem::QuasiStaticProblem problem = biaxial_problem(o);
+  fem::QuasiStaticOutput output{
+      folder.string(), "femxdem", [&](const fem::LoadStepRecord& s) {
+        if (rank != 0) return;
+        std::printf(
+            "  femxdem: step %u/%u  eps_a %.4f  sigma_1 %.6g Pa  Newton %u  cuts %u  "
+            "%.3g grain-steps  %.1f s\n",
+            s.step, problem.load_steps, 0.0 - s.platen_displacement / o.height, axial_stress(s, o),
+            s.newton_iterations, s.cuts, s.cost, s.seconds);
+        std::fflush(stdout);
+      }};
+  const RveOptions rve = o.rve;
+  const auto t1 = std::chrono::steady_clock::now();
+  const fem::QuasiStaticResult r = fem::solve_quasi_static(
+      problem, [&](const fem::PointPlace&) { return std::make_unique<RveCell>(prepared, rve); }, comm,
+      output);
+  const double solve_seconds = seconds_since(t1);
+
+  on_rank0(comm, [&] {
+    dem::io::write_text_atomically(folder / "load_displacement.csv", load_displacement_table(r, o));
+    dem::io::write_text_atomically(folder / "points.csv", points_table(r));
+    using dem::io::json_number;
+    double grain_steps = 0.0;
+    unsigned iterations = 0;
+    for (const fem::LoadStepRecord& s : r.steps) {
+      grain_steps += s.cost;
+      iterations += s.newton_iterations;
+    }
+    int ranks = 1;
+    MPI_Comm_size(comm, &ranks);
+    std::ostringstream j;
+    j << "{\n  \"study\": \"femxdem\",\n  \"ranks\": " << ranks << ",\n  \"cells\": " << r.n_cells
+      << ",\n  \"gauss_points\": " << r.points.size() << ",\n  \"dofs\": " << r.n_dofs
+      << ",\n  \"grains_per_cell\": " << prepared->grains << ",\n  \"cell_contacts\": " << prepared->contacts
+      << ",\n  \"preparation_steps\": " << prepared->steps
+      << ",\n  \"preparation_s\": " << json_number(preparation_seconds)
+      << ",\n  \"solve_s\": " << json_number(solve_seconds) << ",\n  \"load_steps\": " << r.steps.size() - 1
+      << ",\n  \"newton_iterations\": " << iterations << ",\n  \"grain_steps\": " << json_number(grain_steps)
+      << ",\n  \"grain_steps_per_core_second\": " << json_number(grain_steps / (solve_seconds * ranks))
+      << ",\n  \"final_axial_stress_Pa\": " << json_number(axial_stress(r.steps.back(), o)) << "\n}\n";
+    dem::io::write_text_atomically(fs::path(in.output.folder) / "summary.json", j.str());
+    run_figure_script("studies/femxdem/plot_femxdem.py", folder, "plots.log", {"load_displacement.png"});
+    std::printf(
+        "  femxdem: %zu Gauss points, %u Newton iterations, %.3g grain-steps in %.1f s (%.3g per "
+        "core-second)\n",
+        r.points.size(), iterations, grain_steps, solve_seconds, grain_steps / (solve_seconds * ranks));
+  });
+  return 0;
+}
+
+}  // namespace upgrain::coupling
