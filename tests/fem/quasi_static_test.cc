@@ -241,6 +241,25 @@ class BrittlePoint final : public PointState {
   Mat3x3 committed_ = Mat3x3::Zero(), trial_ = Mat3x3::Zero();
 };
 
+// A material that throws instead of answering beyond a strain increment (as a DEM cell does for an
+// inverted element): the step fails like a non-converged one, on every rank, and is cut.
+class RefusingPoint final : public PointState {
+ public:
+  PointResponse respond(const Mat3x3& h) override {
+    if ((h - committed_).cwiseAbs().maxCoeff() > 3e-3) throw std::invalid_argument("increment too large");
+    trial_ = h;
+    return inner_.respond(h);
+  }
+  void commit() override { committed_ = trial_; }
+  [[nodiscard]] std::unique_ptr<PointState> clone() const override {
+    return std::make_unique<RefusingPoint>(*this);
+  }
+
+ private:
+  LinearElasticPoint inner_{elasticity()};
+  Mat3x3 committed_ = Mat3x3::Zero(), trial_ = Mat3x3::Zero();
+};
+
 QuasiStaticProblem uniaxial() {
   QuasiStaticProblem p;
   p.dimension = 2;
@@ -261,6 +280,14 @@ TEST(QuasiStatic, AFailingStepIsCutAndTheCutsCounted) {
   ASSERT_EQ(r.steps.size(), 2u);
   EXPECT_EQ(r.steps[1].cuts, 2u);  // 1e-2 -> 5e-3 -> 2.5e-3, four sub-steps of 2.5e-3
   EXPECT_DOUBLE_EQ(r.steps[1].platen_displacement, -0.001);
+  EXPECT_NEAR(r.points.front().displacement_gradient(1, 1), -0.01, 1e-14);
+}
+
+TEST(QuasiStatic, APointThatThrowsFailsItsStepWhichIsCut) {
+  const QuasiStaticResult r = solve_quasi_static(
+      uniaxial(), [](const PointPlace&) { return std::make_unique<RefusingPoint>(); }, MPI_COMM_WORLD);
+  ASSERT_EQ(r.steps.size(), 2u);
+  EXPECT_EQ(r.steps[1].cuts, 2u);
   EXPECT_NEAR(r.points.front().displacement_gradient(1, 1), -0.01, 1e-14);
 }
 
