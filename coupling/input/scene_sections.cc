@@ -5,27 +5,13 @@
 namespace upgrain::coupling::input {
 
 const std::vector<Section>& scene_sections() {
-  static const std::vector<Section> table = {simulation_section(),
-                                             effects_section(),
-                                             particles_section(),
-                                             contact_section(),
-                                             container_section(),
-                                             cell_section(),
-                                             lid_section(),
-                                             fill_section(),
-                                             insertion_section(),
-                                             output_section(),
-                                             checkpoint_section(),
-                                             parallel_section(),
-                                             stress_section(),
-                                             strain_section(),
-                                             study_section(),
-                                             accuracy_section(),
-                                             calibration_section(),
-                                             element_section(),
-                                             femxdem_section(),
-                                             coarse_graining_section(),
-                                             continuum_section()};
+  static const std::vector<Section> table = {
+      simulation_section(),  effects_section(), particles_section(),  contact_section(),
+      container_section(),   cell_section(),    lid_section(),        fill_section(),
+      insertion_section(),   output_section(),  checkpoint_section(), parallel_section(),
+      stress_section(),      strain_section(),  study_section(),      accuracy_section(),
+      calibration_section(), element_section(), femxdem_section(),    coarse_graining_section(),
+      continuum_section()};
   return table;
 }
 

@@ -334,17 +334,18 @@ double QuasiStaticSolver<dim>::assemble(const AffineConstraints<double>& constra
       PointRecord& r = *records[q];
       if (!committed && local_failure.empty()) {
         r.displacement_gradient = padded<dim>(grads[q]);
-        const std::string where =
-            "the material at point " + std::to_string(q) + " of cell " + cell->id().to_string();
+        const auto where = [&] {
+          return "the material at point " + std::to_string(q) + " of cell " + cell->id().to_string();
+        };
         // A point that cannot take its trial at all (an inverted element: det F <= 0) fails the step
         // like one that does not converge, on this rank alone: the other ranks learn it below,
         // instead of waiting in the next collective call for a rank that threw.
         try {
           r.response = r.state->respond(r.displacement_gradient);
           cost_ += r.response.cost;
-          if (!r.response.converged) local_failure = where + " did not converge: " + r.response.failure;
+          if (!r.response.converged) local_failure = where() + " did not converge: " + r.response.failure;
         } catch (const std::exception& e) {
-          local_failure = where + " refused its trial: " + e.what();
+          local_failure = where() + " refused its trial: " + e.what();
         }
       }
       const PointResponse& answer = committed ? r.committed_response : r.response;
