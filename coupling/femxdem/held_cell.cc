@@ -1,29 +1,34 @@
 #include "coupling/femxdem/held_cell.h"
 
-#include <span>
-
+#include "dem/engine/relaxation.h"
 #include "dem/engine/unbalanced_force.h"
 
 namespace upgrain::coupling {
 
-double unbalanced_force_ratio(const dem::Simulation& sim) {
-  const std::span<const dem::Vec3> forces(sim.particles().force.data(),
-                                          static_cast<std::size_t>(sim.owned()));
-  return dem::unbalanced_force_ratio(forces, sim.contacts());
-}
-
-HeldCellRelaxation relax_held_cell(dem::Simulation& sim, double tolerance, long cap) {
+HeldCellRelaxation relax_held_cell(dem::Simulation& sim, RveRelaxation method, double tolerance, long cap,
+                                   const std::function<void()>& after_step) {
   sim.hold_cell(true);
   HeldCellRelaxation r;
-  if (!sim.contacts_recorded()) {
-    sim.step();
-    ++r.steps;
+  if (method == RveRelaxation::fire) {
+    dem::RelaxationOptions o;
+    o.measure = dem::EquilibriumMeasure::unbalanced_force;
+    o.force_tolerance = tolerance;
+    o.max_steps = cap;
+    if (after_step) o.on_step = [&](const dem::RelaxationResult&) { after_step(); };
+    const dem::RelaxationResult f = dem::relax_to_equilibrium(sim, o);
+    sim.hold_cell(true);
+    return {f.steps, f.unbalanced_force, f.converged};
   }
-  r.unbalanced_force = unbalanced_force_ratio(sim);
-  while (r.unbalanced_force > tolerance && r.steps < cap) {
+  const auto step = [&] {
     sim.step();
     ++r.steps;
-    r.unbalanced_force = unbalanced_force_ratio(sim);
+    if (after_step) after_step();
+  };
+  if (!sim.contacts_recorded()) step();
+  r.unbalanced_force = dem::unbalanced_force_ratio(sim);
+  while (r.unbalanced_force > tolerance && r.steps < cap) {
+    step();
+    r.unbalanced_force = dem::unbalanced_force_ratio(sim);
   }
   r.converged = r.unbalanced_force <= tolerance;
   return r;

@@ -13,6 +13,12 @@ enum class RveTangent {
   elastic,            // the prepared cell's contact-stiffness tangent, kept fixed
 };
 
+// How a held cell is brought to equilibrium (held_cell.h, docs/femxdem.md).
+enum class RveRelaxation {
+  damped,  // the run's own dynamics, damped by the contact dashpots alone
+  fire,    // FIRE's velocity mixing and stops (Bitzek et al. 2006) on the same dynamics
+};
+
 struct RveOptions {
   // Grains in the cell (the tests use 60).
   long grains = 200;
@@ -29,6 +35,7 @@ struct RveOptions {
   // change (tests/femxdem/rve_cell_test.cc); at 1e-4 holding the cell moves it by under 1 %.
   double unbalanced_force_tolerance = 1e-4;
   long relaxation_step_cap = 20000;
+  RveRelaxation relaxation = RveRelaxation::fire;
   RveTangent tangent = RveTangent::contact_stiffness;
   // The strain of each forward difference of the perturbation tangent (Mandel components): above
   // the relaxed cell's noise (at 1e-5 the differences of a 60-grain cell scatter by tens of per

@@ -1,5 +1,6 @@
 #include "coupling/femxdem/rve_point.h"
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <utility>
@@ -14,6 +15,13 @@ namespace upgrain::coupling {
 
 namespace {
 
+// The grains' mean angular velocity about z (rad/s).
+double mean_spin_z(const dem::Simulation& sim) {
+  double sum = 0.0;
+  for (int i = 0; i < sim.owned(); ++i) sum += sim.particles().omega[i].z();
+  return sim.owned() > 0 ? sum / sim.owned() : 0.0;
+}
+
 std::string number(double v) {
   char b[32];
   std::snprintf(b, sizeof b, "%.3g", v);
@@ -23,10 +31,11 @@ std::string number(double v) {
 }  // namespace
 
 RveCell::RveCell(std::shared_ptr<const RveTemplate> prepared, const RveOptions& o)
-    : prepared_(std::move(prepared)),
-      options_(o),
-      committed_(prepared_->state),
-      committed_cell_(prepared_->reference_cell) {}
+    : prepared_(std::move(prepared)), options_(o), committed_(prepared_->state) {
+  committed_record_.unbalanced_force = prepared_->unbalanced_force;
+  committed_record_.contacts = prepared_->contacts;
+  committed_record_.cell = prepared_->reference_cell;
+}
 
 RveCell::Trial RveCell::run_trial(const fem::Mat3x3& h) const {
   const CellFactor f = upper_triangular_factor(fem::Mat3x3::Identity() + h);
@@ -34,7 +43,7 @@ RveCell::Trial RveCell::run_trial(const fem::Mat3x3& h) const {
   const dem::Mat3 target = f.stretch * prepared_->reference_cell;
   const double dt = prepared_->scene.time_step;
   const long n = increment_steps(h - committed_h_, options_);
-  const dem::Mat3 l = increment_velocity_gradient(committed_cell_, target, n, dt);
+  const dem::Mat3 l = increment_velocity_gradient(committed_record_.cell, target, n, dt);
   dem::CellMotion m;
   m.axis = {cell_rate(l(0, 0)), cell_rate(l(1, 1)), cell_rate(l(2, 2))};
   m.shear = {{kTiltShear, kTiltGradient}, l(kTiltShear, kTiltGradient)};
@@ -42,12 +51,18 @@ RveCell::Trial RveCell::run_trial(const fem::Mat3x3& h) const {
   dem::EngineState s = committed_;
   continue_under(scene, s, m);
   dem::Simulation sim(scene, s, MPI_COMM_SELF, prepared_->engine);
-  sim.run(n);
-  const HeldCellRelaxation r =
-      relax_held_cell(sim, options_.unbalanced_force_tolerance, options_.relaxation_step_cap);
+  double rotation = committed_record_.grain_rotation;
+  const auto turn = [&] { rotation += mean_spin_z(sim) * dt; };
+  for (long k = 0; k < n; ++k) {
+    sim.step();
+    turn();
+  }
+  const HeldCellRelaxation r = relax_held_cell(sim, options_.relaxation, options_.unbalanced_force_tolerance,
+                                               options_.relaxation_step_cap, turn);
   Trial t;
   t.h = h;
-  t.record = {n, r.steps, r.unbalanced_force, sim.diagnostics().particle_contacts, sim.cell_matrix()};
+  t.record = {n,       r.steps, r.unbalanced_force, sim.diagnostics().particle_contacts, sim.cell_matrix(),
+              rotation};
   t.converged = r.converged;
   t.grain_steps = sim.particle_count() * (n + r.steps);
   // The stress of the cell R h0, turned back into the solver's frame: that of F h0.
@@ -104,7 +119,16 @@ void RveCell::commit() {
   if (!trial_) return;
   committed_ = trial_->state;
   committed_h_ = trial_->h;
-  committed_cell_ = trial_->record.cell;
+  committed_record_ = trial_->record;
+}
+
+std::vector<fem::PointMeasure> RveCell::measures() const {
+  const RveTrialRecord& r = committed_record_;
+  return {{"solid_fraction", prepared_->grain_volume / std::abs(r.cell.determinant())},
+          {"coordination", 2.0 * static_cast<double>(r.contacts) / static_cast<double>(prepared_->grains)},
+          {"grain_rotation", r.grain_rotation},
+          {"held_steps", static_cast<double>(r.relaxation_steps)},
+          {"unbalanced_force", r.unbalanced_force}};
 }
 
 std::unique_ptr<fem::PointState> RveCell::clone() const { return std::make_unique<RveCell>(*this); }

@@ -23,6 +23,9 @@ struct RveTrialRecord {
   double unbalanced_force = 0.0;
   long contacts = 0;
   dem::Mat3 cell = dem::Mat3::Zero();  // the cell matrix reached
+  // The grains' mean rotation about z since the preparation (rad, counter-clockwise positive):
+  // their spin integrated over every step of the committed trials and this one.
+  double grain_rotation = 0.0;
 };
 
 class RveCell : public fem::PointState {
@@ -33,6 +36,10 @@ class RveCell : public fem::PointState {
   fem::PointResponse respond(const fem::Mat3x3& h) override;
   void commit() override;
   [[nodiscard]] std::unique_ptr<fem::PointState> clone() const override;
+  // Of the committed cell: solid_fraction (the grains' volume over the cell's), coordination
+  // (2 touching pairs per grain), grain_rotation (RveTrialRecord), held_steps and
+  // unbalanced_force (of its last trial's relaxation).
+  [[nodiscard]] std::vector<fem::PointMeasure> measures() const override;
 
   // The last respond()'s main trial (not the perturbations').
   [[nodiscard]] const RveTrialRecord& last_trial() const { return record_; }
@@ -55,7 +62,7 @@ class RveCell : public fem::PointState {
   RveOptions options_;
   dem::EngineState committed_;
   fem::Mat3x3 committed_h_ = fem::Mat3x3::Zero();
-  dem::Mat3 committed_cell_;
+  RveTrialRecord committed_record_;  // the committed trial's (the prepared cell's at first)
   std::optional<Trial> trial_;
   RveTrialRecord record_;
 };

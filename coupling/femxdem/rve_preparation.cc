@@ -9,6 +9,7 @@
 #include "coupling/femxdem/rve_tangent.h"
 #include "coupling/studies/element/element_cell.h"
 #include "dem/core/error.h"
+#include "dem/engine/unbalanced_force.h"
 #include "dem/scene/fill.h"
 
 namespace upgrain::coupling {
@@ -59,8 +60,8 @@ RveTemplate prepare_rve(const dem::SceneConfig& scene_in, const RveOptions& o) {
   dem::SceneConfig scene = cell_scene(scene_in, o);
   ElementCell cell(scene, dem::fill_container(scene), MPI_COMM_SELF, {}, {});
   RveTemplate t;
-  while (
-      !(at_pressure(cell.sim(), o) && unbalanced_force_ratio(cell.sim()) <= o.unbalanced_force_tolerance)) {
+  while (!(at_pressure(cell.sim(), o) &&
+           dem::unbalanced_force_ratio(cell.sim()) <= o.unbalanced_force_tolerance)) {
     if (t.steps >= o.preparation_step_cap)
       throw Error("the DEM cell's preparation: the servo did not bring every axis within " +
                   std::to_string(o.servo_tolerance) + " of p0 = " + std::to_string(o.mean_stress) +
@@ -70,8 +71,8 @@ RveTemplate prepare_rve(const dem::SceneConfig& scene_in, const RveOptions& o) {
     t.steps += kServoCheckEvery;
   }
   cell.control(still_cell());
-  const HeldCellRelaxation r =
-      relax_held_cell(cell.sim(), o.unbalanced_force_tolerance, o.preparation_step_cap - t.steps);
+  const HeldCellRelaxation r = relax_held_cell(cell.sim(), o.relaxation, o.unbalanced_force_tolerance,
+                                               o.preparation_step_cap - t.steps);
   t.steps += r.steps;
   if (!r.converged)
     throw Error("the DEM cell's preparation: the held cell did not relax to an unbalanced-force ratio of " +
@@ -87,6 +88,8 @@ RveTemplate prepare_rve(const dem::SceneConfig& scene_in, const RveOptions& o) {
   t.stress = fem::mandel::from_matrix(0.5 * (sigma + sigma.transpose()));
   t.elastic_tangent = contact_tangent(sim, dem::Mat3::Identity());
   t.grains = sim.particle_count();
+  for (int i = 0; i < sim.owned(); ++i)
+    t.grain_volume += 4.0 / 3.0 * std::numbers::pi * std::pow(sim.particles().radius[i], 3);
   t.contacts = sim.diagnostics().particle_contacts;
   t.unbalanced_force = r.unbalanced_force;
   return t;

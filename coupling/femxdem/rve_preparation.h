@@ -23,6 +23,7 @@ struct RveTemplate {
   fem::Vec6 stress = fem::Vec6::Zero();              // its stress (tension positive, Mandel)
   fem::Mat6 elastic_tangent = fem::Mat6::Zero();     // its contact-stiffness tangent
   long grains = 0;
+  double grain_volume = 0.0;    // the grains' volume (m^3), the solid of the solid fraction
   long contacts = 0;            // touching pairs at the end
   long steps = 0;               // the preparation's steps (servo and relaxation)
   double unbalanced_force = 0;  // the ratio at the end

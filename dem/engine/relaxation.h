@@ -17,10 +17,21 @@ namespace upgrain::dem {
 
 struct RelaxationResult;
 
+// What `force_tolerance` bounds.
+enum class EquilibriumMeasure {
+  // Every grain's out-of-balance force |F + m g| over its weight m |g| (over the mean contact
+  // force per grain without gravity), and its torque over m |g| r: the largest of either.
+  grain_residual,
+  // The unbalanced-force ratio (unbalanced_force.h): the mean |F + m g| over the mean contact
+  // force, the criterion of Yade's quasi-static runs, which a cell without gravity can meet
+  // with grains that merely rattle. Torques are not measured.
+  unbalanced_force,
+};
+
 struct RelaxationOptions {
-  // Stop when every grain's out-of-balance force |F + m g| is below this fraction of its
-  // weight and its contact torque below this fraction of m g r.
+  // Stop when the measure below is under this.
   double force_tolerance = 1e-9;
+  EquilibriumMeasure measure = EquilibriumMeasure::grain_residual;
   long max_steps = 200000;
   // FIRE constants (Bitzek et al. 2006, Table I, without the time-step adaptation: the DEM
   // step is already at its stability limit).
@@ -37,6 +48,7 @@ struct RelaxationResult {
   bool converged = false;
   double max_force_residual = 0.0;   // max |F + m g| / (m |g|) over grains
   double max_torque_residual = 0.0;  // max |T| / (m |g| r) over grains
+  double unbalanced_force = 0.0;     // with EquilibriumMeasure::unbalanced_force
   double kinetic_removed = 0.0;      // J, booked in the run's energy balance
 };
 

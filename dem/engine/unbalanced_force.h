@@ -4,11 +4,15 @@
 // (Smilauer et al. 2015, Yade documentation, utils.unbalancedForce). An assembly in static
 // equilibrium has 0; Yade's quasi-static runs stop below 1e-2 to 1e-4. FIRE's residual
 // (relaxation.h) is normalised by the weight, which a periodic cell without gravity lacks.
-// A plain function over one rank's data (MPI_COMM_SELF engines: the FEM x DEM cell).
+// A plain function over one rank's data, and the same ratio of a whole run.
 #include <span>
 
 #include "dem/contact/contact_sample.h"
 #include "dem/core/types.h"
+
+namespace upgrain::dem {
+class Simulation;
+}
 
 namespace upgrain::dem {
 
@@ -17,5 +21,10 @@ namespace upgrain::dem {
 // no wall contact count. 0 when no contact carries a force.
 [[nodiscard]] double unbalanced_force_ratio(std::span<const Vec3> forces,
                                             std::span<const ContactSample> contacts);
+
+// Collective: the ratio of the run's last evaluation over every rank, with its gravity in the
+// resultants (|F + m g|); the sums follow the run's summation, the grains' in a fixed order
+// (particle_sums.h). Needs the contacts recorded at the last step (Simulation::request_contacts).
+[[nodiscard]] double unbalanced_force_ratio(const Simulation& sim);
 
 }  // namespace upgrain::dem

@@ -12,6 +12,7 @@
 // the stress it returns is the Cauchy stress in the solver's frame. Plain C++ and Eigen.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "fem/plasticity/mandel.h"
 
@@ -25,6 +26,12 @@ struct PointResponse {
   double cost = 0.0;            // work spent on this answer (DEM grain-steps; 0 for a closed form)
 };
 
+// A scalar of a point's committed state, written beside its stress (a DEM cell's solid fraction).
+struct PointMeasure {
+  std::string name;
+  double value = 0.0;
+};
+
 class PointState {
  public:
   virtual ~PointState() = default;
@@ -35,6 +42,9 @@ class PointState {
   virtual void commit() = 0;
   // An independent copy (committed state and trial).
   [[nodiscard]] virtual std::unique_ptr<PointState> clone() const = 0;
+  // Scalars of the committed state for the output: the same names in the same order for every
+  // point of a problem. None by default.
+  [[nodiscard]] virtual std::vector<PointMeasure> measures() const { return {}; }
 };
 
 }  // namespace upgrain::fem

@@ -84,27 +84,34 @@ struct LoadStepRecord {
   double seconds = 0.0;           // wall time of the step, the slowest rank's
 };
 
-// Every point's state at the end, gathered on every rank in the order of the cells' ids.
+// A point's committed state, gathered on every rank in the order of the cells' ids.
 struct PointSummary {
   PointPlace place;
   Vec6 stress = Vec6::Zero();
   Mat3x3 displacement_gradient = Mat3x3::Zero();
+  std::vector<double> measures;  // PointState::measures(), named by the problem's measure names
 };
 
 struct QuasiStaticResult {
   std::vector<LoadStepRecord> steps;
-  std::vector<PointSummary> points;
+  std::vector<PointSummary> points;        // at the end
+  std::vector<std::string> measure_names;  // the points' PointState::measures()
   std::uint64_t n_dofs = 0;
   std::uint64_t n_cells = 0;
 };
 
-// What to write: each converged step's displacement and cell-averaged stress and strain as
-// `name`-NNNN.pvtu in `folder` (nothing when empty).
+// What to write: each converged step's displacement, cell-averaged stress and strain, q/p and
+// the points' measures as `name`-NNNN.pvtu in `folder` (nothing when empty).
 struct QuasiStaticOutput {
   std::string folder;
   std::string name = "continuum";
   // Called on every rank after each converged step (a progress line).
   std::function<void(const LoadStepRecord&)> on_step;
+  // Called on every rank after each converged step with every point's committed state
+  // (collective: gathered only when set) and the measures' names.
+  std::function<void(const LoadStepRecord&, const std::vector<std::string>& measure_names,
+                     const std::vector<PointSummary>&)>
+      on_points;
 };
 
 // Throws std::invalid_argument naming the first bad parameter.

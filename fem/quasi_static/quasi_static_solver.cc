@@ -178,6 +178,7 @@ class QuasiStaticSolver {
   double committed_lambda_ = 0.0;
   bool committed_answers_ = false;  // the points have answered at the committed state
   std::vector<std::string> pvd_entries_;
+  std::vector<std::string> measure_names_;  // the points' PointState::measures(), every rank's
 };
 
 template <int dim>
@@ -293,9 +294,23 @@ void QuasiStaticSolver<dim>::make_points() {
       place.index = q;
       for (int d = 0; d < dim; ++d) place.position[d] = fv.quadrature_point(q)[d];
       records[q]->state = make_point_(place);
-      if (!records[q]->state) throw std::runtime_error("femxdem: no material made for cell " + place.cell);
+      if (!records[q]->state)
+        throw std::runtime_error("quasi-static solver: no material made for cell " + place.cell);
     }
   }
+  // The measures' names, from any point (a rank may own no cell).
+  std::vector<std::string> local;
+  for (const auto& cell : triangulation_.active_cell_iterators())
+    if (cell->is_locally_owned()) {
+      for (const PointMeasure& m : history_.get_data(cell).front()->state->measures())
+        local.push_back(m.name);
+      break;
+    }
+  for (auto& names : Utilities::MPI::all_gather(comm_, local))
+    if (!names.empty()) {
+      measure_names_ = std::move(names);
+      break;
+    }
 }
 
 template <int dim>
@@ -480,19 +495,23 @@ void QuasiStaticSolver<dim>::write_step(unsigned step) {
     stress[k].reinit(n_cells);
     strain[k].reinit(n_cells);
   }
-  dealii::Vector<double> mean_pressure(n_cells), deviator(n_cells);
+  dealii::Vector<double> mean_pressure(n_cells), deviator(n_cells), stress_ratio(n_cells);
+  std::vector<dealii::Vector<double>> measures(measure_names_.size(), dealii::Vector<double>(n_cells));
   for (const auto& cell : triangulation_.active_cell_iterators()) {
     if (!cell->is_locally_owned()) continue;
     Vec6 s = Vec6::Zero(), e = Vec6::Zero();
     const auto records = history_.get_data(cell);
+    const unsigned c = cell->active_cell_index();
     for (const auto& r : records) {
       s += r->committed_response.stress;
       e += mandel::from_matrix(0.5 * (r->committed_gradient + r->committed_gradient.transpose()));
+      const std::vector<PointMeasure> m = r->state->measures();
+      for (std::size_t k = 0; k < measures.size() && k < m.size(); ++k)
+        measures[k][c] += m[k].value / static_cast<double>(records.size());
     }
     s /= static_cast<double>(records.size());
     e /= static_cast<double>(records.size());
     const Mat3x3 sm = mandel::to_matrix(s), em = mandel::to_matrix(e);
-    const unsigned c = cell->active_cell_index();
     for (unsigned k = 0; k < 6; ++k) {
       const auto [i, j] = column_mesh::stress_components[k];
       stress[k][c] = sm(i, j);
@@ -500,6 +519,7 @@ void QuasiStaticSolver<dim>::write_step(unsigned step) {
     }
     mean_pressure[c] = -mandel::trace(s) / 3.0;
     deviator[c] = std::sqrt(1.5) * mandel::deviator(s).norm();
+    stress_ratio[c] = mean_pressure[c] != 0.0 ? deviator[c] / mean_pressure[c] : 0.0;
   }
   DataOut<dim> out;
   out.attach_dof_handler(dofs_);
@@ -517,6 +537,9 @@ void QuasiStaticSolver<dim>::write_step(unsigned step) {
   }
   out.add_data_vector(mean_pressure, "p", DataOut<dim>::type_cell_data);
   out.add_data_vector(deviator, "q", DataOut<dim>::type_cell_data);
+  out.add_data_vector(stress_ratio, "q_over_p", DataOut<dim>::type_cell_data);
+  for (std::size_t k = 0; k < measures.size(); ++k)
+    out.add_data_vector(measures[k], measure_names_[k], DataOut<dim>::type_cell_data);
   dealii::Vector<float> subdomain(n_cells);
   for (auto& s : subdomain) s = static_cast<float>(triangulation_.locally_owned_subdomain());
   out.add_data_vector(subdomain, "subdomain");
@@ -549,6 +572,12 @@ std::vector<PointSummary> QuasiStaticSolver<dim>::point_summaries() const {
       for (int d = 0; d < 3; ++d) v.push_back(d < dim ? fv.quadrature_point(q)[d] : 0.0);
       for (int k = 0; k < 6; ++k) v.push_back(records[q]->committed_response.stress[k]);
       for (int k = 0; k < 9; ++k) v.push_back(records[q]->committed_gradient(k / 3, k % 3));
+      const std::vector<PointMeasure> m = records[q]->state->measures();
+      if (m.size() != measure_names_.size())
+        throw std::runtime_error("quasi-static solver: the point " + std::to_string(q) + " of cell " +
+                                 cell->id().to_string() + " has " + std::to_string(m.size()) +
+                                 " measures, another point " + std::to_string(measure_names_.size()));
+      for (const PointMeasure& x : m) v.push_back(x.value);
       local.emplace_back(cell->id().to_string(), std::move(v));
     }
   }
@@ -566,6 +595,7 @@ std::vector<PointSummary> QuasiStaticSolver<dim>::point_summaries() const {
     for (int d = 0; d < 3; ++d) s.place.position[d] = v[1 + d];
     for (int k = 0; k < 6; ++k) s.stress[k] = v[4 + k];
     for (int k = 0; k < 9; ++k) s.displacement_gradient(k / 3, k % 3) = v[10 + k];
+    s.measures.assign(v.begin() + 19, v.end());
     out.push_back(s);
   }
   return out;
@@ -594,6 +624,7 @@ QuasiStaticResult QuasiStaticSolver<dim>::run() {
     result.steps.push_back(std::move(record));
     write_step(result.steps.back().step);
     if (output_.on_step) output_.on_step(result.steps.back());
+    if (output_.on_points) output_.on_points(result.steps.back(), measure_names_, point_summaries());
   };
 
   // Step 0: the body force and the pressures on the points' initial stresses.
@@ -631,6 +662,7 @@ QuasiStaticResult QuasiStaticSolver<dim>::run() {
     record_step(record, reached);
   }
   result.points = point_summaries();
+  result.measure_names = measure_names_;
   return result;
 }
 

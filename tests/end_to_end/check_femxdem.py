@@ -6,8 +6,11 @@
   sigma_1 at step 0 within 5 % of the confining pressure (the DEM cell is prepared within 2 % of
   it on every axis, and the step balances the specimen), growing at every step (the specimen is
   compressed well before its peak), no step cut, and q = sigma_1 - sigma_3;
-- points.csv: one row per Gauss point (4 per Q1 element), each cell's mean stress compressive
-  and finite;
+- points.csv: one row per Gauss point (4 per Q1 element) at the last step, each cell's mean
+  stress compressive and finite, its measures physical (solid fraction in (0.5, 0.75), a
+  coordination above 2, q/p = q / p, a relaxed cell); point_history.csv: the same columns for every
+  step, its last step's rows those of points.csv, step 0's solid fractions within 1 % of each
+  other (one prepared cell copied, strained by step 0's balance only);
 - summary.json: the Gauss points, grains per cell and Newton iterations of the tables;
 - 1 and 2 ranks give the same path and points to 1e-6: not bitwise, since the matrix entries of
   the nodes two ranks share are summed in another order (docs/femxdem.md), and a DEM cell
@@ -71,6 +74,16 @@ for ranks, folder in folders.items():
     assert len(points) == 2 * 4, len(points)
     for p in points:
         assert math.isfinite(float(p['p'])) and float(p['p']) > 0, p
+        assert 0.5 < float(p['solid_fraction']) < 0.75, p
+        assert float(p['coordination']) > 2, p
+        assert abs(float(p['q_over_p']) - float(p['q']) / float(p['p'])) < 1e-8, p
+        assert float(p['unbalanced_force']) <= 1e-4, p
+    history = table(os.path.join(folder, 'point_history.csv'))
+    assert len(history) == (steps + 1) * len(points), len(history)
+    assert history[-len(points):] == points
+    phi0 = [float(h['solid_fraction']) for h in history if h['step'] == '0']
+    assert max(phi0) < 1.01 * min(phi0), phi0
+    assert all(math.isfinite(float(h['grain_rotation'])) for h in history)
     summary = json.load(open(os.path.join(folder, '..', 'summary.json')))
     assert summary['gauss_points'] == len(points) and summary['ranks'] == ranks
     assert summary['grains_per_cell'] == 60

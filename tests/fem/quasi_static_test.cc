@@ -9,8 +9,11 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "../common/world.h"
 #include "fem/analytic/confined_column.h"
@@ -307,6 +310,30 @@ TEST(QuasiStatic, AStepThatFailsAfterItsCutsNamesTheCellAndThePoint) {
   }
 }
 
+// A linear elastic point that reports the committed H_yy and its place's height as measures.
+class MeasuredPoint final : public PointState {
+ public:
+  explicit MeasuredPoint(double y) : y_(y) {}
+  PointResponse respond(const Mat3x3& h) override {
+    trial_ = h(1, 1);
+    return elastic_.respond(h);
+  }
+  void commit() override { committed_ = trial_; }
+  [[nodiscard]] std::unique_ptr<PointState> clone() const override {
+    return std::make_unique<MeasuredPoint>(*this);
+  }
+  [[nodiscard]] std::vector<PointMeasure> measures() const override {
+    return {{"h_yy", committed_}, {"y", y_}};
+  }
+
+ private:
+  LinearElasticPoint elastic_{elasticity()};
+  double y_, trial_ = 0.0, committed_ = 0.0;
+};
+
+// Each converged step's PVTU and the series; every point's measures reach the points handed to
+// on_points after each step (the committed H_yy of the uniaxial compression: the platen's
+// strain, the same at every point) and the PVTU's cell data.
 TEST(QuasiStatic, WritesEachStepAndASeries) {
   const std::string folder =
       std::filesystem::temp_directory_path() / ("upgrain_quasi_static_" + std::to_string(test::world_size()));
@@ -314,10 +341,32 @@ TEST(QuasiStatic, WritesEachStepAndASeries) {
   MPI_Barrier(MPI_COMM_WORLD);
   QuasiStaticProblem p = uniaxial();
   p.load_steps = 2;
-  solve_quasi_static(p, linear_points(), MPI_COMM_WORLD, {folder, "biaxial", nullptr});
+  std::vector<unsigned> steps;
+  const auto on_points = [&](const LoadStepRecord& s, const std::vector<std::string>& names,
+                             const std::vector<PointSummary>& points) {
+    steps.push_back(s.step);
+    ASSERT_EQ(names, (std::vector<std::string>{"h_yy", "y"}));
+    const double strain = p.platen_displacement * s.step / p.load_steps / p.size[1];
+    for (const PointSummary& x : points) {
+      ASSERT_EQ(x.measures.size(), 2u);
+      EXPECT_NEAR(x.measures[0], strain, 1e-12);
+      EXPECT_EQ(x.measures[1], x.place.position[1]);
+    }
+  };
+  const QuasiStaticResult r = solve_quasi_static(
+      p, [](const PointPlace& place) { return std::make_unique<MeasuredPoint>(place.position[1]); },
+      MPI_COMM_WORLD, {folder, "biaxial", nullptr, on_points});
+  EXPECT_EQ(steps, (std::vector<unsigned>{0, 1, 2}));
+  EXPECT_EQ(r.measure_names, (std::vector<std::string>{"h_yy", "y"}));
   for (const char* f : {"biaxial-0000.pvtu", "biaxial-0001.pvtu", "biaxial-0002.pvtu", "biaxial.pvd",
                         "biaxial-0002.proc0000.vtu"})
     EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(folder) / f)) << f;
+  if (test::world_rank() == 0) {
+    std::ifstream in(std::filesystem::path(folder) / "biaxial-0002.pvtu");
+    const std::string pvtu((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (const char* field : {"\"h_yy\"", "\"y\"", "\"q_over_p\""})
+      EXPECT_NE(pvtu.find(field), std::string::npos) << field;
+  }
 }
 
 TEST(QuasiStatic, RefusesBadProblems) {

@@ -50,6 +50,8 @@ Section femxdem_section() {
        integer("grains per cell", femxdem(&FemxdemOptions::rve, &RveOptions::grains), 10, 100000, "-",
                "Grains in each DEM cell (a fully periodic cube of the scene's particles, prepared once and "
                "copied to every Gauss point)."),
+       integer("cell seed", femxdem(&FemxdemOptions::rve, &RveOptions::seed), 0, 2147483647, "-",
+               "Seed of the DEM cell's random placement; every Gauss point holds a copy of the one cell."),
        real("steps per unit strain", femxdem(&FemxdemOptions::rve, &RveOptions::steps_per_unit_strain), 1.0,
             1e9, "-",
             "A DEM cell deforms by an increment Delta H in max(this max|Delta H_ij|, 2) steps (Guo and Zhao "
@@ -61,13 +63,19 @@ Section femxdem_section() {
        integer("relaxation step cap", femxdem(&FemxdemOptions::rve, &RveOptions::relaxation_step_cap), 1, 1e9,
                "-",
                "... or for at most this many steps: then the cell has not converged and the step is cut."),
+       choice("relaxation", femxdem(&FemxdemOptions::rve, &RveOptions::relaxation),
+              {{"damped", RveRelaxation::damped}, {"fire", RveRelaxation::fire}},
+              "How the held cell reaches that ratio: its own dynamics damped by the contact dashpots, or "
+              "steered by FIRE (velocities turned towards the forces, every grain stopped when the power "
+              "turns negative; docs/femxdem.md)."),
        choice(
            "tangent", femxdem(&FemxdemOptions::rve, &RveOptions::tangent),
            {{"contact stiffness", RveTangent::contact_stiffness},
             {"perturbation", RveTangent::perturbation},
             {"elastic", RveTangent::elastic}},
            "The DEM cell's tangent: (1/V) sum over contacts of the contact stiffness (Kruyt and Rothenburg "
-           "1998), forward differences of six extra trials, or the prepared cell's contact tangent kept "
+           "1998), forward differences of four extra trials (xx, yy, zz, xy), or the prepared cell's contact "
+           "tangent kept "
            "fixed (docs/femxdem.md).")},
       nullptr};
 }

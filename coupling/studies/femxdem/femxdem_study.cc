@@ -30,7 +30,7 @@ double axial_stress(const fem::LoadStepRecord& s, const FemxdemOptions& o) {
   return -s.platen_force / o.width;
 }
 
-std::string load_displacement_table(const fem::QuasiStaticResult& r, const FemxdemOptions& o) {
+std::string load_displacement_table(const std::vector<fem::LoadStepRecord>& steps, const FemxdemOptions& o) {
   std::ostringstream t;
   t << "# Upgrain FEM x DEM biaxial compression (docs/femxdem.md). SI units, compression positive. "
        "axial_strain = -platen displacement / height; sigma_1 = the top platen's reaction per unit "
@@ -40,7 +40,7 @@ std::string load_displacement_table(const fem::QuasiStaticResult& r, const Femxd
        "step,platen_displacement,axial_strain,sigma_1,sigma_3,q,q_over_p,newton_iterations,cuts,"
        "grain_steps,wall_s\n";
   const double s3 = o.rve.mean_stress;
-  for (const fem::LoadStepRecord& s : r.steps) {
+  for (const fem::LoadStepRecord& s : steps) {
     const double s1 = axial_stress(s, o);
     const double p = (s1 + 2.0 * s3) / 3.0, q = s1 - s3;
     t << s.step << ',' << table_number(s.platen_displacement) << ','
@@ -52,21 +52,37 @@ std::string load_displacement_table(const fem::QuasiStaticResult& r, const Femxd
   return t.str();
 }
 
-std::string points_table(const fem::QuasiStaticResult& r) {
+// The head of points.csv and point_history.csv: `what` says which steps the rows are of.
+std::string points_head(const std::string& what, const std::vector<std::string>& measures) {
+  std::string h =
+      "# Upgrain FEM x DEM: every Gauss point's DEM cell " + what +
+      " (docs/femxdem.md). SI units, tension positive; eps the small strain of the point's "
+      "displacement gradient; p = -tr sigma / 3, q = sqrt(3/2) |dev sigma|; rotation the "
+      "point's rigid rotation (H_yx - H_xy) / 2; then the cell's measures: solid_fraction, "
+      "coordination (2 touching pairs per grain), grain_rotation (the grains' mean rotation about "
+      "z, rad), held_steps and unbalanced_force (its last relaxation)\n"
+      "step,cell,point,x,y,sigma_xx,sigma_yy,sigma_zz,sigma_xy,eps_xx,eps_yy,eps_xy,p,q,q_over_p,"
+      "rotation";
+  for (const std::string& m : measures) h += ',' + m;
+  return h + '\n';
+}
+
+// One row a point.
+std::string point_rows(unsigned step, const std::vector<fem::PointSummary>& points) {
   std::ostringstream t;
-  t << "# Upgrain FEM x DEM: every Gauss point's DEM cell at the last load step (docs/femxdem.md). SI "
-       "units, tension positive; eps the small strain of the point's displacement gradient; p = -tr "
-       "sigma / 3, q = sqrt(3/2) |dev sigma|\n"
-       "cell,point,x,y,sigma_xx,sigma_yy,sigma_zz,sigma_xy,eps_xx,eps_yy,eps_xy,p,q\n";
-  for (const fem::PointSummary& s : r.points) {
+  for (const fem::PointSummary& s : points) {
     const fem::Mat3x3 sigma = fem::mandel::to_matrix(s.stress);
-    const fem::Mat3x3 eps = 0.5 * (s.displacement_gradient + s.displacement_gradient.transpose());
-    t << s.place.cell << ',' << s.place.index << ',' << table_number(s.place.position[0]) << ','
-      << table_number(s.place.position[1]) << ',' << table_number(sigma(0, 0)) << ','
+    const fem::Mat3x3& h = s.displacement_gradient;
+    const fem::Mat3x3 eps = 0.5 * (h + h.transpose());
+    const double p = -sigma.trace() / 3.0, q = std::sqrt(1.5) * fem::mandel::deviator(s.stress).norm();
+    t << step << ',' << s.place.cell << ',' << s.place.index << ',' << table_number(s.place.position[0])
+      << ',' << table_number(s.place.position[1]) << ',' << table_number(sigma(0, 0)) << ','
       << table_number(sigma(1, 1)) << ',' << table_number(sigma(2, 2)) << ',' << table_number(sigma(0, 1))
       << ',' << table_number(eps(0, 0)) << ',' << table_number(eps(1, 1)) << ',' << table_number(eps(0, 1))
-      << ',' << table_number(-sigma.trace() / 3.0) << ','
-      << table_number(std::sqrt(1.5) * fem::mandel::deviator(s.stress).norm()) << '\n';
+      << ',' << table_number(p) << ',' << table_number(q) << ',' << table_number(p != 0.0 ? q / p : 0.0)
+      << ',' << table_number(0.5 * (h(1, 0) - h(0, 1)));
+    for (const double m : s.measures) t << ',' << table_number(m);
+    t << '\n';
   }
   return t.str();
 }
@@ -112,16 +128,28 @@ int run_femxdem_study(const SceneInput& in, MPI_Comm comm, const StudyHooks&) {
         preparation_seconds);
 
   const fem::QuasiStaticProblem problem = biaxial_problem(o);
-  fem::QuasiStaticOutput output{
-      folder.string(), "femxdem", [&](const fem::LoadStepRecord& s) {
-        if (rank != 0) return;
-        std::printf(
-            "  femxdem: step %u/%u  eps_a %.4f  sigma_1 %.6g Pa  Newton %u  cuts %u  "
-            "%.3g grain-steps  %.1f s\n",
-            s.step, problem.load_steps, 0.0 - s.platen_displacement / o.height, axial_stress(s, o),
-            s.newton_iterations, s.cuts, s.cost, s.seconds);
-        std::fflush(stdout);
-      }};
+  // The tables so far, rewritten after each converged step: a run that stops keeps its path.
+  std::vector<fem::LoadStepRecord> steps;
+  std::string history;
+  const auto on_step = [&](const fem::LoadStepRecord& s) {
+    if (rank != 0) return;
+    std::printf(
+        "  femxdem: step %u/%u  eps_a %.4f  sigma_1 %.6g Pa  Newton %u  cuts %u  "
+        "%.3g grain-steps  %.1f s\n",
+        s.step, problem.load_steps, 0.0 - s.platen_displacement / o.height, axial_stress(s, o),
+        s.newton_iterations, s.cuts, s.cost, s.seconds);
+    std::fflush(stdout);
+  };
+  const auto on_points = [&](const fem::LoadStepRecord& s, const std::vector<std::string>& measures,
+                             const std::vector<fem::PointSummary>& points) {
+    if (rank != 0) return;
+    steps.push_back(s);
+    history += point_rows(s.step, points);
+    dem::io::write_text_atomically(folder / "load_displacement.csv", load_displacement_table(steps, o));
+    dem::io::write_text_atomically(folder / "point_history.csv",
+                                   points_head("at every load step", measures) + history);
+  };
+  const fem::QuasiStaticOutput output{folder.string(), "femxdem", on_step, on_points};
   const RveOptions rve = o.rve;
   const auto t1 = std::chrono::steady_clock::now();
   const fem::QuasiStaticResult r = fem::solve_quasi_static(
@@ -130,8 +158,9 @@ int run_femxdem_study(const SceneInput& in, MPI_Comm comm, const StudyHooks&) {
   const double solve_seconds = seconds_since(t1);
 
   on_rank0(comm, [&] {
-    dem::io::write_text_atomically(folder / "load_displacement.csv", load_displacement_table(r, o));
-    dem::io::write_text_atomically(folder / "points.csv", points_table(r));
+    dem::io::write_text_atomically(
+        folder / "points.csv",
+        points_head("at the last load step", r.measure_names) + point_rows(r.steps.back().step, r.points));
     using dem::io::json_number;
     double grain_steps = 0.0;
     unsigned iterations = 0;
