@@ -53,6 +53,10 @@ struct RveOptions {
   double servo_gain = 10.0;       // 1/s
   double max_strain_rate = 10.0;  // 1/s
   double servo_tolerance = 0.02;  // of p0
+  // The grains' friction coefficient while the servo squeezes them (negative: the scene's). The
+  // lower, the denser the packing it jams in (0: the densest, as Thornton 2000, Geotechnique 50,
+  // 43, prepares dense samples); the scene's coefficient is restored for the trials.
+  double preparation_friction = -1.0;
   long preparation_step_cap = 400000;
 };
 

@@ -34,6 +34,7 @@ dem::SceneConfig cell_scene(dem::SceneConfig scene, const RveOptions& o) {
   scene.fill.velocity = dem::Vec3::Zero();
   scene.fill.velocity_jitter = 0.0;
   scene.fill.seed = o.seed;
+  if (o.preparation_friction >= 0.0) scene.friction = o.preparation_friction;
   double solids = 0.0, r_max = 0.0;
   for (double r : dem::plan_fill(scene).radii) {
     solids += 4.0 / 3.0 * std::numbers::pi * r * r * r;
@@ -81,6 +82,7 @@ RveTemplate prepare_rve(const dem::SceneConfig& scene_in, const RveOptions& o) {
   dem::Simulation& sim = cell.sim();
   // The template's scene: the still cell the state was captured under.
   t.scene = sim.scene();
+  t.scene.friction = scene_in.friction;
   t.engine = sim.options();
   t.state = sim.capture_state();
   t.reference_cell = sim.cell_matrix();

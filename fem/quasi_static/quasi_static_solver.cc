@@ -423,7 +423,13 @@ StepFailure QuasiStaticSolver<dim>::newton(double lambda, LoadStepRecord& record
   TrilinosWrappers::SolverDirect solver(control,
                                         TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Klu"));
   const auto solve = [&](const AffineConstraints<double>& constraints) {
-    solver.solve(matrix_, correction, residual_);
+    try {
+      solver.solve(matrix_, correction, residual_);
+    } catch (const dealii::ExceptionBase& e) {
+      throw std::runtime_error(
+          "quasi-static solver: the linear solve failed (KLU): the stiffness matrix is singular, a mode that "
+          "no face and no point's tangent holds");
+    }
     constraints.distribute(correction);
     u_trial_ += correction;
     step_increment = u_trial_;

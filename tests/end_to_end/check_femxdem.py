@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Runs the FEM x DEM study (docs/femxdem.md) of a scene on 1 and 2 ranks and checks:
 - the files: load_displacement.csv, points.csv, femxdem-NNNN.pvtu of every step with its pieces
-  (one per rank), femxdem.pvd listing them, load_displacement.png, summary.json;
+  (one per rank), femxdem.pvd listing them, load_displacement.png, points.png, summary.json;
 - the load-displacement path: step 0 at zero strain, then the axial strain k eps / N; the platen's
   sigma_1 at step 0 within 5 % of the confining pressure (the DEM cell is prepared within 2 % of
   it on every axis, and the step balances the specimen), growing at every step (the specimen is
@@ -69,7 +69,8 @@ for ranks, folder in folders.items():
         assert os.path.exists(os.path.join(folder, name + '.pvtu')), name
         for r in range(ranks):
             assert os.path.exists(os.path.join(folder, f'{name}.proc{r:04d}.vtu')), (name, r)
-    assert os.path.exists(os.path.join(folder, 'load_displacement.png'))
+    for png in ('load_displacement.png', 'points.png'):
+        assert os.path.exists(os.path.join(folder, png)), png
     points = table(os.path.join(folder, 'points.csv'))
     assert len(points) == 2 * 4, len(points)
     for p in points:

@@ -13,6 +13,11 @@ void check_femxdem_study(SceneInput& in, const std::string& where) {
   if (o.residual_tolerance == 0.0 && o.correction_tolerance == 0.0)
     throw Error(study +
                 "FEMxDEM/residual tolerance and correction tolerance are both 0: Newton could never end");
+  if (o.degree == 1 && o.quadrature_points == 1)
+    throw Error(study +
+                "FEMxDEM/quadrature points = 1 with degree = 1: the specimen's sides are free, and one Gauss "
+                "point leaves each element's hourglass modes without stiffness (a singular matrix); set "
+                "quadrature points = 0 (degree + 1) or 2");
 }
 
 }  // namespace upgrain::coupling

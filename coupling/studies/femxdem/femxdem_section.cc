@@ -52,6 +52,11 @@ Section femxdem_section() {
                "copied to every Gauss point)."),
        integer("cell seed", femxdem(&FemxdemOptions::rve, &RveOptions::seed), 0, 2147483647, "-",
                "Seed of the DEM cell's random placement; every Gauss point holds a copy of the one cell."),
+       real("preparation friction", femxdem(&FemxdemOptions::rve, &RveOptions::preparation_friction), -1.0,
+            10.0, "-",
+            "The grains' friction coefficient while the DEM cell is squeezed to the confining pressure: the "
+            "lower, the denser the cell (0: the densest, a dilatant cell with a peak); -1: the scene's "
+            "Contact/friction coefficient, a looser cell. The trials use the scene's coefficient."),
        real("steps per unit strain", femxdem(&FemxdemOptions::rve, &RveOptions::steps_per_unit_strain), 1.0,
             1e9, "-",
             "A DEM cell deforms by an increment Delta H in max(this max|Delta H_ij|, 2) steps (Guo and Zhao "

@@ -181,7 +181,8 @@ int run_femxdem_study(const SceneInput& in, MPI_Comm comm, const StudyHooks&) {
       << ",\n  \"grain_steps_per_core_second\": " << json_number(grain_steps / (solve_seconds * ranks))
       << ",\n  \"final_axial_stress_Pa\": " << json_number(axial_stress(r.steps.back(), o)) << "\n}\n";
     dem::io::write_text_atomically(fs::path(in.output.folder) / "summary.json", j.str());
-    run_figure_script("studies/femxdem/plot_femxdem.py", folder, "plots.log", {"load_displacement.png"});
+    run_figure_script("studies/femxdem/plot_femxdem.py", folder, "plots.log",
+                      {"load_displacement.png", "points.png"});
     std::printf(
         "  femxdem: %zu Gauss points, %u Newton iterations, %.3g grain-steps in %.1f s (%.3g per "
         "core-second)\n",
