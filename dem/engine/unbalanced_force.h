@@ -23,8 +23,9 @@ namespace upgrain::dem {
                                             std::span<const ContactSample> contacts);
 
 // Collective: the ratio of the run's last evaluation over every rank, with its gravity in the
-// resultants (|F + m g|); the sums follow the run's summation, the grains' in a fixed order
-// (particle_sums.h). Needs the contacts recorded at the last step (Simulation::request_contacts).
+// resultants (|F + m g|); the sums follow the run's summation (particle_sums.h), each contact's
+// term kept with its first grain, in the order of that grain's contacts. Needs the contacts
+// recorded at the last step (Simulation::request_contacts).
 [[nodiscard]] double unbalanced_force_ratio(const Simulation& sim);
 
 }  // namespace upgrain::dem
