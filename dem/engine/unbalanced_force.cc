@@ -1,42 +1,57 @@
 #include "dem/engine/unbalanced_force.h"
 
+#include <vector>
+
 #include "dem/core/error.h"
 #include "dem/engine/particle_sums.h"
 #include "dem/engine/simulation.h"
 
 namespace upgrain::dem {
 
-double unbalanced_force_ratio(std::span<const Vec3> forces, std::span<const ContactSample> contacts) {
-  double resultant = 0.0;
-  for (const Vec3& f : forces) resultant += f.norm();
-  double contact = 0.0;
-  long count = 0;
+namespace {
+
+enum Term { kResultant, kContact, kCount };
+
+// The ratio's terms, each handed to add(term, grain, value) with the grain it belongs to: every
+// owned grain's |F|, and each counted contact's |f| and 1 with its first grain (a pair is recorded
+// once, with its first grain; wall contacts do not count).
+template <class Add>
+void add_terms(std::span<const Vec3> resultants, std::span<const ContactSample> contacts, Add&& add) {
+  for (std::size_t i = 0; i < resultants.size(); ++i)
+    add(kResultant, static_cast<int>(i), resultants[i].norm());
   for (const ContactSample& c : contacts) {
-    if (c.with_wall() || static_cast<std::size_t>(c.a) >= forces.size()) continue;
-    contact += c.force_on_a.norm();
-    ++count;
+    if (c.with_wall() || c.a < 0 || static_cast<std::size_t>(c.a) >= resultants.size()) continue;
+    add(kContact, c.a, c.force_on_a.norm());
+    add(kCount, c.a, 1.0);
   }
-  if (forces.empty() || count == 0 || contact == 0.0) return 0.0;
-  return (resultant / static_cast<double>(forces.size())) / (contact / static_cast<double>(count));
+}
+
+// Yade's unbalancedForce from the sums: the mean |F| of `grains` over the mean |f| of the contacts.
+double ratio(double resultant, double contact, double count, double grains) {
+  if (grains == 0.0 || count == 0.0 || contact == 0.0) return 0.0;
+  return (resultant / grains) / (contact / count);
+}
+
+}  // namespace
+
+double unbalanced_force_ratio(std::span<const Vec3> forces, std::span<const ContactSample> contacts) {
+  double t[3] = {0.0, 0.0, 0.0};
+  add_terms(forces, contacts, [&](int term, int, double value) { t[term] += value; });
+  return ratio(t[kResultant], t[kContact], t[kCount], static_cast<double>(forces.size()));
 }
 
 double unbalanced_force_ratio(const Simulation& sim) {
   if (!sim.contacts_recorded()) throw Error("unbalanced force: no contacts recorded at the last step");
   const ParticleStore& p = sim.particles();
   const int n = sim.owned();
-  const Vec3 g = sim.gravity();
-  enum { kResultant, kContact, kCount };
-  ParticleSums sums(sim.summation(), 3, n);
+  std::vector<Vec3> resultants(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i)
-    sums.add(kResultant, i, (p.force[i] + p.mass(static_cast<std::size_t>(i)) * g).norm());
-  for (const ContactSample& c : sim.contacts()) {
-    if (c.with_wall() || c.a >= n) continue;
-    sums.add(kContact, c.a, c.force_on_a.norm());
-    sums.add(kCount, c.a, 1.0);
-  }
+    resultants[i] = p.force[i] + p.mass(static_cast<std::size_t>(i)) * sim.gravity();
+  ParticleSums sums(sim.summation(), 3, n);
+  add_terms(resultants, sim.contacts(),
+            [&](int term, int grain, double value) { sums.add(term, grain, value); });
   const std::vector<double> t = sums.totals(sim.comm());
-  if (sim.particle_count() == 0 || t[kCount] == 0.0 || t[kContact] == 0.0) return 0.0;
-  return (t[kResultant] / static_cast<double>(sim.particle_count())) / (t[kContact] / t[kCount]);
+  return ratio(t[kResultant], t[kContact], t[kCount], static_cast<double>(sim.particle_count()));
 }
 
 }  // namespace upgrain::dem

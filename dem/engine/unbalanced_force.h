@@ -4,7 +4,7 @@
 // (Smilauer et al. 2015, Yade documentation, utils.unbalancedForce). An assembly in static
 // equilibrium has 0; Yade's quasi-static runs stop below 1e-2 to 1e-4. FIRE's residual
 // (relaxation.h) is normalised by the weight, which a periodic cell without gravity lacks.
-// A plain function over one rank's data, and the same ratio of a whole run.
+// A plain function over one rank's data, and the same terms summed over a whole run.
 #include <span>
 
 #include "dem/contact/contact_sample.h"

@@ -142,6 +142,11 @@ class QuasiStaticSolver {
   void make_mesh();
   void setup_system();
   void make_points();
+  // Collective: the words of the lowest rank whose `local_failure` is not empty, on every rank
+  // (empty when none has one), so that a failure on one rank stops all of them in step instead of
+  // leaving the others waiting in the next collective call; and the same, thrown.
+  std::string first_failure(const std::string& local_failure) const;
+  void throw_first_failure(const std::string& local_failure) const;
   // The prescribed values of u at the load factor `lambda` (0 at step 0, 1 at the end).
   std::map<types::global_dof_index, double> boundary_values(double lambda) const;
   // Assembles at u_trial_: every point answers; fills the residual and the matrix with the
@@ -283,6 +288,7 @@ void QuasiStaticSolver<dim>::setup_system() {
 template <int dim>
 void QuasiStaticSolver<dim>::make_points() {
   FEValues<dim> fv(fe_, quadrature_, update_quadrature_points);
+  std::string made;  // this rank's first failure
   for (const auto& cell : triangulation_.active_cell_iterators()) {
     if (!cell->is_locally_owned()) continue;
     history_.initialize(cell, quadrature_.size());
@@ -293,12 +299,18 @@ void QuasiStaticSolver<dim>::make_points() {
       place.cell = cell->id().to_string();
       place.index = q;
       for (int d = 0; d < dim; ++d) place.position[d] = fv.quadrature_point(q)[d];
-      records[q]->state = make_point_(place);
-      if (!records[q]->state)
-        throw std::runtime_error("quasi-static solver: no material made for cell " + place.cell);
+      if (!made.empty()) continue;
+      try {
+        records[q]->state = make_point_(place);
+        if (!records[q]->state) made = "quasi-static solver: no material made for cell " + place.cell;
+      } catch (const std::exception& e) {
+        made = e.what();
+      }
     }
   }
-  // The measures' names, from any point (a rank may own no cell).
+  throw_first_failure(made);
+  // The measures' names, from any point (a rank may own no cell); every point must give the same,
+  // checked here on every rank together so that a mismatch stops them all with the same words.
   std::vector<std::string> local;
   for (const auto& cell : triangulation_.active_cell_iterators())
     if (cell->is_locally_owned()) {
@@ -311,6 +323,34 @@ void QuasiStaticSolver<dim>::make_points() {
       measure_names_ = std::move(names);
       break;
     }
+  std::string mismatch;
+  for (const auto& cell : triangulation_.active_cell_iterators()) {
+    if (!cell->is_locally_owned() || !mismatch.empty()) continue;
+    const auto records = history_.get_data(cell);
+    for (unsigned q = 0; q < records.size() && mismatch.empty(); ++q) {
+      std::vector<std::string> names;
+      for (const PointMeasure& m : records[q]->state->measures()) names.push_back(m.name);
+      if (names != measure_names_)
+        mismatch = "quasi-static solver: the point " + std::to_string(q) + " of cell " +
+                   cell->id().to_string() + " has " + std::to_string(names.size()) +
+                   " measures, another point " + std::to_string(measure_names_.size()) +
+                   " (every point must name the same)";
+    }
+  }
+  throw_first_failure(mismatch);
+}
+
+template <int dim>
+std::string QuasiStaticSolver<dim>::first_failure(const std::string& local_failure) const {
+  const unsigned ranks = Utilities::MPI::n_mpi_processes(comm_);
+  const unsigned first =
+      Utilities::MPI::min(local_failure.empty() ? ranks : Utilities::MPI::this_mpi_process(comm_), comm_);
+  return first < ranks ? Utilities::MPI::broadcast(comm_, local_failure, first) : std::string();
+}
+
+template <int dim>
+void QuasiStaticSolver<dim>::throw_first_failure(const std::string& local_failure) const {
+  if (std::string what = first_failure(local_failure); !what.empty()) throw std::runtime_error(what);
 }
 
 template <int dim>
@@ -391,13 +431,9 @@ double QuasiStaticSolver<dim>::assemble(const AffineConstraints<double>& constra
   for (DistributedVector* v : {&residual_, &internal_full_, &external_full_})
     v->compress(VectorOperation::add);
 
-  // The failure's words from the lowest rank that has one, on every rank.
-  const unsigned rank = Utilities::MPI::this_mpi_process(comm_);
-  const unsigned first =
-      Utilities::MPI::min(local_failure.empty() ? Utilities::MPI::n_mpi_processes(comm_) : rank, comm_);
-  if (first < Utilities::MPI::n_mpi_processes(comm_)) {
+  failure.what = first_failure(local_failure);
+  if (!failure.what.empty()) {
     failure.failed = true;
-    failure.what = Utilities::MPI::broadcast(comm_, local_failure, first);
     return 0.0;
   }
   const double reference = std::max(internal_full_.l2_norm(), external_full_.l2_norm());
@@ -578,12 +614,10 @@ std::vector<PointSummary> QuasiStaticSolver<dim>::point_summaries() const {
       for (int d = 0; d < 3; ++d) v.push_back(d < dim ? fv.quadrature_point(q)[d] : 0.0);
       for (int k = 0; k < 6; ++k) v.push_back(records[q]->committed_response.stress[k]);
       for (int k = 0; k < 9; ++k) v.push_back(records[q]->committed_gradient(k / 3, k % 3));
+      // As many as named (make_points() checked that every point names the same).
       const std::vector<PointMeasure> m = records[q]->state->measures();
-      if (m.size() != measure_names_.size())
-        throw std::runtime_error("quasi-static solver: the point " + std::to_string(q) + " of cell " +
-                                 cell->id().to_string() + " has " + std::to_string(m.size()) +
-                                 " measures, another point " + std::to_string(measure_names_.size()));
-      for (const PointMeasure& x : m) v.push_back(x.value);
+      for (std::size_t k = 0; k < measure_names_.size(); ++k)
+        v.push_back(k < m.size() ? m[k].value : std::nan(""));
       local.emplace_back(cell->id().to_string(), std::move(v));
     }
   }

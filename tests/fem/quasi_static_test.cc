@@ -369,6 +369,40 @@ TEST(QuasiStatic, WritesEachStepAndASeries) {
   }
 }
 
+// A point that names other measures than the rest, on whichever rank owns it: every rank stops with
+// the same words naming it, none waits for the others.
+class RenamedPoint final : public PointState {
+ public:
+  PointResponse respond(const Mat3x3& h) override { return elastic_.respond(h); }
+  void commit() override {}
+  [[nodiscard]] std::unique_ptr<PointState> clone() const override {
+    return std::make_unique<RenamedPoint>(*this);
+  }
+  [[nodiscard]] std::vector<PointMeasure> measures() const override { return {{"h_yy", 0.0}}; }
+
+ private:
+  LinearElasticPoint elastic_{elasticity()};
+};
+
+TEST(QuasiStatic, PointsThatNameOtherMeasuresAreRefusedOnEveryRank) {
+  QuasiStaticProblem p = uniaxial();
+  try {
+    solve_quasi_static(
+        p,
+        [](const PointPlace& place) -> std::unique_ptr<PointState> {
+          if (place.position[0] > 0.075 && place.position[1] > 0.075 && place.index == 3)
+            return std::make_unique<RenamedPoint>();
+          return std::make_unique<MeasuredPoint>(place.position[1]);
+        },
+        MPI_COMM_WORLD);
+    ADD_FAILURE() << "no exception";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("has 1 measures, another point 2"), std::string::npos) << what;
+    EXPECT_NE(what.find("the point 3 of cell"), std::string::npos) << what;
+  }
+}
+
 TEST(QuasiStatic, RefusesBadProblems) {
   QuasiStaticProblem p = uniaxial();
   p.faces[3].support = FaceSupport::roller;
