@@ -41,8 +41,7 @@ struct RveOptions {
   // the relaxed cell's noise (at 1e-5 the differences of a 60-grain cell scatter by tens of per
   // cent, from 3e-5 on they agree within a few), Guo and Zhao's typical increment.
   double perturbation = 1e-4;
-  // The fill's seed (a per-point seed, one packing a point, is not offered yet: every point is a
-  // copy of the one prepared cell).
+  // The fill's seed (distinct packings per point: rve_packings.h).
   std::uint64_t seed = 12345;
   // The preparation: the grains are placed at random at this solid fraction of the region their
   // centres may take in a cube (rve_preparation.cc), then a

@@ -10,6 +10,7 @@
 #include "coupling/femxdem/rve_tangent.h"
 #include "coupling/studies/element/element_cell.h"
 #include "dem/core/error.h"
+#include "dem/parallel/byte_stream.h"
 
 namespace upgrain::coupling {
 
@@ -20,6 +21,13 @@ double mean_spin_z(const dem::Simulation& sim) {
   double sum = 0.0;
   for (int i = 0; i < sim.owned(); ++i) sum += sim.particles().omega[i].z();
   return sim.owned() > 0 ? sum / sim.owned() : 0.0;
+}
+
+void put(dem::ByteWriter& w, const dem::Mat3& m) {
+  for (int k = 0; k < 9; ++k) w.put(m.data()[k]);
+}
+void get(dem::ByteReader& r, dem::Mat3& m) {
+  for (int k = 0; k < 9; ++k) r.get(m.data()[k]);
 }
 
 std::string number(double v) {
@@ -129,6 +137,37 @@ std::vector<fem::PointMeasure> RveCell::measures() const {
           {"grain_rotation", r.grain_rotation},
           {"held_steps", static_cast<double>(r.relaxation_steps)},
           {"unbalanced_force", r.unbalanced_force}};
+}
+
+std::vector<char> RveCell::save() const {
+  dem::ByteWriter w;
+  w.put(dem::to_bytes(committed_));
+  put(w, committed_h_);
+  const RveTrialRecord& r = committed_record_;
+  w.put(r.increment_steps);
+  w.put(r.relaxation_steps);
+  w.put(r.unbalanced_force);
+  w.put(r.contacts);
+  put(w, r.cell);
+  w.put(r.grain_rotation);
+  return std::move(w.bytes());
+}
+
+void RveCell::load(const std::vector<char>& bytes) {
+  dem::ByteReader reader(bytes);
+  std::vector<char> state;
+  reader.get(state);
+  committed_ = dem::from_bytes(state);
+  get(reader, committed_h_);
+  RveTrialRecord& r = committed_record_;
+  reader.get(r.increment_steps);
+  reader.get(r.relaxation_steps);
+  reader.get(r.unbalanced_force);
+  reader.get(r.contacts);
+  get(reader, r.cell);
+  reader.get(r.grain_rotation);
+  record_ = r;
+  trial_.reset();
 }
 
 std::unique_ptr<fem::PointState> RveCell::clone() const { return std::make_unique<RveCell>(*this); }

@@ -40,6 +40,10 @@ class RveCell : public fem::PointState {
   // (2 touching pairs per grain), grain_rotation (RveTrialRecord), held_steps and
   // unbalanced_force (of its last trial's relaxation).
   [[nodiscard]] std::vector<fem::PointMeasure> measures() const override;
+  // The committed engine state (dem::to_bytes), H and trial record; load() into a cell made from
+  // the same template and options continues with the same bits.
+  [[nodiscard]] std::vector<char> save() const override;
+  void load(const std::vector<char>& bytes) override;
 
   // The last respond()'s main trial (not the perturbations').
   [[nodiscard]] const RveTrialRecord& last_trial() const { return record_; }

@@ -125,4 +125,10 @@ struct EngineState {
   CellRecord cell;
 };
 
+// The whole state as bytes and back, every bit kept: the restoring constructor's broadcast, and a
+// state that moves between ranks or into a file as one block (a DEM cell of FEM x DEM). The
+// bytes are not a file format: both ends are the same build.
+[[nodiscard]] std::vector<char> to_bytes(const EngineState& s);
+[[nodiscard]] EngineState from_bytes(const std::vector<char>& bytes);
+
 }  // namespace upgrain::dem

@@ -38,6 +38,8 @@ Parts parts_of(const EngineState& s) {
           !s.rolling_damping_torque.empty(), !s.particle_elastic.empty()};
 }
 
+}  // namespace
+
 // The whole state as bytes and back: rank 0's state on every rank (the restoring constructor
 // keeps each rank's part, as the first constructor does with a scene's particles).
 std::vector<char> to_bytes(const EngineState& s) {
@@ -93,6 +95,8 @@ std::vector<char> to_bytes(const EngineState& s) {
   return std::move(w.bytes());
 }
 
+namespace {
+
 // One grain's record appended to a state, with the parts the state carries.
 void append_record(EngineState& s, const Parts& parts, const ParticleRecord& p) {
   append_state(s.particles, p.state);
@@ -106,6 +110,8 @@ void append_record(EngineState& s, const Parts& parts, const ParticleRecord& p) 
     s.dissipation_share.push_back(p.resume.dissipated);
   }
 }
+
+}  // namespace
 
 EngineState from_bytes(const std::vector<char>& bytes) {
   ByteReader r(bytes);
@@ -160,6 +166,8 @@ EngineState from_bytes(const std::vector<char>& bytes) {
   }
   return s;
 }
+
+namespace {
 
 // The index of global id `gid` in a store sorted by id.
 std::size_t index_of(const ParticleStore& sorted, GlobalId gid) {

@@ -13,7 +13,7 @@ namespace upgrain::fem {
 inline Vec6 small_strain(const Mat3x3& h) { return mandel::from_matrix(0.5 * (h + h.transpose())); }
 
 // Isotropic linear elasticity about an initial stress: sigma = sigma_0 + C : eps. Its history is
-// the strain alone, so commit() has nothing to keep.
+// the strain alone, so commit() and save() have nothing to keep.
 class LinearElasticPoint final : public PointState {
  public:
   explicit LinearElasticPoint(const Elasticity& e, const Vec6& initial_stress = Vec6::Zero())
@@ -29,6 +29,8 @@ class LinearElasticPoint final : public PointState {
   [[nodiscard]] std::unique_ptr<PointState> clone() const override {
     return std::make_unique<LinearElasticPoint>(*this);
   }
+  [[nodiscard]] std::vector<char> save() const override { return {}; }
+  void load(const std::vector<char>&) override {}
 
  private:
   Elasticity elasticity_;
@@ -58,6 +60,8 @@ class StiffeningElasticPoint final : public PointState {
   [[nodiscard]] std::unique_ptr<PointState> clone() const override {
     return std::make_unique<StiffeningElasticPoint>(*this);
   }
+  [[nodiscard]] std::vector<char> save() const override { return {}; }
+  void load(const std::vector<char>&) override {}
 
  private:
   Elasticity elasticity_;

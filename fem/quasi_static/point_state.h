@@ -10,7 +10,9 @@
 // configuration (3 x 3; a plane-strain problem in x-y passes zeros in the z row and column), the
 // strain its symmetric part. A state may use the whole of H (a DEM cell deforms by F = 1 + H);
 // the stress it returns is the Cauchy stress in the solver's frame. Plain C++ and Eigen.
+#include <array>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -24,6 +26,13 @@ struct PointResponse {
   bool converged = true;        // false: the point could not reach its answer (a cap)
   std::string failure;          // why not, in words, when !converged
   double cost = 0.0;            // work spent on this answer (DEM grain-steps; 0 for a closed form)
+};
+
+// Where a point is: its cell (deal.II's id, "level_index"), its index in the cell, its position.
+struct PointPlace {
+  std::string cell;
+  unsigned index = 0;
+  std::array<double, 3> position{};
 };
 
 // A scalar of a point's committed state, written beside its stress (a DEM cell's solid fraction).
@@ -45,6 +54,15 @@ class PointState {
   // Scalars of the committed state for the output: the same names in the same order for every
   // point of a problem. None by default.
   [[nodiscard]] virtual std::vector<PointMeasure> measures() const { return {}; }
+  // The committed state as bytes, every bit kept, and back into a point that the same factory
+  // made at the same place: a point that moves to another rank when the mesh is repartitioned by
+  // cost. A trial in progress is not kept. A state that cannot do this says so when it is asked.
+  [[nodiscard]] virtual std::vector<char> save() const {
+    throw std::logic_error("this material cannot be moved to another rank (PointState::save)");
+  }
+  virtual void load(const std::vector<char>& /*bytes*/) {
+    throw std::logic_error("this material cannot be moved to another rank (PointState::load)");
+  }
 };
 
 }  // namespace upgrain::fem

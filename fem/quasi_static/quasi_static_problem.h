@@ -60,13 +60,14 @@ struct QuasiStaticProblem {
   // A load step that fails (a point that does not converge, or Newton) is retried with half its
   // increment, up to this many times in a row.
   unsigned max_step_cuts = 4;
-};
-
-// Where a point is: its cell (deal.II's id, "level_index"), its index in the cell, its position.
-struct PointPlace {
-  std::string cell;
-  unsigned index = 0;
-  std::array<double, 3> position{};
+  // The ranks' balance (docs/femxdem.md, "Balancing the ranks"): after a load step in which the
+  // busiest rank's points cost more than this times the ranks' mean (PointResponse::cost), the
+  // mesh is repartitioned with each cell weighted by its points' cost in that step, and the
+  // points move with their cells (PointState::save). Whole cells split the cost only so finely:
+  // the threshold applies to the least imbalance they allow (the costliest cell's cost over the
+  // ranks' mean) and to the imbalance of the last repartition's weights over its partition, when
+  // these are above 1. 0: never.
+  double rebalance_threshold = 1.1;
 };
 
 using PointFactory = std::function<std::unique_ptr<PointState>(const PointPlace&)>;
@@ -81,7 +82,11 @@ struct LoadStepRecord {
   std::vector<double> residuals;  // the relative out-of-balance force at each iteration
   unsigned cuts = 0;              // halvings before it converged
   double cost = 0.0;              // the points' cost (point_state.h), summed over the ranks
-  double seconds = 0.0;           // wall time of the step, the slowest rank's
+  // The busiest rank's share of `cost` over the ranks' mean (1: even, or nothing cost anything),
+  // in the partition the step ran on; and whether the mesh was repartitioned by cost after it.
+  double imbalance = 1.0;
+  bool repartitioned = false;
+  double seconds = 0.0;  // wall time of the step, the slowest rank's
 };
 
 // A point's committed state, gathered on every rank in the order of the cells' ids.
@@ -100,8 +105,9 @@ struct QuasiStaticResult {
   std::uint64_t n_cells = 0;
 };
 
-// What to write: each converged step's displacement, cell-averaged stress and strain, q/p and
-// the points' measures as `name`-NNNN.pvtu in `folder` (nothing when empty).
+// What to write: each converged step's displacement, cell-averaged stress and strain, q/p, the
+// points' measures and the ranks that own the cells after the step (`subdomain`) as
+// `name`-NNNN.pvtu in `folder` (nothing when empty).
 struct QuasiStaticOutput {
   std::string folder;
   std::string name = "continuum";

@@ -8,6 +8,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/quadrature_point_data.h>
+#include <deal.II/distributed/solution_transfer.h>
 #include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/dofs/dof_tools.h>
@@ -34,6 +35,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <sstream>
@@ -59,6 +61,7 @@ struct PointRecord {
   Mat3x3 displacement_gradient = Mat3x3::Zero();  // of the latest trial
   PointResponse committed_response;
   Mat3x3 committed_gradient = Mat3x3::Zero();
+  double step_cost = 0.0;  // its answers' cost in the load step so far (the partition's weight)
 };
 
 // The symmetric gradient of a vector shape function as a Mandel vector (plane strain: the z
@@ -115,6 +118,41 @@ class AffineDisplacement : public Function<dim> {
   Mat3x3 g_;
 };
 
+// A cell's points as one block of bytes for p4est to carry (repartition_by_cost()): doubles, and
+// each state's bytes behind their count, read back in the order they were written.
+class CellBytes {
+ public:
+  CellBytes() = default;
+  explicit CellBytes(std::vector<char> bytes) : bytes_(std::move(bytes)) {}
+  void put(const double* v, std::size_t n) {
+    const auto* b = reinterpret_cast<const char*>(v);
+    bytes_.insert(bytes_.end(), b, b + n * sizeof(double));
+  }
+  void put(const std::vector<char>& block) {
+    const double n = static_cast<double>(block.size());
+    put(&n, 1);
+    bytes_.insert(bytes_.end(), block.begin(), block.end());
+  }
+  void get(double* v, std::size_t n) { std::memcpy(v, take(n * sizeof(double)), n * sizeof(double)); }
+  std::vector<char> get_block() {
+    double n = 0.0;
+    get(&n, 1);
+    const char* b = take(static_cast<std::size_t>(n));
+    return {b, b + static_cast<std::size_t>(n)};
+  }
+  [[nodiscard]] std::vector<char>& bytes() { return bytes_; }
+
+ private:
+  const char* take(std::size_t n) {
+    if (at_ + n > bytes_.size()) throw std::runtime_error("a moved cell's bytes end early");
+    const char* b = bytes_.data() + at_;
+    at_ += n;
+    return b;
+  }
+  std::vector<char> bytes_;
+  std::size_t at_ = 0;
+};
+
 // The step's failure: which point (or Newton), on every rank the same words.
 struct StepFailure {
   bool failed = false;
@@ -142,6 +180,18 @@ class QuasiStaticSolver {
   void make_mesh();
   void setup_system();
   void make_points();
+  // The point `q` of `cell` made by the factory; `fv` is reinitialised on the cell.
+  std::unique_ptr<PointState> make_point(FEValues<dim>& fv,
+                                         const typename Triangulation<dim>::cell_iterator& cell,
+                                         unsigned q) const;
+  // The busiest rank's cost in the step over the ranks' mean, and the least a partition into
+  // whole cells can reach: the costliest cell's over the mean (collective).
+  std::pair<double, double> imbalance() const;
+  // Collective: repartitions the mesh with each cell weighted by its points' cost in the step,
+  // moving the points (PointState::save and load) and the committed displacement with their cells.
+  // Returns the imbalance of those costs over the new partition: the best whole cells allow
+  // (p4est cuts its space-filling curve into contiguous pieces).
+  double repartition_by_cost();
   // Collective: the words of the lowest rank whose `local_failure` is not empty, on every rank
   // (empty when none has one), so that a failure on one rank stops all of them in step instead of
   // leaving the others waiting in the next collective call; and the same, thrown.
@@ -266,6 +316,7 @@ void QuasiStaticSolver<dim>::setup_system() {
   update_constraints_.close();
 
   platen_dofs_ = IndexSet(dofs_.n_dofs());
+  platen_sign_.clear();
   for (unsigned face = 0; face < 2 * dim; ++face) {
     if (!is_platen(p_.faces[face])) continue;
     std::vector<bool> mask(dim, false);
@@ -292,17 +343,10 @@ void QuasiStaticSolver<dim>::make_points() {
   for (const auto& cell : triangulation_.active_cell_iterators()) {
     if (!cell->is_locally_owned()) continue;
     history_.initialize(cell, quadrature_.size());
-    fv.reinit(cell);
     auto records = history_.get_data(cell);
-    for (unsigned q = 0; q < quadrature_.size(); ++q) {
-      PointPlace place;
-      place.cell = cell->id().to_string();
-      place.index = q;
-      for (int d = 0; d < dim; ++d) place.position[d] = fv.quadrature_point(q)[d];
-      if (!made.empty()) continue;
+    for (unsigned q = 0; q < quadrature_.size() && made.empty(); ++q) {
       try {
-        records[q]->state = make_point_(place);
-        if (!records[q]->state) made = "quasi-static solver: no material made for cell " + place.cell;
+        records[q]->state = make_point(fv, cell, q);
       } catch (const std::exception& e) {
         made = e.what();
       }
@@ -338,6 +382,122 @@ void QuasiStaticSolver<dim>::make_points() {
     }
   }
   throw_first_failure(mismatch);
+}
+
+template <int dim>
+std::unique_ptr<PointState> QuasiStaticSolver<dim>::make_point(
+    FEValues<dim>& fv, const typename Triangulation<dim>::cell_iterator& cell, unsigned q) const {
+  fv.reinit(cell);
+  PointPlace place;
+  place.cell = cell->id().to_string();
+  place.index = q;
+  for (int d = 0; d < dim; ++d) place.position[d] = fv.quadrature_point(q)[d];
+  std::unique_ptr<PointState> made = make_point_(place);
+  if (!made) throw std::runtime_error("quasi-static solver: no material made for cell " + place.cell);
+  return made;
+}
+
+template <int dim>
+std::pair<double, double> QuasiStaticSolver<dim>::imbalance() const {
+  double costliest = 0.0;
+  for (const auto& cell : triangulation_.active_cell_iterators())
+    if (cell->is_locally_owned()) {
+      double c = 0.0;
+      for (const auto& r : history_.get_data(cell)) c += r->step_cost;
+      costliest = std::max(costliest, c);
+    }
+  const double busiest = Utilities::MPI::max(cost_, comm_);
+  costliest = Utilities::MPI::max(costliest, comm_);
+  const double mean = Utilities::MPI::sum(cost_, comm_) / Utilities::MPI::n_mpi_processes(comm_);
+  if (!(mean > 0.0)) return {1.0, 1.0};
+  return {busiest / mean, std::max(costliest / mean, 1.0)};
+}
+
+template <int dim>
+double QuasiStaticSolver<dim>::repartition_by_cost() {
+  using CellIterator = typename Triangulation<dim>::cell_iterator;
+  using CellStatus = typename Triangulation<dim>::CellStatus;
+  // Each local cell's points as bytes, made before the repartition so that a point that cannot be
+  // saved stops every rank here, not inside p4est: per point its committed stress, tangent and
+  // displacement gradient, then its state.
+  std::map<CellId, std::vector<char>> packed;
+  std::map<CellId, double> cost;
+  std::string failure;
+  for (const auto& cell : triangulation_.active_cell_iterators()) {
+    if (!cell->is_locally_owned() || !failure.empty()) continue;
+    CellBytes w;
+    double cell_cost = 0.0;
+    for (const auto& r : history_.get_data(cell)) cell_cost += r->step_cost;
+    w.put(&cell_cost, 1);
+    for (const auto& r : history_.get_data(cell)) {
+      w.put(r->committed_response.stress.data(), 6);
+      w.put(r->committed_response.tangent.data(), 36);
+      w.put(r->committed_gradient.data(), 9);
+      try {
+        w.put(r->state->save());
+      } catch (const std::exception& e) {
+        failure = "quasi-static solver: the ranks cannot be balanced by cost: the material at cell " +
+                  cell->id().to_string() + ": " + e.what();
+      }
+    }
+    packed[cell->id()] = std::move(w.bytes());
+    cost[cell->id()] = cell_cost;
+  }
+  throw_first_failure(failure);
+  double heaviest = 0.0;
+  for (const auto& [id, c] : cost) heaviest = std::max(heaviest, c);
+  heaviest = Utilities::MPI::max(heaviest, comm_);
+
+  // p4est balances the sum of the weights: each cell's cost in 1e6 parts of the heaviest's, and
+  // one part more so that a cell that cost nothing still counts.
+  auto weight = triangulation_.signals.weight.connect([&](const CellIterator& cell, CellStatus) -> unsigned {
+    return 1u + static_cast<unsigned>(std::lround(1e6 * cost.at(cell->id()) / heaviest));
+  });
+  const auto handle = triangulation_.register_data_attach(
+      [&](const CellIterator& cell, CellStatus) { return packed.at(cell->id()); }, /*variable size*/ true);
+  DistributedVector ghosted(owned_, relevant_, comm_);
+  ghosted = u_committed_;
+  parallel::distributed::SolutionTransfer<dim, DistributedVector> transfer(dofs_);
+  transfer.prepare_for_coarsening_and_refinement(ghosted);
+  triangulation_.repartition();
+  weight.disconnect();
+  packed.clear();
+
+  history_.clear();
+  setup_system();
+  transfer.interpolate(u_committed_);
+  u_trial_ = u_committed_;
+  FEValues<dim> fv(fe_, quadrature_, update_quadrature_points);
+  double moved_cost = 0.0;  // of this rank's cells now
+  triangulation_.notify_ready_to_unpack(
+      handle, [&](const CellIterator& cell, CellStatus,
+                  const boost::iterator_range<std::vector<char>::const_iterator>& data) {
+        history_.initialize(cell, quadrature_.size());
+        if (!failure.empty()) return;
+        try {
+          CellBytes in(std::vector<char>(data.begin(), data.end()));
+          double cell_cost = 0.0;
+          in.get(&cell_cost, 1);
+          moved_cost += cell_cost;
+          const auto records = history_.get_data(cell);
+          for (unsigned q = 0; q < records.size(); ++q) {
+            PointRecord& r = *records[q];
+            in.get(r.committed_response.stress.data(), 6);
+            in.get(r.committed_response.tangent.data(), 36);
+            in.get(r.committed_gradient.data(), 9);
+            r.state = make_point(fv, cell, q);
+            r.state->load(in.get_block());
+            r.response = r.committed_response;
+            r.displacement_gradient = r.committed_gradient;
+          }
+        } catch (const std::exception& e) {
+          failure = "quasi-static solver: a material moved to cell " + cell->id().to_string() +
+                    " could not be restored: " + e.what();
+        }
+      });
+  throw_first_failure(failure);
+  const double mean = Utilities::MPI::sum(moved_cost, comm_) / Utilities::MPI::n_mpi_processes(comm_);
+  return mean > 0.0 ? Utilities::MPI::max(moved_cost, comm_) / mean : 1.0;
 }
 
 template <int dim>
@@ -398,6 +558,7 @@ double QuasiStaticSolver<dim>::assemble(const AffineConstraints<double>& constra
         try {
           r.response = r.state->respond(r.displacement_gradient);
           cost_ += r.response.cost;
+          r.step_cost += r.response.cost;
           if (!r.response.converged) local_failure = where() + " did not converge: " + r.response.failure;
         } catch (const std::exception& e) {
           local_failure = where() + " refused its trial: " + e.what();
@@ -653,6 +814,7 @@ QuasiStaticResult QuasiStaticSolver<dim>::run() {
   result.n_dofs = dofs_.n_dofs();
   result.n_cells = triangulation_.n_global_active_cells();
   auto started = std::chrono::steady_clock::now();
+  double achievable = 1.0;  // the last repartition's weights over its partition
   const auto record_step = [&](LoadStepRecord record, double lambda) {
     const auto now = std::chrono::steady_clock::now();
     record.seconds = Utilities::MPI::max(std::chrono::duration<double>(now - started).count(), comm_);
@@ -660,7 +822,20 @@ QuasiStaticResult QuasiStaticSolver<dim>::run() {
     record.platen_displacement = lambda * p_.platen_displacement;
     record.platen_force = platen_force();
     record.cost = Utilities::MPI::sum(cost_, comm_);
+    const auto [imbalance_now, least] = imbalance();
+    record.imbalance = imbalance_now;
+    // Relative to what whole cells allow: the costliest cell's share, and the imbalance the last
+    // repartition's own weights had over its partition (the same costs would give the same
+    // partition again; costs that moved since then are worth another).
+    if (p_.rebalance_threshold > 0.0 &&
+        record.imbalance > p_.rebalance_threshold * std::max(achievable, least)) {
+      achievable = repartition_by_cost();
+      record.repartitioned = true;
+    }
     cost_ = 0.0;
+    for (const auto& cell : triangulation_.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const auto& r : history_.get_data(cell)) r->step_cost = 0.0;
     result.steps.push_back(std::move(record));
     write_step(result.steps.back().step);
     if (output_.on_step) output_.on_step(result.steps.back());
@@ -719,6 +894,8 @@ void validate(const QuasiStaticProblem& p) {
   if (p.degree < 1 || p.degree > 4) fail("degree must be 1 to 4");
   if (p.quadrature_points > 5) fail("quadrature points must be 0 (degree + 1) to 5 per direction");
   if (p.load_steps == 0) fail("load steps must be >= 1");
+  if (!(p.rebalance_threshold == 0.0 || p.rebalance_threshold >= 1.0))
+    fail("the rebalance threshold must be 0 (never) or >= 1 (the busiest rank's cost over the mean)");
   if (!(p.residual_tolerance >= 0.0) || !(p.correction_tolerance >= 0.0))
     fail("the Newton tolerances must be >= 0");
   if (p.residual_tolerance == 0.0 && p.correction_tolerance == 0.0)

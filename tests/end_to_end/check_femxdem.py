@@ -12,6 +12,8 @@
   step, its last step's rows those of points.csv, step 0's solid fractions within 1 % of each
   other (one prepared cell copied, strained by step 0's balance only);
 - summary.json: the Gauss points, grains per cell and Newton iterations of the tables;
+- the ranks' balance: every step's imbalance at least 1 (exactly 1 on one rank, where nothing is
+  repartitioned), summary.json's repartitions and its cost-weighted imbalance those of the table;
 - 1 and 2 ranks give the same path and points to 1e-6: not bitwise, since the matrix entries of
   the nodes two ranks share are summed in another order (docs/femxdem.md), and a DEM cell
   answers a displacement gradient that differs in its last bits with stresses that differ a
@@ -89,6 +91,16 @@ for ranks, folder in folders.items():
     assert summary['gauss_points'] == len(points) and summary['ranks'] == ranks
     assert summary['grains_per_cell'] == 60
     assert summary['newton_iterations'] == sum(int(r['newton_iterations']) for r in rows)
+    # The ranks' balance: 1 on one rank; on two, each rank's share of every step's grain-steps
+    # at least the mean, and the run's busiest share the steps' weighted by their grain-steps.
+    imbalance = [float(r['imbalance']) for r in rows]
+    cost = [float(r['grain_steps']) for r in rows]
+    assert all(x >= 1 - 1e-12 for x in imbalance), imbalance
+    if ranks == 1:
+        assert imbalance == [1.0] * len(rows) and all(r['repartitioned'] == '0' for r in rows), rows
+    assert summary['repartitions'] == sum(int(r['repartitioned']) for r in rows)
+    weighted = sum(x * c for x, c in zip(imbalance, cost)) / sum(cost)
+    assert abs(summary['imbalance'] - weighted) < 1e-6 * weighted, (summary['imbalance'], weighted)
 
 a = table(os.path.join(folders[1], 'load_displacement.csv'))
 b = table(os.path.join(folders[2], 'load_displacement.csv'))

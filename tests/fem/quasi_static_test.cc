@@ -8,6 +8,7 @@
 #include <mpi.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -400,6 +401,96 @@ TEST(QuasiStatic, PointsThatNameOtherMeasuresAreRefusedOnEveryRank) {
     const std::string what = e.what();
     EXPECT_NE(what.find("has 1 measures, another point 2"), std::string::npos) << what;
     EXPECT_NE(what.find("the point 3 of cell"), std::string::npos) << what;
+  }
+}
+
+// A linear elastic point whose history is its commits (a count and the sum of the committed
+// H_yy, which a point that lost its state on a move would not know), and whose answers cost 100
+// times more in the top half of the specimen than in the bottom.
+class CostlyPoint final : public PointState {
+ public:
+  explicit CostlyPoint(double y) : cost_(y > 0.05 ? 100.0 : 1.0) {}
+  PointResponse respond(const Mat3x3& h) override {
+    trial_ = h(1, 1);
+    PointResponse r = elastic_.respond(h);
+    r.cost = cost_;
+    return r;
+  }
+  void commit() override {
+    ++commits_;
+    sum_ += trial_;
+  }
+  [[nodiscard]] std::unique_ptr<PointState> clone() const override {
+    return std::make_unique<CostlyPoint>(*this);
+  }
+  [[nodiscard]] std::vector<PointMeasure> measures() const override {
+    return {{"commits", static_cast<double>(commits_)}, {"sum_h_yy", sum_}};
+  }
+  [[nodiscard]] std::vector<char> save() const override {
+    std::vector<char> b(sizeof commits_ + sizeof sum_);
+    std::memcpy(b.data(), &commits_, sizeof commits_);
+    std::memcpy(b.data() + sizeof commits_, &sum_, sizeof sum_);
+    return b;
+  }
+  void load(const std::vector<char>& b) override {
+    if (b.size() != sizeof commits_ + sizeof sum_) throw std::runtime_error("CostlyPoint: bad bytes");
+    std::memcpy(&commits_, b.data(), sizeof commits_);
+    std::memcpy(&sum_, b.data() + sizeof commits_, sizeof sum_);
+  }
+
+ private:
+  LinearElasticPoint elastic_{elasticity()};
+  double cost_, trial_ = 0.0, sum_ = 0.0;
+  long commits_ = 0;
+};
+
+// The ranks balanced by cost: on 2 ranks the first partition splits the cells evenly, so the rank
+// with the top half works about 100 times more (an imbalance of 1.98); after a step above the threshold the
+// mesh is repartitioned by the cells' cost, the points move with their histories, and the next steps are
+// even. The path and every point's history are those of the run that never repartitions (to
+// round-off: the matrix is summed in another order), and on 1 rank nothing moves.
+TEST(QuasiStatic, RanksAreBalancedByThePointsCost) {
+  QuasiStaticProblem p = uniaxial();
+  p.cells = {4, 4, 1};
+  p.load_steps = 3;
+  const auto make = [](const PointPlace& place) { return std::make_unique<CostlyPoint>(place.position[1]); };
+  p.rebalance_threshold = 0.0;
+  const QuasiStaticResult fixed = solve_quasi_static(p, make, MPI_COMM_WORLD);
+  p.rebalance_threshold = 1.1;
+  const QuasiStaticResult balanced = solve_quasi_static(p, make, MPI_COMM_WORLD);
+  ASSERT_EQ(balanced.steps.size(), 4u);
+  // Every iteration asks all 64 points once: 32 at 100 and 32 at 1.
+  for (const QuasiStaticResult* r : {&fixed, &balanced})
+    for (const LoadStepRecord& s : r->steps) EXPECT_EQ(s.cost, 3232.0 * (s.newton_iterations + 1)) << s.step;
+  if (test::world_size() == 1) {
+    for (const LoadStepRecord& s : balanced.steps) {
+      EXPECT_EQ(s.imbalance, 1.0);
+      EXPECT_FALSE(s.repartitioned);
+    }
+  } else {
+    EXPECT_GT(fixed.steps[1].imbalance, 1.5);
+    EXPECT_GT(fixed.steps[3].imbalance, 1.5);
+    EXPECT_GT(balanced.steps[0].imbalance, 1.5);
+    EXPECT_TRUE(balanced.steps[0].repartitioned);
+    // Whole cells of 400 and of 4 split the cost evenly on 2 ranks (measured 1.010) and only to
+    // 1.144 on 3, which is then the mark the threshold applies to: no second repartition.
+    for (std::size_t k = 1; k < balanced.steps.size(); ++k) {
+      EXPECT_LT(balanced.steps[k].imbalance, 1.2) << k;
+      EXPECT_FALSE(balanced.steps[k].repartitioned) << k;
+    }
+  }
+  for (std::size_t k = 0; k < fixed.steps.size(); ++k) {
+    EXPECT_NEAR(balanced.steps[k].platen_force, fixed.steps[k].platen_force,
+                1e-12 * std::abs(fixed.steps[3].platen_force))
+        << k;
+    EXPECT_EQ(balanced.steps[k].cost, fixed.steps[k].cost) << k;
+  }
+  ASSERT_EQ(balanced.points.size(), fixed.points.size());
+  for (std::size_t i = 0; i < fixed.points.size(); ++i) {
+    EXPECT_EQ(balanced.points[i].place.cell, fixed.points[i].place.cell);
+    EXPECT_EQ(balanced.points[i].measures[0], 4.0);  // steps 0 to 3 committed, wherever it was
+    EXPECT_NEAR(balanced.points[i].measures[1], fixed.points[i].measures[1], 1e-12);
+    EXPECT_TRUE(balanced.points[i].stress.isApprox(fixed.points[i].stress, 1e-12)) << i;
   }
 }
 

@@ -3,6 +3,7 @@
 // Newton iteration, and the DEM cell at each quadrature point (coupling/femxdem/rve_options.h).
 // Each default written here once.
 #include "coupling/femxdem/rve_options.h"
+#include "fem/quasi_static/quasi_static_problem.h"
 
 namespace upgrain::coupling {
 
@@ -28,6 +29,11 @@ struct FemxdemOptions {
   double correction_tolerance = 1e-2;
   int max_newton_iterations = 15;
   int max_step_cuts = 4;
+  // The ranks rebalanced by the DEM cells' measured cost (fem/quasi_static/quasi_static_problem.h).
+  double rebalance_threshold = fem::QuasiStaticProblem{}.rebalance_threshold;
+  // Distinct DEM cells: each Gauss point copies one of this many packings (seeds cell seed, cell
+  // seed + 1, ...), chosen by its place; 0: every point its own (coupling/femxdem/rve_packings.h).
+  int cell_packings = 1;
   RveOptions rve;
 };
 

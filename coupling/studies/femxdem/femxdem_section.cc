@@ -47,11 +47,21 @@ Section femxdem_section() {
                "Newton iterations of a step before it is cut."),
        integer("max step cuts", femxdem(&FemxdemOptions::max_step_cuts), 0, 30, "-",
                "Halvings of a failing step in a row before the study stops with the step, cell and point."),
+       real("rebalance threshold", femxdem(&FemxdemOptions::rebalance_threshold), 0.0, 1e6, "-",
+            "After a load step in which the busiest rank's DEM cells took more than this times the ranks' "
+            "mean grain-steps, the mesh is repartitioned with each element weighted by its cells' "
+            "grain-steps, and the cells move with their elements (docs/femxdem.md); 0: never. Values "
+            "between 0 and 1 are refused."),
        integer("grains per cell", femxdem(&FemxdemOptions::rve, &RveOptions::grains), 10, 100000, "-",
                "Grains in each DEM cell (a fully periodic cube of the scene's particles, prepared once and "
                "copied to every Gauss point)."),
        integer("cell seed", femxdem(&FemxdemOptions::rve, &RveOptions::seed), 0, 2147483647, "-",
-               "Seed of the DEM cell's random placement; every Gauss point holds a copy of the one cell."),
+               "Seed of the DEM cell's random placement (the first packing's)."),
+       integer("cell packings", femxdem(&FemxdemOptions::cell_packings), 0, 100000, "-",
+               "Distinct DEM cells, prepared with the seeds cell seed, cell seed + 1, ...: each Gauss point "
+               "copies the one its place picks (the same on any rank count). 1: one cell copied to every "
+               "point, a specimen that stays symmetric; more: point-to-point scatter, which triggers "
+               "localisation; 0: every point its own packing (docs/femxdem.md)."),
        real("preparation friction", femxdem(&FemxdemOptions::rve, &RveOptions::preparation_friction), -1.0,
             10.0, "-",
             "The grains' friction coefficient while the DEM cell is squeezed to the confining pressure: the "

@@ -7,6 +7,7 @@
 #include <memory>
 #include <sstream>
 
+#include "coupling/femxdem/rve_packings.h"
 #include "coupling/femxdem/rve_point.h"
 #include "coupling/studies/dem_run.h"
 #include "coupling/studies/figure_script.h"
@@ -36,9 +37,10 @@ std::string load_displacement_table(const std::vector<fem::LoadStepRecord>& step
        "axial_strain = -platen displacement / height; sigma_1 = the top platen's reaction per unit "
        "thickness over the width; sigma_3 = the confining pressure; newton_iterations summed over the "
        "step's sub-steps; grain_steps = the DEM cells' work (grain-steps, every rank); wall_s = the "
-       "step's wall time (the slowest rank's)\n"
+       "step's wall time (the slowest rank's); imbalance = the busiest rank's grain-steps over the ranks' "
+       "mean in the step; repartitioned = 1 when the mesh was then repartitioned by the cells' cost\n"
        "step,platen_displacement,axial_strain,sigma_1,sigma_3,q,q_over_p,newton_iterations,cuts,"
-       "grain_steps,wall_s\n";
+       "grain_steps,wall_s,imbalance,repartitioned\n";
   const double s3 = o.rve.mean_stress;
   for (const fem::LoadStepRecord& s : steps) {
     const double s1 = axial_stress(s, o);
@@ -47,7 +49,7 @@ std::string load_displacement_table(const std::vector<fem::LoadStepRecord>& step
       << table_number(0.0 - s.platen_displacement / o.height) << ',' << table_number(s1) << ','
       << table_number(s3) << ',' << table_number(q) << ',' << table_number(q / p) << ','
       << s.newton_iterations << ',' << s.cuts << ',' << table_number(s.cost) << ',' << table_number(s.seconds)
-      << '\n';
+      << ',' << table_number(s.imbalance) << ',' << (s.repartitioned ? 1 : 0) << '\n';
   }
   return t.str();
 }
@@ -107,6 +109,7 @@ fem::QuasiStaticProblem biaxial_problem(const FemxdemOptions& o) {
   p.correction_tolerance = o.correction_tolerance;
   p.max_newton_iterations = static_cast<unsigned>(o.max_newton_iterations);
   p.max_step_cuts = static_cast<unsigned>(o.max_step_cuts);
+  p.rebalance_threshold = o.rebalance_threshold;
   return p;
 }
 
@@ -117,15 +120,19 @@ int run_femxdem_study(const SceneInput& in, MPI_Comm comm, const StudyHooks&) {
   const fs::path folder = fs::path(in.output.folder) / "femxdem";
   on_rank0(comm, [&] { dem::io::create_folder(folder); });
 
-  // Every rank prepares the same cell (deterministic, on MPI_COMM_SELF) rather than receiving it.
-  const auto t0 = std::chrono::steady_clock::now();
-  const auto prepared = std::make_shared<const RveTemplate>(prepare_rve(in.scene, o.rve));
-  const double preparation_seconds = seconds_since(t0);
+  // Every rank prepares the packings its points copy (deterministic, on MPI_COMM_SELF) rather than
+  // receiving them; the first one on every rank, for the report.
+  RvePackings packings(in.scene, o.rve, o.cell_packings);
+  const auto prepared = packings.first();
   if (rank == 0)
     std::printf(
-        "  femxdem: the DEM cell: %ld grains, %ld contacts, p %.6g Pa, prepared in %ld steps (%.1f s)\n",
+        "  femxdem: the DEM cell: %ld grains, %ld contacts, p %.6g Pa, prepared in %ld steps (%.1f s)%s\n",
         prepared->grains, prepared->contacts, -fem::mandel::trace(prepared->stress) / 3.0, prepared->steps,
-        preparation_seconds);
+        packings.preparation_seconds(),
+        o.cell_packings == 1 ? ""
+        : o.cell_packings == 0
+            ? "; every Gauss point its own packing"
+            : ("; one of " + std::to_string(o.cell_packings) + " packings at each Gauss point").c_str());
 
   const fem::QuasiStaticProblem problem = biaxial_problem(o);
   // The tables so far, rewritten after each converged step: a run that stops keeps its path.
@@ -135,9 +142,10 @@ int run_femxdem_study(const SceneInput& in, MPI_Comm comm, const StudyHooks&) {
     if (rank != 0) return;
     std::printf(
         "  femxdem: step %u/%u  eps_a %.4f  sigma_1 %.6g Pa  Newton %u  cuts %u  "
-        "%.3g grain-steps  %.1f s\n",
+        "%.3g grain-steps  imbalance %.2f%s  %.1f s\n",
         s.step, problem.load_steps, 0.0 - s.platen_displacement / o.height, axial_stress(s, o),
-        s.newton_iterations, s.cuts, s.cost, s.seconds);
+        s.newton_iterations, s.cuts, s.cost, s.imbalance, s.repartitioned ? " (repartitioned)" : "",
+        s.seconds);
     std::fflush(stdout);
   };
   const auto on_points = [&](const fem::LoadStepRecord& s, const std::vector<std::string>& measures,
@@ -153,20 +161,30 @@ int run_femxdem_study(const SceneInput& in, MPI_Comm comm, const StudyHooks&) {
   const RveOptions rve = o.rve;
   const auto t1 = std::chrono::steady_clock::now();
   const fem::QuasiStaticResult r = fem::solve_quasi_static(
-      problem, [&](const fem::PointPlace&) { return std::make_unique<RveCell>(prepared, rve); }, comm,
-      output);
+      problem,
+      [&](const fem::PointPlace& place) { return std::make_unique<RveCell>(packings.for_point(place), rve); },
+      comm, output);
   const double solve_seconds = seconds_since(t1);
+  // Every packing's preparation, on the rank that spent the most; those that a point first needed
+  // inside the solve (on the rank it moved to, too) are also part of solve_s.
+  const double preparation_seconds = [&] {
+    double s = packings.preparation_seconds(), most = 0.0;
+    MPI_Allreduce(&s, &most, 1, MPI_DOUBLE, MPI_MAX, comm);
+    return most;
+  }();
 
   on_rank0(comm, [&] {
     dem::io::write_text_atomically(
         folder / "points.csv",
         points_head("at the last load step", r.measure_names) + point_rows(r.steps.back().step, r.points));
     using dem::io::json_number;
-    double grain_steps = 0.0;
-    unsigned iterations = 0;
+    double grain_steps = 0.0, busiest = 0.0;
+    unsigned iterations = 0, repartitions = 0;
     for (const fem::LoadStepRecord& s : r.steps) {
       grain_steps += s.cost;
+      busiest += s.cost * s.imbalance;
       iterations += s.newton_iterations;
+      repartitions += s.repartitioned ? 1 : 0;
     }
     int ranks = 1;
     MPI_Comm_size(comm, &ranks);
@@ -174,11 +192,13 @@ int run_femxdem_study(const SceneInput& in, MPI_Comm comm, const StudyHooks&) {
     j << "{\n  \"study\": \"femxdem\",\n  \"ranks\": " << ranks << ",\n  \"cells\": " << r.n_cells
       << ",\n  \"gauss_points\": " << r.points.size() << ",\n  \"dofs\": " << r.n_dofs
       << ",\n  \"grains_per_cell\": " << prepared->grains << ",\n  \"cell_contacts\": " << prepared->contacts
-      << ",\n  \"preparation_steps\": " << prepared->steps
+      << ",\n  \"cell_packings\": " << o.cell_packings << ",\n  \"preparation_steps\": " << prepared->steps
       << ",\n  \"preparation_s\": " << json_number(preparation_seconds)
       << ",\n  \"solve_s\": " << json_number(solve_seconds) << ",\n  \"load_steps\": " << r.steps.size() - 1
       << ",\n  \"newton_iterations\": " << iterations << ",\n  \"grain_steps\": " << json_number(grain_steps)
       << ",\n  \"grain_steps_per_core_second\": " << json_number(grain_steps / (solve_seconds * ranks))
+      << ",\n  \"imbalance\": " << json_number(grain_steps > 0.0 ? busiest / grain_steps : 1.0)
+      << ",\n  \"repartitions\": " << repartitions
       << ",\n  \"final_axial_stress_Pa\": " << json_number(axial_stress(r.steps.back(), o)) << "\n}\n";
     dem::io::write_text_atomically(fs::path(in.output.folder) / "summary.json", j.str());
     run_figure_script("studies/femxdem/plot_femxdem.py", folder, "plots.log",

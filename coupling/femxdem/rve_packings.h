@@ -1,0 +1,51 @@
+#pragma once
+// Which prepared DEM cell each Gauss point of FEM x DEM copies (docs/femxdem.md, "Point-to-point
+// variability"). One packing copied to every point leaves a specimen under symmetric loading
+// symmetric to round-off; distinct packings, each prepared to the same isotropic stress from its
+// own random fill, give the points the scatter of a real specimen, which triggers localisation
+// (Shahin, Desrues, Dal Pont, Combe and Argilaga 2016, IJNME 106, 1079). A point's packing is a
+// function of its place alone (its cell's id and its index in the cell), so it is the same on
+// every rank count and after the point moves to another rank. The packings are prepared where
+// and when a point first needs one (on MPI_COMM_SELF, deterministic) and then shared.
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "coupling/femxdem/rve_preparation.h"
+#include "fem/quasi_static/point_state.h"
+
+namespace upgrain::coupling {
+
+class RvePackings {
+ public:
+  // `count` packings with the seeds o.seed, o.seed + 1, ..., o.seed + count - 1, each point taking
+  // the one its place's hash picks; count = 0: every point its own packing, seeded by o.seed and
+  // its place's hash.
+  RvePackings(const dem::SceneConfig& scene, const RveOptions& o, int count);
+
+  // The packing of the point at `place`, prepared on first use.
+  [[nodiscard]] std::shared_ptr<const RveTemplate> for_point(const fem::PointPlace& place);
+  // The packing of seed o.seed: the first one (what the study reports).
+  [[nodiscard]] std::shared_ptr<const RveTemplate> first();
+  // The seed of the point at `place`.
+  [[nodiscard]] std::uint64_t seed_of(const fem::PointPlace& place) const;
+
+  [[nodiscard]] std::size_t prepared() const { return prepared_.size(); }
+  [[nodiscard]] double preparation_seconds() const { return seconds_; }
+
+ private:
+  [[nodiscard]] std::shared_ptr<const RveTemplate> with_seed(std::uint64_t seed);
+
+  dem::SceneConfig scene_;
+  RveOptions options_;
+  int count_;
+  std::map<std::uint64_t, std::shared_ptr<const RveTemplate>> prepared_;
+  double seconds_ = 0.0;
+};
+
+// FNV-1a (Fowler, Noll and Vo) of a point's place: its cell's id and its index, the same bits on
+// every platform.
+[[nodiscard]] std::uint64_t place_hash(const fem::PointPlace& place);
+
+}  // namespace upgrain::coupling
