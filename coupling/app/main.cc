@@ -270,7 +270,11 @@ int run(int argc, char** argv) {
       std::snprintf(part, sizeof part, "every %g s of wall clock", c.wall_interval);
       every += (every.empty() ? "" : ", ") + std::string(part);
     }
-    if (!every.empty()) std::printf("  checkpoints: %s, the last %d kept\n", every.c_str(), c.keep);
+    if (!study->use.checkpoints)
+      std::printf("  checkpoints: none (--study %s drives its own cells; Checkpoint is not used)\n",
+                  std::string(study->use.name).c_str());
+    else if (!every.empty())
+      std::printf("  checkpoints: %s, the last %d kept\n", every.c_str(), c.keep);
   }
   std::fflush(stdout);  // the preamble reaches a log file before a run that may be killed
   // The folder is this run's while it lives (docs/output.md, "Lock"); with overwrite the earlier

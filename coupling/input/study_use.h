@@ -22,6 +22,9 @@ struct StudyUse {
   bool scene_lid = true;
   // Always loads the bed in the calibration's tests (Calibration section).
   bool calibrates = false;
+  // Writes the Checkpoint section's checkpoints of its DEM runs (docs/restart.md); the element and
+  // FEM x DEM studies drive their own cells, which it does not reach.
+  bool checkpoints = true;
   // The study's own checks, after every section's and the scene's (validate_scene). Throws
   // upgrain::Error prefixed by `where`. Null: none.
   void (*check)(SceneInput& in, const std::string& where) = nullptr;

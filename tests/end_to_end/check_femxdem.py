@@ -12,6 +12,7 @@
   step, its last step's rows those of points.csv, step 0's solid fractions within 1 % of each
   other (one prepared cell copied, strained by step 0's balance only);
 - summary.json: the Gauss points, grains per cell and Newton iterations of the tables;
+- the log: no checkpoint schedule (the study writes none), but a line that says so;
 - the ranks' balance: every step's imbalance at least 1 (exactly 1 on one rank, where nothing is
   repartitioned), summary.json's repartitions and its cost-weighted imbalance those of the table;
 - 1 and 2 ranks give the same path and points to 1e-6: not bitwise, since the matrix entries of
@@ -48,6 +49,9 @@ for ranks in (1, 2):
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode != 0:
         sys.exit(f'{ranks} rank(s): exit {r.returncode}\n{r.stdout}\n{r.stderr}')
+    # The study writes no checkpoint, and its log says so instead of the scene's schedule.
+    assert 'checkpoints: none (--study femxdem drives its own cells' in r.stdout, r.stdout
+    assert 'of wall clock' not in r.stdout, r.stdout
     folders[ranks] = os.path.join(out, 'femxdem')
 
 steps = 4

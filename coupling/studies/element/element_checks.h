@@ -12,6 +12,7 @@ void check_element_study(SceneInput& in, const std::string& where);
 
 // What the element study uses of a scene: its grains, its cell and the Element test section;
 // no lid (it has no walls).
-inline constexpr StudyUse kElementUse{.name = "element", .scene_lid = false, .check = check_element_study};
+inline constexpr StudyUse kElementUse{
+    .name = "element", .scene_lid = false, .checkpoints = false, .check = check_element_study};
 
 }  // namespace upgrain::coupling
