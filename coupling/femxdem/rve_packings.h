@@ -3,7 +3,7 @@
 // variability"). One packing copied to every point leaves a specimen under symmetric loading
 // symmetric to round-off; distinct packings, each prepared to the same isotropic stress from its
 // own random fill, give the points the scatter of a real specimen, which triggers localisation
-// (Shahin, Desrues, Dal Pont, Combe and Argilaga 2016, IJNME 106, 1079). A point's packing is a
+// (Shahin et al. 2016, Int. J. Numer. Meth. Engng, doi:10.1002/nme.5202). A point's packing is a
 // function of its place alone (its cell's id and its index in the cell), so it is the same on
 // every rank count and after the point moves to another rank. The packings are prepared where
 // and when a point first needs one (on MPI_COMM_SELF, deterministic) and then shared.
