@@ -12,15 +12,14 @@ namespace {
 
 enum Term { kResultant, kContact, kCount };
 
-// The ratio's terms, each handed to add(term, grain, value) with the grain it belongs to: every
-// owned grain's |F|, and each counted contact's |f| and 1 with its first grain (a pair is recorded
-// once, with its first grain; wall contacts do not count).
-template <class Add>
-void add_terms(std::span<const Vec3> resultants, std::span<const ContactSample> contacts, Add&& add) {
-  for (std::size_t i = 0; i < resultants.size(); ++i)
-    add(kResultant, static_cast<int>(i), resultants[i].norm());
+// The ratio's terms, each handed to add(term, grain, value) with the grain it belongs to: each of
+// the n owned grains' |F| (resultant(i)), and each counted contact's |f| and 1 with its first
+// grain (a pair is recorded once, with its first grain; wall contacts do not count).
+template <class Resultant, class Add>
+void add_terms(int n, Resultant&& resultant, std::span<const ContactSample> contacts, Add&& add) {
+  for (int i = 0; i < n; ++i) add(kResultant, i, resultant(i).norm());
   for (const ContactSample& c : contacts) {
-    if (c.with_wall() || c.a < 0 || static_cast<std::size_t>(c.a) >= resultants.size()) continue;
+    if (c.with_wall() || c.a < 0 || c.a >= n) continue;
     add(kContact, c.a, c.force_on_a.norm());
     add(kCount, c.a, 1.0);
   }
@@ -36,20 +35,20 @@ double ratio(double resultant, double contact, double count, double grains) {
 
 double unbalanced_force_ratio(std::span<const Vec3> forces, std::span<const ContactSample> contacts) {
   double t[3] = {0.0, 0.0, 0.0};
-  add_terms(forces, contacts, [&](int term, int, double value) { t[term] += value; });
+  add_terms(
+      static_cast<int>(forces.size()), [&](int i) { return forces[static_cast<std::size_t>(i)]; }, contacts,
+      [&](int term, int, double value) { t[term] += value; });
   return ratio(t[kResultant], t[kContact], t[kCount], static_cast<double>(forces.size()));
 }
 
 double unbalanced_force_ratio(const Simulation& sim) {
   if (!sim.contacts_recorded()) throw Error("unbalanced force: no contacts recorded at the last step");
   const ParticleStore& p = sim.particles();
-  const int n = sim.owned();
-  std::vector<Vec3> resultants(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i)
-    resultants[i] = p.force[i] + p.mass(static_cast<std::size_t>(i)) * sim.gravity();
-  ParticleSums sums(sim.summation(), 3, n);
-  add_terms(resultants, sim.contacts(),
-            [&](int term, int grain, double value) { sums.add(term, grain, value); });
+  const Vec3 g = sim.gravity();
+  ParticleSums sums(sim.summation(), 3, sim.owned());
+  add_terms(
+      sim.owned(), [&](int i) -> Vec3 { return p.force[i] + p.mass(static_cast<std::size_t>(i)) * g; },
+      sim.contacts(), [&](int term, int grain, double value) { sums.add(term, grain, value); });
   const std::vector<double> t = sums.totals(sim.comm());
   return ratio(t[kResultant], t[kContact], t[kCount], static_cast<double>(sim.particle_count()));
 }

@@ -35,7 +35,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <map>
 #include <sstream>
@@ -118,39 +117,18 @@ class AffineDisplacement : public Function<dim> {
   Mat3x3 g_;
 };
 
-// A cell's points as one block of bytes for p4est to carry (repartition_by_cost()): doubles, and
-// each state's bytes behind their count, read back in the order they were written.
-class CellBytes {
- public:
-  CellBytes() = default;
-  explicit CellBytes(std::vector<char> bytes) : bytes_(std::move(bytes)) {}
-  void put(const double* v, std::size_t n) {
-    const auto* b = reinterpret_cast<const char*>(v);
-    bytes_.insert(bytes_.end(), b, b + n * sizeof(double));
+// A cell's points as p4est carries them (repartition_by_cost()), packed by deal.II's
+// Utilities::pack: the cell's cost, per point its committed stress, tangent and displacement
+// gradient (kPointNumbers numbers), and each point's state as its own bytes.
+struct CellPack {
+  static constexpr std::size_t kPointNumbers = 6 + 36 + 9;
+  double cost = 0.0;
+  std::vector<double> numbers;
+  std::vector<std::vector<char>> states;
+  template <class Archive>
+  void serialize(Archive& archive, const unsigned int /*version*/) {
+    archive& cost& numbers& states;
   }
-  void put(const std::vector<char>& block) {
-    const double n = static_cast<double>(block.size());
-    put(&n, 1);
-    bytes_.insert(bytes_.end(), block.begin(), block.end());
-  }
-  void get(double* v, std::size_t n) { std::memcpy(v, take(n * sizeof(double)), n * sizeof(double)); }
-  std::vector<char> get_block() {
-    double n = 0.0;
-    get(&n, 1);
-    const char* b = take(static_cast<std::size_t>(n));
-    return {b, b + static_cast<std::size_t>(n)};
-  }
-  [[nodiscard]] std::vector<char>& bytes() { return bytes_; }
-
- private:
-  const char* take(std::size_t n) {
-    if (at_ + n > bytes_.size()) throw std::runtime_error("a moved cell's bytes end early");
-    const char* b = bytes_.data() + at_;
-    at_ += n;
-    return b;
-  }
-  std::vector<char> bytes_;
-  std::size_t at_ = 0;
 };
 
 // The step's failure: which point (or Newton), on every rank the same words.
@@ -180,7 +158,7 @@ class QuasiStaticSolver {
   void make_mesh();
   void setup_system();
   void make_points();
-  // The point `q` of `cell` made by the factory; `fv` is reinitialised on the cell.
+  // The point `q` of `cell` made by the factory; `fv` must have been reinitialised on the cell.
   std::unique_ptr<PointState> make_point(FEValues<dim>& fv,
                                          const typename Triangulation<dim>::cell_iterator& cell,
                                          unsigned q) const;
@@ -343,6 +321,7 @@ void QuasiStaticSolver<dim>::make_points() {
   for (const auto& cell : triangulation_.active_cell_iterators()) {
     if (!cell->is_locally_owned()) continue;
     history_.initialize(cell, quadrature_.size());
+    fv.reinit(cell);
     auto records = history_.get_data(cell);
     for (unsigned q = 0; q < quadrature_.size() && made.empty(); ++q) {
       try {
@@ -387,7 +366,6 @@ void QuasiStaticSolver<dim>::make_points() {
 template <int dim>
 std::unique_ptr<PointState> QuasiStaticSolver<dim>::make_point(
     FEValues<dim>& fv, const typename Triangulation<dim>::cell_iterator& cell, unsigned q) const {
-  fv.reinit(cell);
   PointPlace place;
   place.cell = cell->id().to_string();
   place.index = q;
@@ -425,23 +403,24 @@ double QuasiStaticSolver<dim>::repartition_by_cost() {
   std::string failure;
   for (const auto& cell : triangulation_.active_cell_iterators()) {
     if (!cell->is_locally_owned() || !failure.empty()) continue;
-    CellBytes w;
-    double cell_cost = 0.0;
-    for (const auto& r : history_.get_data(cell)) cell_cost += r->step_cost;
-    w.put(&cell_cost, 1);
+    CellPack pack;
     for (const auto& r : history_.get_data(cell)) {
-      w.put(r->committed_response.stress.data(), 6);
-      w.put(r->committed_response.tangent.data(), 36);
-      w.put(r->committed_gradient.data(), 9);
+      pack.cost += r->step_cost;
+      const double* stress = r->committed_response.stress.data();
+      const double* tangent = r->committed_response.tangent.data();
+      const double* gradient = r->committed_gradient.data();
+      pack.numbers.insert(pack.numbers.end(), stress, stress + 6);
+      pack.numbers.insert(pack.numbers.end(), tangent, tangent + 36);
+      pack.numbers.insert(pack.numbers.end(), gradient, gradient + 9);
       try {
-        w.put(r->state->save());
+        pack.states.push_back(r->state->save());
       } catch (const std::exception& e) {
         failure = "quasi-static solver: the ranks cannot be balanced by cost: the material at cell " +
                   cell->id().to_string() + ": " + e.what();
       }
     }
-    packed[cell->id()] = std::move(w.bytes());
-    cost[cell->id()] = cell_cost;
+    cost[cell->id()] = pack.cost;
+    packed[cell->id()] = Utilities::pack(pack, /*allow_compression=*/false);
   }
   throw_first_failure(failure);
   double heaviest = 0.0;
@@ -475,18 +454,23 @@ double QuasiStaticSolver<dim>::repartition_by_cost() {
         history_.initialize(cell, quadrature_.size());
         if (!failure.empty()) return;
         try {
-          CellBytes in(std::vector<char>(data.begin(), data.end()));
-          double cell_cost = 0.0;
-          in.get(&cell_cost, 1);
-          moved_cost += cell_cost;
+          const auto pack =
+              Utilities::unpack<CellPack>(data.begin(), data.end(), /*allow_compression=*/false);
+          moved_cost += pack.cost;
           const auto records = history_.get_data(cell);
+          if (pack.states.size() != records.size() ||
+              pack.numbers.size() != CellPack::kPointNumbers * records.size())
+            throw std::runtime_error("its bytes hold " + std::to_string(pack.states.size()) +
+                                     " points, not " + std::to_string(records.size()));
+          fv.reinit(cell);
           for (unsigned q = 0; q < records.size(); ++q) {
             PointRecord& r = *records[q];
-            in.get(r.committed_response.stress.data(), 6);
-            in.get(r.committed_response.tangent.data(), 36);
-            in.get(r.committed_gradient.data(), 9);
+            const double* x = pack.numbers.data() + CellPack::kPointNumbers * q;
+            std::copy(x, x + 6, r.committed_response.stress.data());
+            std::copy(x + 6, x + 42, r.committed_response.tangent.data());
+            std::copy(x + 42, x + 51, r.committed_gradient.data());
             r.state = make_point(fv, cell, q);
-            r.state->load(in.get_block());
+            r.state->load(pack.states[q]);
             r.response = r.committed_response;
             r.displacement_gradient = r.committed_gradient;
           }
