@@ -57,6 +57,8 @@ struct RveOptions {
   // 43, prepares dense samples); the scene's coefficient is restored for the trials.
   double preparation_friction = -1.0;
   long preparation_step_cap = 400000;
+
+  friend bool operator==(const RveOptions&, const RveOptions&) = default;
 };
 
 }  // namespace upgrain::coupling
