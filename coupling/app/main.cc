@@ -208,9 +208,16 @@ int run(int argc, char** argv) {
     const std::string grains = dem::has_shapes(in.scene.particles.shapes)
                                    ? "grains (" + dem::shape_nouns(in.scene.particles.shapes) + ")"
                                    : "spheres";
-    std::printf("upgrain: %s\n  %ld %s, time step %.3g s (safe %.3g s, %s-limited), end time %.3g s\n",
-                in.source.c_str(), in.scene.particles.count, grains.c_str(), in.scene.time_step, ts.safe_step,
-                ts.limiting.c_str(), in.scene.end_time);
+    if (study->use.runs_scene)
+      std::printf("upgrain: %s\n  %ld %s, time step %.3g s (safe %.3g s, %s-limited), end time %.3g s\n",
+                  in.source.c_str(), in.scene.particles.count, grains.c_str(), in.scene.time_step,
+                  ts.safe_step, ts.limiting.c_str(), in.scene.end_time);
+    else
+      std::printf(
+          "upgrain: %s\n  DEM cells of %s, time step %.3g s (safe %.3g s, %s-limited); the scene's particle "
+          "count, end time and effects are not used (--study %s prepares its own cells)\n",
+          in.source.c_str(), grains.c_str(), in.scene.time_step, ts.safe_step, ts.limiting.c_str(),
+          std::string(study->use.name).c_str());
     if (coupling::compares_with_continuum(in))
       std::printf(
           "  study: DEM deposition -> grid stress -> continuum column (Q%u) -> comparison and report\n",
@@ -234,9 +241,11 @@ int run(int argc, char** argv) {
           c.youngs_modulus, c.source_of("youngs modulus").c_str(), c.poisson_ratio,
           c.source_of("poisson ratio").c_str(), c.friction_angle_deg, c.source_of("friction angle").c_str(),
           c.dilatancy_angle_deg, c.source_of("dilatancy angle").c_str());
-    std::printf("  effects (Effects section; auto = derived from the scene):\n");
-    for (const dem::EffectChoice& c : in.output.effect_choices)
-      std::printf("    %-20s %-3s  %s\n", c.entry.c_str(), c.on ? "on" : "off", c.reason.c_str());
+    if (study->use.runs_scene) {
+      std::printf("  effects (Effects section; auto = derived from the scene):\n");
+      for (const dem::EffectChoice& c : in.output.effect_choices)
+        std::printf("    %-20s %-3s  %s\n", c.entry.c_str(), c.on ? "on" : "off", c.reason.c_str());
+    }
     std::printf("  %d MPI rank%s, %s summation (Parallel/summation)\n", ranks, ranks > 1 ? "s" : "",
                 dem::to_string(in.parallel.summation).c_str());
     if (!in.packing_note.empty()) std::printf("  %s\n", in.packing_note.c_str());

@@ -19,7 +19,7 @@ namespace {
 // The servo's progress is looked at every this many steps.
 constexpr long kServoCheckEvery = 100;
 
-// The scene's grains in a fully periodic cube, no gravity, no pour, squeezed by a servo to p0 on
+// The scene's grains in a fully periodic cube, no gravity, no walls, no pour, squeezed by a servo to p0 on
 // every axis. The random fill keeps each grain a radius from the box's faces (dem/scene/fill.cc), so
 // the cube is sized for the fill's solid fraction over the region the centres may take,
 // solids / (L - 2 r_max)^3: for a few dozen equal grains the whole cube at that fraction leaves
@@ -29,6 +29,10 @@ dem::SceneConfig cell_scene(dem::SceneConfig scene, const RveOptions& o) {
   scene.particles.packing = nullptr;
   scene.insertion = {};
   scene.effects.gravity = false;
+  // No walls, and nothing reads a cell's energy: the force loop without the wall-friction and
+  // energy-tracking work per contact (docs/femxdem.md, "Cost").
+  scene.effects.wall_friction = false;
+  scene.effects.energy_tracking = false;
   scene.fill.method = dem::FillMethod::random;
   scene.fill.bottom_gap = 0.0;
   scene.fill.velocity = dem::Vec3::Zero();

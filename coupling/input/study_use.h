@@ -25,6 +25,9 @@ struct StudyUse {
   // Writes the Checkpoint section's checkpoints of its DEM runs (docs/restart.md); the element and
   // FEM x DEM studies drive their own cells, which it does not reach.
   bool checkpoints = true;
+  // Runs the scene's own DEM run: its particle count, end time and effects. The FEM x DEM study
+  // prepares its own DEM cells instead (docs/femxdem.md), and prints their effects.
+  bool runs_scene = true;
   // The study's own checks, after every section's and the scene's (validate_scene). Throws
   // upgrain::Error prefixed by `where`. Null: none.
   void (*check)(SceneInput& in, const std::string& where) = nullptr;

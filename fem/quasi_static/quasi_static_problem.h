@@ -57,6 +57,10 @@ struct QuasiStaticProblem {
   double residual_tolerance = 1e-10;
   double correction_tolerance = 0.0;
   unsigned max_newton_iterations = 25;
+  // Halvings of a Newton correction that a point cannot answer or that does not decrease the
+  // out-of-balance force, before the iteration goes on with the best fraction (or the step fails
+  // when no fraction can be answered): a backtracking line search; 0: plain Newton.
+  unsigned line_search_halvings = 3;
   // A load step that fails (a point that does not converge, or Newton) is retried with half its
   // increment, up to this many times in a row.
   unsigned max_step_cuts = 4;
@@ -79,9 +83,10 @@ struct LoadStepRecord {
   double platen_force = 0.0;         // the platens' reaction along their outward normal (N; per
                                      // unit thickness in 2D, N/m), averaged over the platens
   unsigned newton_iterations = 0;
-  std::vector<double> residuals;  // the relative out-of-balance force at each iteration
-  unsigned cuts = 0;              // halvings before it converged
-  double cost = 0.0;              // the points' cost (point_state.h), summed over the ranks
+  std::vector<double> residuals;      // the relative out-of-balance force at each iteration
+  unsigned cuts = 0;                  // halvings before it converged
+  unsigned line_search_halvings = 0;  // of its Newton corrections, over all its attempts
+  double cost = 0.0;                  // the points' cost (point_state.h), summed over the ranks
   // The busiest rank's share of `cost` over the ranks' mean (1: even, or nothing cost anything),
   // in the partition the step ran on; and whether the mesh was repartitioned by cost after it.
   double imbalance = 1.0;

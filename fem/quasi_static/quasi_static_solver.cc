@@ -36,6 +36,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -599,7 +600,7 @@ AffineConstraints<double> QuasiStaticSolver<dim>::increment_constraints(double f
 
 template <int dim>
 StepFailure QuasiStaticSolver<dim>::newton(double lambda, LoadStepRecord& record) {
-  DistributedVector step_increment(owned_, comm_), correction(owned_, comm_);
+  DistributedVector step_increment(owned_, comm_), correction(owned_, comm_), start(owned_, comm_);
   SolverControl control(1, 0);
   TrilinosWrappers::SolverDirect solver(control,
                                         TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Klu"));
@@ -612,9 +613,6 @@ StepFailure QuasiStaticSolver<dim>::newton(double lambda, LoadStepRecord& record
           "no face and no point's tangent holds");
     }
     constraints.distribute(correction);
-    u_trial_ += correction;
-    step_increment = u_trial_;
-    step_increment -= u_committed_;
   };
   record.residuals.clear();
   u_trial_ = u_committed_;
@@ -623,19 +621,22 @@ StepFailure QuasiStaticSolver<dim>::newton(double lambda, LoadStepRecord& record
     // The predictor: the converged state's tangent, and the prescribed values' change as the
     // correction's inhomogeneous constraints, so that the whole mesh, not only the elements along
     // the platens, takes the step's first strain (as deal.II's step-44 applies its Dirichlet
-    // increments). The points answer nothing new.
+    // increments). The points answer nothing new. It is not shortened: the prescribed values must
+    // be reached whole, and a predictor that asks too much of a point fails the step, which is cut.
     const AffineConstraints<double> predictor = increment_constraints(committed_lambda_, lambda);
     assemble(predictor, true, failure);
     solve(predictor);
+    u_trial_ += correction;
   } else {
     for (const auto& [dof, value] : boundary_values(lambda))
       if (owned_.is_element(dof)) u_trial_[dof] = value;
     u_trial_.compress(VectorOperation::insert);
   }
+  double r = assemble(update_constraints_, false, failure);
+  if (failure.failed) return failure;
+  double norm = residual_.l2_norm();
   bool small_correction = false;
   for (unsigned it = 0;; ++it) {
-    const double r = assemble(update_constraints_, false, failure);
-    if (failure.failed) return failure;
     record.residuals.push_back(r);
     record.newton_iterations = it;
     if (r <= p_.residual_tolerance || small_correction) return {};
@@ -643,9 +644,50 @@ StepFailure QuasiStaticSolver<dim>::newton(double lambda, LoadStepRecord& record
       return {true, "Newton's method did not converge in " + std::to_string(it) +
                         " iterations: out-of-balance force " + std::to_string(r) + " of the internal force"};
     solve(update_constraints_);
+    step_increment = u_trial_;
+    step_increment -= u_committed_;
+    step_increment.add(1.0, correction);
     const double scale = step_increment.l2_norm();
     small_correction = p_.correction_tolerance > 0.0 && scale > 0.0 &&
                        correction.l2_norm() <= p_.correction_tolerance * scale;
+
+    // Backtracking along the correction (Dennis & Schnabel 1996, Numerical Methods for
+    // Unconstrained Optimization and Nonlinear Equations, sec. 6.5): u + a du for a = 1, 1/2, ...,
+    // the first that every point can answer and that decreases the out-of-balance force,
+    // ||R(a)|| <= (1 - 1e-4 a) ||R(0)||. Past a softening peak a full correction can overshoot
+    // into strains a point cannot take (a DEM cell's runaway overlap) or away from the balance.
+    // A correction that already meets the correction criterion is taken whole: there the force
+    // left is the points' noise. If no fraction decreases the force, the one that left the least
+    // is taken (plain Newton when the full one did); if no fraction can be answered at all, the
+    // step fails and is cut.
+    start = u_trial_;
+    double alpha = 1.0, best_alpha = 0.0, best_norm = std::numeric_limits<double>::infinity();
+    StepFailure last_failure;
+    bool accepted = false;
+    for (unsigned h = 0; h <= p_.line_search_halvings && !accepted; ++h, alpha /= 2.0) {
+      if (h > 0) ++record.line_search_halvings;
+      u_trial_ = start;
+      u_trial_.add(alpha, correction);
+      last_failure = {};
+      r = assemble(update_constraints_, false, last_failure);
+      if (last_failure.failed) continue;
+      const double trial_norm = residual_.l2_norm();
+      accepted = small_correction || trial_norm <= (1.0 - 1e-4 * alpha) * norm;
+      if (trial_norm < best_norm) {
+        best_norm = trial_norm;
+        best_alpha = alpha;
+      }
+      if (accepted) norm = trial_norm;
+    }
+    if (accepted) continue;
+    if (best_alpha == 0.0) return last_failure;
+    if (best_alpha != 2.0 * alpha) {  // the points hold the last fraction's answers: ask again
+      u_trial_ = start;
+      u_trial_.add(best_alpha, correction);
+      r = assemble(update_constraints_, false, failure);
+      if (failure.failed) return failure;
+    }
+    norm = best_norm;
   }
 }
 
@@ -878,6 +920,7 @@ void validate(const QuasiStaticProblem& p) {
   if (p.degree < 1 || p.degree > 4) fail("degree must be 1 to 4");
   if (p.quadrature_points > 5) fail("quadrature points must be 0 (degree + 1) to 5 per direction");
   if (p.load_steps == 0) fail("load steps must be >= 1");
+  if (p.line_search_halvings > 30) fail("line search halvings must be 0 (plain Newton) to 30");
   if (!(p.rebalance_threshold == 0.0 || p.rebalance_threshold >= 1.0))
     fail("the rebalance threshold must be 0 (never) or >= 1 (the busiest rank's cost over the mean)");
   if (!(p.residual_tolerance >= 0.0) || !(p.correction_tolerance >= 0.0))

@@ -12,7 +12,8 @@
   step, its last step's rows those of points.csv, step 0's solid fractions within 1 % of each
   other (one prepared cell copied, strained by step 0's balance only);
 - summary.json: the Gauss points, grains per cell and Newton iterations of the tables;
-- the log: no checkpoint schedule (the study writes none), but a line that says so;
+- the log: no checkpoint schedule (the study writes none), but a line that says so; not the
+  scene's particle count and effects, but the DEM cell's effects (no gravity, walls or energy);
 - the ranks' balance: every step's imbalance at least 1 (exactly 1 on one rank, where nothing is
   repartitioned), summary.json's repartitions and its cost-weighted imbalance those of the table;
 - 1 and 2 ranks give the same path and points to 1e-6: not bitwise, since the matrix entries of
@@ -52,6 +53,13 @@ for ranks in (1, 2):
     # The study writes no checkpoint, and its log says so instead of the scene's schedule.
     assert 'checkpoints: none (--study femxdem drives its own cells' in r.stdout, r.stdout
     assert 'of wall clock' not in r.stdout, r.stdout
+    # Nor the scene's deposition: the cells' effects instead, without gravity, walls or energy.
+    assert "the scene's particle count, end time and effects are not used" in r.stdout, r.stdout
+    assert 'effects (Effects section' not in r.stdout, r.stdout
+    cell = next(l for l in r.stdout.splitlines() if 'femxdem: the DEM cell:' in l)
+    assert 'effects: tangential friction, damping, rotation' in cell, cell
+    for off in ('gravity', 'wall friction', 'energy tracking'):
+        assert off not in cell, cell
     folders[ranks] = os.path.join(out, 'femxdem')
 
 steps = 4
@@ -95,6 +103,7 @@ for ranks, folder in folders.items():
     assert summary['gauss_points'] == len(points) and summary['ranks'] == ranks
     assert summary['grains_per_cell'] == 60
     assert summary['newton_iterations'] == sum(int(r['newton_iterations']) for r in rows)
+    assert summary['line_search_halvings'] == sum(int(r['halvings']) for r in rows)
     # The ranks' balance: 1 on one rank; on two, each rank's share of every step's grain-steps
     # at least the mean, and the run's busiest share the steps' weighted by their grain-steps.
     imbalance = [float(r['imbalance']) for r in rows]

@@ -311,6 +311,65 @@ TEST(QuasiStatic, AStepThatFailsAfterItsCutsNamesTheCellAndThePoint) {
   }
 }
 
+// The stiffening law of a granular volume, refusing volume strains beyond a cap as a DEM cell
+// refuses a trial whose grains would overlap too far. Under a pressure, Newton's first correction
+// from the unloaded state has the initial stiffness: it asks for several times the volume strain of
+// the balance, beyond the cap, and so does half of it; a quarter overshoots the balance so far that
+// the out-of-balance force grows.
+class CappedStiffeningPoint final : public PointState {
+ public:
+  PointResponse respond(const Mat3x3& h) override {
+    if (std::abs(h.trace()) > kCap) throw std::invalid_argument("volume strain beyond the cap");
+    return inner_.respond(h);
+  }
+  void commit() override {}
+  [[nodiscard]] std::unique_ptr<PointState> clone() const override {
+    return std::make_unique<CappedStiffeningPoint>(*this);
+  }
+  static constexpr double kCap = 0.02;
+
+ private:
+  StiffeningElasticPoint inner_{elasticity(), 1.0e5};
+};
+
+// Both free sides of a square under 2 MPa, on rollers along the others: a homogeneous balance at a
+// volume strain of -0.0073, where Newton's first correction asks for -0.042.
+QuasiStaticProblem pressed_square(unsigned line_search_halvings) {
+  QuasiStaticProblem p = uniaxial();
+  p.faces[1] = {FaceSupport::pressure, 2.0e6};
+  p.faces[3] = {FaceSupport::pressure, 2.0e6};
+  p.platen_displacement = 0.0;
+  p.line_search_halvings = line_search_halvings;
+  return p;
+}
+
+PointFactory capped_points() {
+  return [](const PointPlace&) { return std::make_unique<CappedStiffeningPoint>(); };
+}
+
+// Plain Newton's first correction is refused and the equilibrium step fails; the backtracking line
+// search halves it until the points can answer it and the force decreases, and Newton converges to
+// the balance: the pressure in every point, the volume strain within the cap.
+TEST(QuasiStatic, ALineSearchShortensACorrectionThatOvershoots) {
+  try {
+    solve_quasi_static(pressed_square(0), capped_points(), MPI_COMM_WORLD);
+    ADD_FAILURE() << "plain Newton converged: the test does not overshoot";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("beyond the cap"), std::string::npos) << e.what();
+  }
+  const QuasiStaticResult r = solve_quasi_static(pressed_square(3), capped_points(), MPI_COMM_WORLD);
+  ASSERT_EQ(r.steps.size(), 2u);
+  EXPECT_GE(r.steps[0].line_search_halvings, 2u);  // 1 and 1/2 are refused or overshoot
+  EXPECT_LE(r.steps[0].residuals.back(), 1e-10);
+  for (const PointSummary& s : r.points) {
+    const Mat3x3 sigma = mandel::to_matrix(s.stress);
+    EXPECT_NEAR(sigma(0, 0), -2.0e6, 1e-3);
+    EXPECT_NEAR(sigma(1, 1), -2.0e6, 1e-3);
+    EXPECT_LT(std::abs(s.displacement_gradient.trace()), CappedStiffeningPoint::kCap);
+    EXPECT_GT(std::abs(s.displacement_gradient.trace()), 0.005);
+  }
+}
+
 // A linear elastic point that reports the committed H_yy and its place's height as measures.
 class MeasuredPoint final : public PointState {
  public:

@@ -12,7 +12,10 @@ void check_femxdem_study(SceneInput& in, const std::string& where);
 
 // What the study uses of a scene: its grains and contact law (the DEM cells' material) and the
 // FEMxDEM section; not its container, fill or lid.
-inline constexpr StudyUse kFemxdemUse{
-    .name = "femxdem", .scene_lid = false, .checkpoints = false, .check = check_femxdem_study};
+inline constexpr StudyUse kFemxdemUse{.name = "femxdem",
+                                      .scene_lid = false,
+                                      .checkpoints = false,
+                                      .runs_scene = false,
+                                      .check = check_femxdem_study};
 
 }  // namespace upgrain::coupling

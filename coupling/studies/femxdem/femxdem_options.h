@@ -28,6 +28,7 @@ struct FemxdemOptions {
   double residual_tolerance = 1e-4;
   double correction_tolerance = 1e-2;
   int max_newton_iterations = 15;
+  int line_search_halvings = static_cast<int>(fem::QuasiStaticProblem{}.line_search_halvings);
   int max_step_cuts = 4;
   // The ranks rebalanced by the DEM cells' measured cost (fem/quasi_static/quasi_static_problem.h).
   double rebalance_threshold = fem::QuasiStaticProblem{}.rebalance_threshold;

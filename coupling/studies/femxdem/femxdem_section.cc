@@ -45,6 +45,9 @@ Section femxdem_section() {
             "(Guo and Zhao 2014: 1e-2; 0: not used)."),
        integer("max newton iterations", femxdem(&FemxdemOptions::max_newton_iterations), 1, 1000, "-",
                "Newton iterations of a step before it is cut."),
+       integer("line search halvings", femxdem(&FemxdemOptions::line_search_halvings), 0, 30, "-",
+               "Halvings of a Newton correction that a DEM cell cannot take or that does not decrease the "
+               "out-of-balance force (a backtracking line search, docs/femxdem.md); 0: plain Newton."),
        integer("max step cuts", femxdem(&FemxdemOptions::max_step_cuts), 0, 30, "-",
                "Halvings of a failing step in a row before the study stops with the step, cell and point."),
        real("rebalance threshold", femxdem(&FemxdemOptions::rebalance_threshold), 0.0, 1e6, "-",

@@ -14,6 +14,7 @@
 #include "coupling/studies/report_format.h"
 #include "dem/files/atomic_file.h"
 #include "dem/files/json_number.h"
+#include "dem/scene/effect_choice.h"
 
 namespace upgrain::coupling {
 
@@ -36,11 +37,12 @@ std::string load_displacement_table(const std::vector<fem::LoadStepRecord>& step
   t << "# Upgrain FEM x DEM biaxial compression (docs/femxdem.md). SI units, compression positive. "
        "axial_strain = -platen displacement / height; sigma_1 = the top platen's reaction per unit "
        "thickness over the width; sigma_3 = the confining pressure; newton_iterations summed over the "
-       "step's sub-steps; grain_steps = the DEM cells' work (grain-steps, every rank); wall_s = the "
+       "step's sub-steps; halvings = the line search's halvings of Newton corrections; grain_steps = the DEM "
+       "cells' work (grain-steps, every rank); wall_s = the "
        "step's wall time (the slowest rank's); imbalance = the busiest rank's grain-steps over the ranks' "
        "mean in the step; repartitioned = 1 when the mesh was then repartitioned by the cells' cost\n"
        "step,platen_displacement,axial_strain,sigma_1,sigma_3,q,q_over_p,newton_iterations,cuts,"
-       "grain_steps,wall_s,imbalance,repartitioned\n";
+       "halvings,grain_steps,wall_s,imbalance,repartitioned\n";
   const double s3 = o.rve.mean_stress;
   for (const fem::LoadStepRecord& s : steps) {
     const double s1 = axial_stress(s, o);
@@ -48,8 +50,9 @@ std::string load_displacement_table(const std::vector<fem::LoadStepRecord>& step
     t << s.step << ',' << table_number(s.platen_displacement) << ','
       << table_number(0.0 - s.platen_displacement / o.height) << ',' << table_number(s1) << ','
       << table_number(s3) << ',' << table_number(q) << ',' << table_number(q / p) << ','
-      << s.newton_iterations << ',' << s.cuts << ',' << table_number(s.cost) << ',' << table_number(s.seconds)
-      << ',' << table_number(s.imbalance) << ',' << (s.repartitioned ? 1 : 0) << '\n';
+      << s.newton_iterations << ',' << s.cuts << ',' << s.line_search_halvings << ',' << table_number(s.cost)
+      << ',' << table_number(s.seconds) << ',' << table_number(s.imbalance) << ','
+      << (s.repartitioned ? 1 : 0) << '\n';
   }
   return t.str();
 }
@@ -109,6 +112,7 @@ fem::QuasiStaticProblem biaxial_problem(const FemxdemOptions& o) {
   p.correction_tolerance = o.correction_tolerance;
   p.max_newton_iterations = static_cast<unsigned>(o.max_newton_iterations);
   p.max_step_cuts = static_cast<unsigned>(o.max_step_cuts);
+  p.line_search_halvings = static_cast<unsigned>(o.line_search_halvings);
   p.rebalance_threshold = o.rebalance_threshold;
   return p;
 }
@@ -124,11 +128,15 @@ int run_femxdem_study(const SceneInput& in, MPI_Comm comm, const StudyHooks&) {
   // receiving them; the first one on every rank, for the report.
   RvePackings packings(in.scene, o.rve, o.cell_packings);
   const auto prepared = packings.first();
+  std::string effects;
+  for (const dem::EffectChoice& c : dem::describe_effects(prepared->scene.effects))
+    if (c.on) effects += (effects.empty() ? "" : ", ") + c.entry;
   if (rank == 0)
     std::printf(
-        "  femxdem: the DEM cell: %ld grains, %ld contacts, p %.6g Pa, prepared in %ld steps (%.1f s)%s\n",
+        "  femxdem: the DEM cell: %ld grains, %ld contacts, p %.6g Pa, prepared in %ld steps (%.1f s); "
+        "effects: %s%s\n",
         prepared->grains, prepared->contacts, -fem::mandel::trace(prepared->stress) / 3.0, prepared->steps,
-        packings.preparation_seconds(),
+        packings.preparation_seconds(), effects.empty() ? "none" : effects.c_str(),
         o.cell_packings == 1 ? ""
         : o.cell_packings == 0
             ? "; every Gauss point its own packing"
@@ -141,11 +149,11 @@ int run_femxdem_study(const SceneInput& in, MPI_Comm comm, const StudyHooks&) {
   const auto on_step = [&](const fem::LoadStepRecord& s) {
     if (rank != 0) return;
     std::printf(
-        "  femxdem: step %u/%u  eps_a %.4f  sigma_1 %.6g Pa  Newton %u  cuts %u  "
+        "  femxdem: step %u/%u  eps_a %.4f  sigma_1 %.6g Pa  Newton %u  cuts %u  halvings %u  "
         "%.3g grain-steps  imbalance %.2f%s  %.1f s\n",
         s.step, problem.load_steps, 0.0 - s.platen_displacement / o.height, axial_stress(s, o),
-        s.newton_iterations, s.cuts, s.cost, s.imbalance, s.repartitioned ? " (repartitioned)" : "",
-        s.seconds);
+        s.newton_iterations, s.cuts, s.line_search_halvings, s.cost, s.imbalance,
+        s.repartitioned ? " (repartitioned)" : "", s.seconds);
     std::fflush(stdout);
   };
   const auto on_points = [&](const fem::LoadStepRecord& s, const std::vector<std::string>& measures,
@@ -179,11 +187,12 @@ int run_femxdem_study(const SceneInput& in, MPI_Comm comm, const StudyHooks&) {
         points_head("at the last load step", r.measure_names) + point_rows(r.steps.back().step, r.points));
     using dem::io::json_number;
     double grain_steps = 0.0, busiest = 0.0;
-    unsigned iterations = 0, repartitions = 0;
+    unsigned iterations = 0, repartitions = 0, halvings = 0;
     for (const fem::LoadStepRecord& s : r.steps) {
       grain_steps += s.cost;
       busiest += s.cost * s.imbalance;
       iterations += s.newton_iterations;
+      halvings += s.line_search_halvings;
       repartitions += s.repartitioned ? 1 : 0;
     }
     int ranks = 1;
@@ -195,7 +204,8 @@ int run_femxdem_study(const SceneInput& in, MPI_Comm comm, const StudyHooks&) {
       << ",\n  \"cell_packings\": " << o.cell_packings << ",\n  \"preparation_steps\": " << prepared->steps
       << ",\n  \"preparation_s\": " << json_number(preparation_seconds)
       << ",\n  \"solve_s\": " << json_number(solve_seconds) << ",\n  \"load_steps\": " << r.steps.size() - 1
-      << ",\n  \"newton_iterations\": " << iterations << ",\n  \"grain_steps\": " << json_number(grain_steps)
+      << ",\n  \"newton_iterations\": " << iterations << ",\n  \"line_search_halvings\": " << halvings
+      << ",\n  \"grain_steps\": " << json_number(grain_steps)
       << ",\n  \"grain_steps_per_core_second\": " << json_number(grain_steps / (solve_seconds * ranks))
       << ",\n  \"imbalance\": " << json_number(grain_steps > 0.0 ? busiest / grain_steps : 1.0)
       << ",\n  \"repartitions\": " << repartitions
