@@ -35,6 +35,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -72,6 +73,13 @@ Vec6 mandel_strain(const Tensor<2, dim>& grad) {
   for (int i = 0; i < dim; ++i)
     for (int j = 0; j < dim; ++j) h(i, j) = grad[i][j];
   return mandel::from_matrix(0.5 * (h + h.transpose()));
+}
+
+// deal.II writes a cell's id as "coarse_children:" (CellId::to_string); without the trailing
+// colon, a message can go on after it.
+std::string place_name(std::string id) {
+  if (!id.empty() && id.back() == ':') id.pop_back();
+  return id;
 }
 
 template <int dim>
@@ -356,7 +364,7 @@ void QuasiStaticSolver<dim>::make_points() {
       for (const PointMeasure& m : records[q]->state->measures()) names.push_back(m.name);
       if (names != measure_names_)
         mismatch = "quasi-static solver: the point " + std::to_string(q) + " of cell " +
-                   cell->id().to_string() + " has " + std::to_string(names.size()) +
+                   place_name(cell->id().to_string()) + " has " + std::to_string(names.size()) +
                    " measures, another point " + std::to_string(measure_names_.size()) +
                    " (every point must name the same)";
     }
@@ -417,7 +425,7 @@ double QuasiStaticSolver<dim>::repartition_by_cost() {
         pack.states.push_back(r->state->save());
       } catch (const std::exception& e) {
         failure = "quasi-static solver: the ranks cannot be balanced by cost: the material at cell " +
-                  cell->id().to_string() + ": " + e.what();
+                  place_name(cell->id().to_string()) + ": " + e.what();
       }
     }
     cost[cell->id()] = pack.cost;
@@ -476,7 +484,7 @@ double QuasiStaticSolver<dim>::repartition_by_cost() {
             r.displacement_gradient = r.committed_gradient;
           }
         } catch (const std::exception& e) {
-          failure = "quasi-static solver: a material moved to cell " + cell->id().to_string() +
+          failure = "quasi-static solver: a material moved to cell " + place_name(cell->id().to_string()) +
                     " could not be restored: " + e.what();
         }
       });
@@ -534,8 +542,14 @@ double QuasiStaticSolver<dim>::assemble(const AffineConstraints<double>& constra
       PointRecord& r = *records[q];
       if (!committed && local_failure.empty()) {
         r.displacement_gradient = padded<dim>(grads[q]);
+        // With the size of the increment it was asked for: whether a point fails a large trial (a
+        // predictor or correction that concentrates the strain) or a small one tells the remedy.
         const auto where = [&] {
-          return "the material at point " + std::to_string(q) + " of cell " + cell->id().to_string();
+          char increment[64];
+          std::snprintf(increment, sizeof increment, "%.3g",
+                        (r.displacement_gradient - r.committed_gradient).cwiseAbs().maxCoeff());
+          return "the material at point " + std::to_string(q) + " of cell " +
+                 place_name(cell->id().to_string()) + " (trial increment max |dH_ij| = " + increment + ")";
         };
         // A point that cannot take its trial at all (an inverted element: det F <= 0) fails the step
         // like one that does not converge, on this rank alone: the other ranks learn it below,
