@@ -282,7 +282,14 @@ int run(int argc, char** argv) {
     if (!study->use.checkpoints)
       std::printf("  checkpoints: none (--study %s drives its own cells; Checkpoint is not used)\n",
                   std::string(study->use.name).c_str());
-    else if (!every.empty())
+    else if (study->use.own_state) {
+      // Its state after a load step: no simulated time to schedule by.
+      char wall[64] = "when asked to stop";
+      if (c.wall_interval > 0.0)
+        std::snprintf(wall, sizeof wall, "every %g s of wall clock and when asked to stop", c.wall_interval);
+      std::printf("  checkpoints: %s, after a converged load step, the last %d kept%s\n", wall, c.keep,
+                  c.interval > 0.0 ? " (Checkpoint/interval, simulated time, is not used)" : "");
+    } else if (!every.empty())
       std::printf("  checkpoints: %s, the last %d kept\n", every.c_str(), c.keep);
   }
   std::fflush(stdout);  // the preamble reaches a log file before a run that may be killed
@@ -334,7 +341,9 @@ int run(int argc, char** argv) {
     if (rank == 0) {
       std::printf("\n  %s\n", stopped.what());
       if (!stopped.checkpoint().empty())
-        std::printf("  continue with: upgrain --restart %s\n", in.output.folder.c_str());
+        std::printf("  continue with: upgrain %s--restart %s\n",
+                    study->use.own_state ? ("--study " + std::string(study->use.name) + " ").c_str() : "",
+                    in.output.folder.c_str());
       std::fflush(stdout);
     }
     return 128 + stopped.signal();

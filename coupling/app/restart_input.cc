@@ -21,7 +21,7 @@ SceneInput restart_input(const std::string& dir, const std::string& file, const 
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   std::shared_ptr<Checkpoint> checkpoint;
-  std::string scene, newest, error;
+  std::string scene, newest, error, study;
   long step = 0;
   double time = 0.0;
   if (rank == 0) {
@@ -38,6 +38,17 @@ SceneInput restart_input(const std::string& dir, const std::string& file, const 
       (void)check_run_identity(dir, *checkpoint);  // before its scene is taken
       scene = checkpoint->scene;
       newest = checkpoint->file.string();
+      if (checkpoint->study) study = checkpoint->study->study;
+      // A study that keeps its own state continues only its own checkpoints, and only it continues
+      // them.
+      const std::string asked(use.name);
+      if (study.empty() ? use.own_state : study != asked)
+        throw Error("--restart " + dir + ": " +
+                    (study.empty()
+                         ? "its checkpoints are of a DEM run, not of --study " + asked +
+                               "; continue it without --study " + asked
+                         : "it is a run of --study " + study + "; continue it with upgrain --study " + study +
+                               " --restart " + dir));
       step = checkpoint->step;
       time = checkpoint->time;
     } catch (const std::exception& e) {
@@ -47,7 +58,7 @@ SceneInput restart_input(const std::string& dir, const std::string& file, const 
   dem::throw_if_any(MPI_COMM_WORLD, error);
   MPI_Bcast(&step, 1, MPI_LONG, 0, MPI_COMM_WORLD);
   MPI_Bcast(&time, 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
-  for (std::string* text : {&scene, &newest}) {
+  for (std::string* text : {&scene, &newest, &study}) {
     int length = static_cast<int>(text->size());
     MPI_Bcast(&length, 1, MPI_INT, 0, MPI_COMM_WORLD);
     text->resize(static_cast<std::size_t>(length));
@@ -73,35 +84,40 @@ SceneInput restart_input(const std::string& dir, const std::string& file, const 
     in.output.checkpoint = given.output.checkpoint;  // with the given file's text: its end time
     in.parallel = given.parallel;
   }
-  // Every rank has the checkpoint's step and the end time: a refusal is every rank's.
-  const long end = end_step(in.scene);
-  refuse_end_before(file.empty() ? dir : file, in.scene.end_time, end, newest, step, time);
-  if (!may_continue_from(step, end, checkpoint_end, in.control.relax_at_end)) {
-    if (rank == 0) {
-      try {
-        notes.push_back("checkpoint " + checkpoint->file.string() + " is at the run's end step, " +
-                        std::to_string(end) +
-                        ": the end of a run is made from what that step left in memory, which a checkpoint "
-                        "does not hold; continuing from the one before");
-        std::vector<std::string> refused;
-        checkpoint = std::make_shared<Checkpoint>(newest_checkpoint(dir, refused, end));
-        for (const std::string& r : refused) notes.push_back("refused " + r);
-        (void)check_run_identity(dir, *checkpoint);
-      } catch (const std::exception& e) {
-        error = "cannot continue the run in " + dir + " to its end step " + std::to_string(end) +
-                ": its newest checkpoint, " + newest +
-                ", is at that step, and a restart takes at least one step (the end of a run is made from "
-                "what its last step left in memory, which a checkpoint does not hold); " +
-                e.what() + ". Give a later end time, or run the scene again";
+  if (!study.empty()) {
+    // The study's own state: it knows where its loading stands (its steps, not the scene's time).
+    if (rank == 0) notes.push_back("resuming from " + newest + " after load step " + std::to_string(step));
+  } else {
+    // Every rank has the checkpoint's step and the end time: a refusal is every rank's.
+    const long end = end_step(in.scene);
+    refuse_end_before(file.empty() ? dir : file, in.scene.end_time, end, newest, step, time);
+    if (!may_continue_from(step, end, checkpoint_end, in.control.relax_at_end)) {
+      if (rank == 0) {
+        try {
+          notes.push_back("checkpoint " + checkpoint->file.string() + " is at the run's end step, " +
+                          std::to_string(end) +
+                          ": the end of a run is made from what that step left in memory, which a checkpoint "
+                          "does not hold; continuing from the one before");
+          std::vector<std::string> refused;
+          checkpoint = std::make_shared<Checkpoint>(newest_checkpoint(dir, refused, end));
+          for (const std::string& r : refused) notes.push_back("refused " + r);
+          (void)check_run_identity(dir, *checkpoint);
+        } catch (const std::exception& e) {
+          error = "cannot continue the run in " + dir + " to its end step " + std::to_string(end) +
+                  ": its newest checkpoint, " + newest +
+                  ", is at that step, and a restart takes at least one step (the end of a run is made from "
+                  "what its last step left in memory, which a checkpoint does not hold); " +
+                  e.what() + ". Give a later end time, or run the scene again";
+        }
       }
+      dem::throw_if_any(MPI_COMM_WORLD, error);
     }
-    dem::throw_if_any(MPI_COMM_WORLD, error);
-  }
-  if (rank == 0) {
-    char where[256];
-    std::snprintf(where, sizeof where, "resuming from %s at step %ld (t = %.9g s)", checkpoint->file.c_str(),
-                  checkpoint->step, checkpoint->time);
-    notes.push_back(where);
+    if (rank == 0) {
+      char where[256];
+      std::snprintf(where, sizeof where, "resuming from %s at step %ld (t = %.9g s)",
+                    checkpoint->file.c_str(), checkpoint->step, checkpoint->time);
+      notes.push_back(where);
+    }
   }
   // Later errors name what the user ran, not the checkpoint's copy of the scene.
   in.source = file.empty() ? "upgrain --restart " + dir : file;

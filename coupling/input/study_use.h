@@ -22,9 +22,12 @@ struct StudyUse {
   bool scene_lid = true;
   // Always loads the bed in the calibration's tests (Calibration section).
   bool calibrates = false;
-  // Writes the Checkpoint section's checkpoints of its DEM runs (docs/restart.md); the element and
-  // FEM x DEM studies drive their own cells, which it does not reach.
+  // Writes the Checkpoint section's checkpoints (docs/restart.md): of its DEM runs, or of its own
+  // state (own_state); the element study drives its own cells, which they do not reach.
   bool checkpoints = true;
+  // Its checkpoints hold its own state (StudyState, coupling/run/checkpoint.h), not a DEM run's:
+  // the FEM x DEM study's solver and cells (docs/femxdem.md). Only it continues them.
+  bool own_state = false;
   // Runs the scene's own DEM run: its particle count, end time and effects. The FEM x DEM study
   // prepares its own DEM cells instead (docs/femxdem.md), and prints their effects.
   bool runs_scene = true;

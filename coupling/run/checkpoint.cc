@@ -101,7 +101,73 @@ RunHistory read_history(const hdf5::Reader& in, long step) {
   return h;
 }
 
+void write_study_state(hid_t file, const StudyState& s) {
+  hdf5::Handle g(hdf5::create_group(file, "study"), H5Gclose, "create group study");
+  hdf5::write_attribute(g, "name", s.study);
+  std::string names;
+  for (std::size_t k = 0; k < s.blocks.size(); ++k) {
+    const auto& [name, bytes] = s.blocks[k];
+    names += name + "\n";
+    hdf5::write_dataset(g, ("block_" + std::to_string(k)).c_str(),
+                        reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+  }
+  hdf5::write_attribute(g, "blocks", names);
+}
+
+StudyState read_study_state(const hdf5::Reader& in) {
+  StudyState s;
+  s.study = in.text_attribute("name", "/study");
+  const std::string names = in.text_attribute("blocks", "/study");
+  std::size_t from = 0;
+  for (std::size_t k = 0; from < names.size(); ++k) {
+    const std::size_t end = names.find('\n', from);
+    if (end == std::string::npos) throw Error(in.where() + "/study: its block names do not end their line");
+    const std::vector<std::uint8_t> bytes = in.read_all<std::uint8_t>("/study/block_" + std::to_string(k));
+    s.blocks.emplace_back(names.substr(from, end - from), std::vector<char>(bytes.begin(), bytes.end()));
+    from = end + 1;
+  }
+  return s;
+}
+
+void write_engine_and_run(hid_t file, const Checkpoint& c) {
+  dem::io::write_engine_state(file, "engine", c.engine);
+  hdf5::Handle run(hdf5::create_group(file, "run"), H5Gclose, "create group run");
+  const ScheduleState& s = c.run.schedule;
+  hdf5::write_attribute(run, "step", static_cast<double>(s.step));
+  hdf5::write_attribute(run, "next_release", static_cast<double>(s.next_release));
+  hdf5::write_attribute(run, "rest_check_from", static_cast<double>(s.rest_check_from));
+  hdf5::write_attribute(run, "below_rest_since", static_cast<double>(s.below_rest_since));
+  hdf5::write_attribute(run, "inserted", static_cast<double>(c.run.pour.inserted));
+  hdf5::write_attribute(run, "insertion_batches", static_cast<double>(c.run.pour.batches));
+  hdf5::write_attribute(run, "series_rows", static_cast<double>(c.run.files.series_rows));
+  hdf5::write_attribute(run, "wall_rows", static_cast<double>(c.run.files.wall_rows));
+  if (!c.run.files.wall_origins.empty()) hdf5::write_vectors(run, "wall_origins", c.run.files.wall_origins);
+  dem::io::write_snapshot_list(run, "snapshots", c.run.files.snapshots);
+  if (c.run.grids) write_grid_state(run, c.run.grid_state);
+  write_history(run, c.run.history);
+  if (c.run.cg_reference) {
+    const upscale::cg::ReferencePositions& ref = *c.run.cg_reference;
+    hdf5::Handle g(hdf5::create_group(run, "cg_reference"), H5Gclose, "create group cg_reference");
+    hdf5::write_attribute(g, "time", ref.time);
+    hdf5::write_dataset(g, "id", ref.id.data(), ref.id.size());
+    hdf5::write_vectors(g, "position", ref.x);
+    // A periodic cell's counters (a bounded box keeps its checkpoints' bytes).
+    if (!ref.image.empty()) {
+      std::vector<std::int32_t> image(3 * ref.image.size());
+      for (std::size_t i = 0; i < ref.image.size(); ++i)
+        for (int d = 0; d < 3; ++d) image[3 * i + d] = ref.image[i][d];
+      hdf5::write_dataset(g, "image", image.data(), ref.image.size(), 3);
+    }
+  }
+}
+
 }  // namespace
+
+const std::vector<char>& StudyState::block(const std::string& name, const fs::path& file) const {
+  for (const auto& [n, bytes] : blocks)
+    if (n == name) return bytes;
+  throw Error("checkpoint " + file.string() + ": its " + study + " state has no block " + name);
+}
 
 std::string scene_hash(const std::string& scene) {
   dem::io::Fnv1a h;
@@ -136,35 +202,8 @@ fs::path write_checkpoint(const fs::path& folder, const Checkpoint& c, int keep)
       const std::vector<std::uint8_t> bytes(listed.begin(), listed.end());
       if (!bytes.empty()) hdf5::write_dataset(file, "outputs", bytes.data(), bytes.size());
     }
-    dem::io::write_engine_state(file, "engine", c.engine);
-    hdf5::Handle run(hdf5::create_group(file, "run"), H5Gclose, "create group run");
-    const ScheduleState& s = c.run.schedule;
-    hdf5::write_attribute(run, "step", static_cast<double>(s.step));
-    hdf5::write_attribute(run, "next_release", static_cast<double>(s.next_release));
-    hdf5::write_attribute(run, "rest_check_from", static_cast<double>(s.rest_check_from));
-    hdf5::write_attribute(run, "below_rest_since", static_cast<double>(s.below_rest_since));
-    hdf5::write_attribute(run, "inserted", static_cast<double>(c.run.pour.inserted));
-    hdf5::write_attribute(run, "insertion_batches", static_cast<double>(c.run.pour.batches));
-    hdf5::write_attribute(run, "series_rows", static_cast<double>(c.run.files.series_rows));
-    hdf5::write_attribute(run, "wall_rows", static_cast<double>(c.run.files.wall_rows));
-    if (!c.run.files.wall_origins.empty()) hdf5::write_vectors(run, "wall_origins", c.run.files.wall_origins);
-    dem::io::write_snapshot_list(run, "snapshots", c.run.files.snapshots);
-    if (c.run.grids) write_grid_state(run, c.run.grid_state);
-    write_history(run, c.run.history);
-    if (c.run.cg_reference) {
-      const upscale::cg::ReferencePositions& ref = *c.run.cg_reference;
-      hdf5::Handle g(hdf5::create_group(run, "cg_reference"), H5Gclose, "create group cg_reference");
-      hdf5::write_attribute(g, "time", ref.time);
-      hdf5::write_dataset(g, "id", ref.id.data(), ref.id.size());
-      hdf5::write_vectors(g, "position", ref.x);
-      // A periodic cell's counters (a bounded box keeps its checkpoints' bytes).
-      if (!ref.image.empty()) {
-        std::vector<std::int32_t> image(3 * ref.image.size());
-        for (std::size_t i = 0; i < ref.image.size(); ++i)
-          for (int d = 0; d < 3; ++d) image[3 * i + d] = ref.image[i][d];
-        hdf5::write_dataset(g, "image", image.data(), ref.image.size(), 3);
-      }
-    }
+    if (c.study) write_study_state(file, *c.study);
+    if (!c.study) write_engine_and_run(file, c);
     // Its checksum in its first block, written and synced: only then does it get its name.
     // The image leaves the user block out: it goes first, stamped with the rest's checksum.
     std::vector<unsigned char> image(dem::io::kChecksumBlockBytes, 0);
@@ -224,6 +263,10 @@ Checkpoint read_checkpoint(const fs::path& file) {
         name.clear();
       }
     }
+  }
+  if (in.exists("/study")) {
+    c.study = read_study_state(in);
+    return c;
   }
   c.engine = dem::io::read_engine_state(in, "/engine");
   if (c.engine.step != c.step) throw Error(in.where() + "the engine's step is not the checkpoint's");

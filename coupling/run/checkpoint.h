@@ -1,7 +1,8 @@
 #pragma once
 // Checkpoints of a run (docs/restart.md): the engine's whole state (dem/engine/engine_state.h)
 // and where the run stands (its schedule, the files and table rows written, the grid
-// evaluations' state), with the scene's parameters and their hash, in one HDF5 file
+// evaluations' state), or a study's own state in their place (the FEM x DEM study's, docs/femxdem.md),
+// with the scene's parameters and their hash, in one HDF5 file
 // <folder>/checkpoints/checkpoint_<step>.h5, written atomically (temporary name, flushed, closed,
 // stamped with a checksum of its bytes, synced, then renamed); the newest `keep` are kept. A
 // restart reads the newest one that is valid.
@@ -36,6 +37,16 @@ struct RunState {
   RunHistory history;
 };
 
+// A study's own state in place of the engine's and the run's: named blocks of bytes that only the
+// study reads (the FEM x DEM study: its solver's files and its tables so far).
+struct StudyState {
+  std::string study;  // as `upgrain --study` takes it
+  std::vector<std::pair<std::string, std::vector<char>>> blocks;
+  // The block named `name`; throws upgrain::Error naming the checkpoint when it has none.
+  [[nodiscard]] const std::vector<char>& block(const std::string& name,
+                                               const std::filesystem::path& file) const;
+};
+
 struct Checkpoint {
   std::filesystem::path file;
   long step = 0;
@@ -49,6 +60,8 @@ struct Checkpoint {
   std::vector<std::string> outputs;
   dem::EngineState engine;
   RunState run;
+  // A study's checkpoint: its state, and no engine or run state.
+  std::optional<StudyState> study;
 };
 
 // The hash of a scene's parameter text (64-bit FNV-1a, in hex): the same text, the same hash.

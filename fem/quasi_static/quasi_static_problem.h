@@ -125,13 +125,38 @@ struct QuasiStaticOutput {
       on_points;
 };
 
+// Checkpoints of the solver's whole state (docs/femxdem.md, "Checkpoints and restart"): the mesh
+// and its partition, the committed displacement, every point's committed state and answer
+// (PointState::save), and the steps converged so far. They are the files that deal.II's
+// Triangulation::save writes under a stem (the stem itself, stem.info, stem_fixed.data,
+// stem_variable.data) and stem.solver, on a file system that every rank reaches; give each
+// checkpoint a folder of its own and keep all its files. A solve of the same problem resumed from
+// them on the same rank count continues with the same bits; on another, p4est partitions the
+// cells anew and the path agrees to round-off (the matrix is summed in another order).
+struct QuasiStaticCheckpoints {
+  // Called on every rank after each converged step, once its output is written: the stem to save
+  // the state under, or empty for none. It must be the same on every rank.
+  std::function<std::string(const LoadStepRecord&)> stem;
+  // Called on every rank once the state is saved under `stem`. The caller may take the files and
+  // stop the solve by throwing (on every rank alike).
+  std::function<void(const LoadStepRecord&, const std::string& stem)> saved;
+  // The stem of a state saved by a solve of the same problem, to continue from; empty: from the
+  // start (step 0).
+  std::string resume;
+  // Called on every rank once the state is restored, with the steps it had converged (the step
+  // records of QuasiStaticResult::steps so far), before the first new step.
+  std::function<void(const std::vector<LoadStepRecord>&)> resumed;
+};
+
 // Throws std::invalid_argument naming the first bad parameter.
 void validate(const QuasiStaticProblem& problem);
 
 // Solves the problem on the ranks of `comm` (collective), each rank's points made by `make_point`
 // on the rank that owns their cell. Throws std::runtime_error naming the load step, the cell and
-// the point when a step still fails after its cuts.
+// the point when a step still fails after its cuts, or naming the stem when a state to resume
+// from is not of this problem or cannot be read.
 QuasiStaticResult solve_quasi_static(const QuasiStaticProblem& problem, const PointFactory& make_point,
-                                     MPI_Comm comm, const QuasiStaticOutput& output = {});
+                                     MPI_Comm comm, const QuasiStaticOutput& output = {},
+                                     const QuasiStaticCheckpoints& checkpoints = {});
 
 }  // namespace upgrain::fem

@@ -8,6 +8,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/quadrature_point_data.h>
+#include <deal.II/base/utilities.h>
 #include <deal.II/distributed/solution_transfer.h>
 #include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_handler.h>
@@ -37,6 +38,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -126,17 +129,64 @@ class AffineDisplacement : public Function<dim> {
   Mat3x3 g_;
 };
 
-// A cell's points as p4est carries them (repartition_by_cost()), packed by deal.II's
-// Utilities::pack: the cell's cost, per point its committed stress, tangent and displacement
-// gradient (kPointNumbers numbers), and each point's state as its own bytes.
+// A cell's points as p4est carries them (repartition_by_cost(), save()), packed by deal.II's
+// Utilities::pack: the cell's cost, its weight in the last repartition by cost (0: none yet), per
+// point its committed stress, tangent and displacement gradient (kPointNumbers numbers), and each
+// point's state as its own bytes.
 struct CellPack {
   static constexpr std::size_t kPointNumbers = 6 + 36 + 9;
   double cost = 0.0;
+  unsigned weight = 0;
   std::vector<double> numbers;
   std::vector<std::vector<char>> states;
   template <class Archive>
   void serialize(Archive& archive, const unsigned int /*version*/) {
-    archive& cost& numbers& states;
+    archive& cost& weight& numbers& states;
+  }
+};
+
+}  // namespace
+
+// A load step's record in a checkpoint (boost's serialization finds it by its type's namespace).
+template <class Archive>
+void serialize(Archive& archive, LoadStepRecord& r, const unsigned int /*version*/) {
+  archive& r.step& r.platen_displacement& r.platen_force& r.newton_iterations& r.residuals& r.cuts& r
+      .line_search_halvings& r.cost& r.imbalance& r.repartitioned& r.seconds;
+}
+
+namespace {
+
+// Every parameter that fixes the path of a problem, in words: a checkpoint of one problem does not
+// continue another.
+std::string problem_key(const QuasiStaticProblem& p) {
+  std::ostringstream k;
+  k.precision(17);
+  k << p.dimension << ';';
+  for (int d = 0; d < 3; ++d) k << p.size[d] << ',' << p.cells[d] << ';';
+  k << p.degree << ';' << p.quadrature_points << ';';
+  for (const FaceCondition& f : p.faces) k << static_cast<int>(f.support) << ',' << f.pressure << ';';
+  k << p.density << ';' << p.gravity[0] << ',' << p.gravity[1] << ',' << p.gravity[2] << ';'
+    << p.platen_displacement << ';';
+  for (int i = 0; i < 9; ++i) k << p.boundary_gradient.data()[i] << ',';
+  k << ';' << p.load_steps << ';' << p.residual_tolerance << ';' << p.correction_tolerance << ';'
+    << p.max_newton_iterations << ';' << p.line_search_halvings << ';' << p.max_step_cuts << ';'
+    << p.rebalance_threshold;
+  return k.str();
+}
+
+// What a checkpoint holds besides the mesh's files (stem.solver): where the loading stands.
+struct SavedRun {
+  static constexpr const char* kHead = "Upgrain quasi-static state 1\n";
+  std::string problem;  // problem_key()
+  unsigned ranks = 0;
+  unsigned points_handle = 0;  // of the points' bytes among the mesh's attached data
+  double committed_lambda = 0.0;
+  double achievable = 1.0;  // the last repartition's weights over its partition
+  std::vector<LoadStepRecord> steps;
+  std::vector<std::string> pvd_entries, measure_names;
+  template <class Archive>
+  void serialize(Archive& archive, const unsigned int /*version*/) {
+    archive& problem& ranks& points_handle& committed_lambda& achievable& steps& pvd_entries& measure_names;
   }
 };
 
@@ -150,11 +200,12 @@ template <int dim>
 class QuasiStaticSolver {
  public:
   QuasiStaticSolver(const QuasiStaticProblem& p, const PointFactory& make_point, MPI_Comm comm,
-                    const QuasiStaticOutput& output)
+                    const QuasiStaticOutput& output, const QuasiStaticCheckpoints& checkpoints)
       : p_(p),
         make_point_(make_point),
         comm_(comm),
         output_(output),
+        checkpoints_(checkpoints),
         triangulation_(comm),
         fe_(FE_Q<dim>(p.degree), dim),
         dofs_(triangulation_),
@@ -179,6 +230,25 @@ class QuasiStaticSolver {
   // Returns the imbalance of those costs over the new partition: the best whole cells allow
   // (p4est cuts its space-filling curve into contiguous pieces).
   double repartition_by_cost();
+  // Collective: repartitions the mesh by the locally owned cells' `weights` (p4est cuts its
+  // space-filling curve where the weights' running sum crosses equal shares, whatever the current
+  // partition), moving the points and the committed displacement with their cells. Returns the
+  // busiest rank's cost (CellPack::cost) over the mean after the move.
+  double move_cells(const std::map<CellId, unsigned>& weights);
+  // A locally owned cell's points as bytes (CellPack, packed): per point its committed stress,
+  // tangent and displacement gradient, then its state (PointState::save). Adds their step cost to
+  // `cost`; a point that cannot be saved leaves its words in `failure`.
+  std::vector<char> pack_cell(const typename Triangulation<dim>::cell_iterator& cell, double& cost,
+                              std::string& failure) const;
+  // The points of a cell this rank now owns, from pack_cell()'s bytes: made by the factory at
+  // their place and loaded. Adds the cost the bytes carry to `cost`; a failure leaves its words.
+  void unpack_cell(const typename Triangulation<dim>::cell_iterator& cell,
+                   const boost::iterator_range<std::vector<char>::const_iterator>& data, FEValues<dim>& fv,
+                   double& cost, std::string& failure);
+  // Collective: the whole state under `stem` (QuasiStaticCheckpoints).
+  void save(const std::string& stem, const std::vector<LoadStepRecord>& steps, double achievable);
+  // Collective: the state saved under `stem`, into the coarse mesh make_mesh() made.
+  SavedRun resume(const std::string& stem);
   // Collective: the words of the lowest rank whose `local_failure` is not empty, on every rank
   // (empty when none has one), so that a failure on one rank stops all of them in step instead of
   // leaving the others waiting in the next collective call; and the same, thrown.
@@ -204,6 +274,7 @@ class QuasiStaticSolver {
   PointFactory make_point_;
   MPI_Comm comm_;
   QuasiStaticOutput output_;
+  QuasiStaticCheckpoints checkpoints_;
   parallel::distributed::Triangulation<dim> triangulation_;
   FESystem<dim> fe_;
   DoFHandler<dim> dofs_;
@@ -221,6 +292,10 @@ class QuasiStaticSolver {
   bool committed_answers_ = false;  // the points have answered at the committed state
   std::vector<std::string> pvd_entries_;
   std::vector<std::string> measure_names_;  // the points' PointState::measures(), every rank's
+  // The locally owned cells' weights in the last repartition by cost (empty: none yet, p4est's
+  // even split by cells), carried with the cells and kept by a checkpoint: a restart partitions
+  // by them again.
+  std::map<CellId, unsigned> partition_weight_;
 };
 
 template <int dim>
@@ -401,46 +476,100 @@ std::pair<double, double> QuasiStaticSolver<dim>::imbalance() const {
 }
 
 template <int dim>
+std::vector<char> QuasiStaticSolver<dim>::pack_cell(const typename Triangulation<dim>::cell_iterator& cell,
+                                                    double& cost, std::string& failure) const {
+  CellPack pack;
+  if (const auto w = partition_weight_.find(cell->id()); w != partition_weight_.end())
+    pack.weight = w->second;
+  for (const auto& r : history_.get_data(cell)) {
+    pack.cost += r->step_cost;
+    const double* stress = r->committed_response.stress.data();
+    const double* tangent = r->committed_response.tangent.data();
+    const double* gradient = r->committed_gradient.data();
+    pack.numbers.insert(pack.numbers.end(), stress, stress + 6);
+    pack.numbers.insert(pack.numbers.end(), tangent, tangent + 36);
+    pack.numbers.insert(pack.numbers.end(), gradient, gradient + 9);
+    try {
+      pack.states.push_back(r->state->save());
+    } catch (const std::exception& e) {
+      if (failure.empty())
+        failure = "the material at cell " + place_name(cell->id().to_string()) + ": " + e.what();
+    }
+  }
+  cost += pack.cost;
+  return Utilities::pack(pack, /*allow_compression=*/false);
+}
+
+template <int dim>
+void QuasiStaticSolver<dim>::unpack_cell(const typename Triangulation<dim>::cell_iterator& cell,
+                                         const boost::iterator_range<std::vector<char>::const_iterator>& data,
+                                         FEValues<dim>& fv, double& cost, std::string& failure) {
+  history_.initialize(cell, quadrature_.size());
+  if (!failure.empty()) return;
+  try {
+    const auto pack = Utilities::unpack<CellPack>(data.begin(), data.end(), /*allow_compression=*/false);
+    cost += pack.cost;
+    if (pack.weight > 0) partition_weight_[cell->id()] = pack.weight;
+    const auto records = history_.get_data(cell);
+    if (pack.states.size() != records.size() ||
+        pack.numbers.size() != CellPack::kPointNumbers * records.size())
+      throw std::runtime_error("its bytes hold " + std::to_string(pack.states.size()) + " points, not " +
+                               std::to_string(records.size()));
+    fv.reinit(cell);
+    for (unsigned q = 0; q < records.size(); ++q) {
+      PointRecord& r = *records[q];
+      const double* x = pack.numbers.data() + CellPack::kPointNumbers * q;
+      std::copy(x, x + 6, r.committed_response.stress.data());
+      std::copy(x + 6, x + 42, r.committed_response.tangent.data());
+      std::copy(x + 42, x + 51, r.committed_gradient.data());
+      r.state = make_point(fv, cell, q);
+      r.state->load(pack.states[q]);
+      r.response = r.committed_response;
+      r.displacement_gradient = r.committed_gradient;
+    }
+  } catch (const std::exception& e) {
+    failure =
+        "the material at cell " + place_name(cell->id().to_string()) + " could not be restored: " + e.what();
+  }
+}
+
+template <int dim>
 double QuasiStaticSolver<dim>::repartition_by_cost() {
+  // p4est balances the sum of the weights: each cell's cost in the step in 1e6 parts of the
+  // heaviest's, and one part more so that a cell that cost nothing still counts.
+  std::map<CellId, double> cost;
+  double heaviest = 0.0;
+  for (const auto& cell : triangulation_.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
+    double c = 0.0;
+    for (const auto& r : history_.get_data(cell)) c += r->step_cost;
+    cost[cell->id()] = c;
+    heaviest = std::max(heaviest, c);
+  }
+  heaviest = Utilities::MPI::max(heaviest, comm_);
+  std::map<CellId, unsigned> weights;
+  for (const auto& [id, c] : cost)
+    weights[id] = 1u + static_cast<unsigned>(heaviest > 0.0 ? std::lround(1e6 * c / heaviest) : 0);
+  return move_cells(weights);
+}
+
+template <int dim>
+double QuasiStaticSolver<dim>::move_cells(const std::map<CellId, unsigned>& weights) {
   using CellIterator = typename Triangulation<dim>::cell_iterator;
   using CellStatus = typename Triangulation<dim>::CellStatus;
+  partition_weight_ = weights;  // the cells carry their weights
   // Each local cell's points as bytes, made before the repartition so that a point that cannot be
-  // saved stops every rank here, not inside p4est: per point its committed stress, tangent and
-  // displacement gradient, then its state.
+  // saved stops every rank here, not inside p4est.
   std::map<CellId, std::vector<char>> packed;
-  std::map<CellId, double> cost;
   std::string failure;
-  for (const auto& cell : triangulation_.active_cell_iterators()) {
-    if (!cell->is_locally_owned() || !failure.empty()) continue;
-    CellPack pack;
-    for (const auto& r : history_.get_data(cell)) {
-      pack.cost += r->step_cost;
-      const double* stress = r->committed_response.stress.data();
-      const double* tangent = r->committed_response.tangent.data();
-      const double* gradient = r->committed_gradient.data();
-      pack.numbers.insert(pack.numbers.end(), stress, stress + 6);
-      pack.numbers.insert(pack.numbers.end(), tangent, tangent + 36);
-      pack.numbers.insert(pack.numbers.end(), gradient, gradient + 9);
-      try {
-        pack.states.push_back(r->state->save());
-      } catch (const std::exception& e) {
-        failure = "quasi-static solver: the ranks cannot be balanced by cost: the material at cell " +
-                  place_name(cell->id().to_string()) + ": " + e.what();
-      }
-    }
-    cost[cell->id()] = pack.cost;
-    packed[cell->id()] = Utilities::pack(pack, /*allow_compression=*/false);
-  }
-  throw_first_failure(failure);
-  double heaviest = 0.0;
-  for (const auto& [id, c] : cost) heaviest = std::max(heaviest, c);
-  heaviest = Utilities::MPI::max(heaviest, comm_);
+  double cost = 0.0;
+  for (const auto& cell : triangulation_.active_cell_iterators())
+    if (cell->is_locally_owned()) packed[cell->id()] = pack_cell(cell, cost, failure);
+  throw_first_failure(
+      failure.empty() ? failure : "quasi-static solver: the ranks cannot be balanced by cost: " + failure);
 
-  // p4est balances the sum of the weights: each cell's cost in 1e6 parts of the heaviest's, and
-  // one part more so that a cell that cost nothing still counts.
-  auto weight = triangulation_.signals.weight.connect([&](const CellIterator& cell, CellStatus) -> unsigned {
-    return 1u + static_cast<unsigned>(std::lround(1e6 * cost.at(cell->id()) / heaviest));
-  });
+  auto weight = triangulation_.signals.weight.connect(
+      [&](const CellIterator& cell, CellStatus) -> unsigned { return weights.at(cell->id()); });
   const auto handle = triangulation_.register_data_attach(
       [&](const CellIterator& cell, CellStatus) { return packed.at(cell->id()); }, /*variable size*/ true);
   DistributedVector ghosted(owned_, relevant_, comm_);
@@ -452,6 +581,7 @@ double QuasiStaticSolver<dim>::repartition_by_cost() {
   packed.clear();
 
   history_.clear();
+  partition_weight_.clear();
   setup_system();
   transfer.interpolate(u_committed_);
   u_trial_ = u_committed_;
@@ -460,37 +590,108 @@ double QuasiStaticSolver<dim>::repartition_by_cost() {
   triangulation_.notify_ready_to_unpack(
       handle, [&](const CellIterator& cell, CellStatus,
                   const boost::iterator_range<std::vector<char>::const_iterator>& data) {
-        history_.initialize(cell, quadrature_.size());
-        if (!failure.empty()) return;
-        try {
-          const auto pack =
-              Utilities::unpack<CellPack>(data.begin(), data.end(), /*allow_compression=*/false);
-          moved_cost += pack.cost;
-          const auto records = history_.get_data(cell);
-          if (pack.states.size() != records.size() ||
-              pack.numbers.size() != CellPack::kPointNumbers * records.size())
-            throw std::runtime_error("its bytes hold " + std::to_string(pack.states.size()) +
-                                     " points, not " + std::to_string(records.size()));
-          fv.reinit(cell);
-          for (unsigned q = 0; q < records.size(); ++q) {
-            PointRecord& r = *records[q];
-            const double* x = pack.numbers.data() + CellPack::kPointNumbers * q;
-            std::copy(x, x + 6, r.committed_response.stress.data());
-            std::copy(x + 6, x + 42, r.committed_response.tangent.data());
-            std::copy(x + 42, x + 51, r.committed_gradient.data());
-            r.state = make_point(fv, cell, q);
-            r.state->load(pack.states[q]);
-            r.response = r.committed_response;
-            r.displacement_gradient = r.committed_gradient;
-          }
-        } catch (const std::exception& e) {
-          failure = "quasi-static solver: a material moved to cell " + place_name(cell->id().to_string()) +
-                    " could not be restored: " + e.what();
-        }
+        unpack_cell(cell, data, fv, moved_cost, failure);
       });
-  throw_first_failure(failure);
+  throw_first_failure(failure.empty() ? failure
+                                      : "quasi-static solver: a cell moved to another rank: " + failure);
   const double mean = Utilities::MPI::sum(moved_cost, comm_) / Utilities::MPI::n_mpi_processes(comm_);
   return mean > 0.0 ? Utilities::MPI::max(moved_cost, comm_) / mean : 1.0;
+}
+
+template <int dim>
+void QuasiStaticSolver<dim>::save(const std::string& stem, const std::vector<LoadStepRecord>& steps,
+                                  double achievable) {
+  using CellIterator = typename Triangulation<dim>::cell_iterator;
+  using CellStatus = typename Triangulation<dim>::CellStatus;
+  std::map<CellId, std::vector<char>> packed;
+  std::string failure;
+  double cost = 0.0;
+  for (const auto& cell : triangulation_.active_cell_iterators())
+    if (cell->is_locally_owned()) packed[cell->id()] = pack_cell(cell, cost, failure);
+  throw_first_failure(failure.empty() ? failure
+                                      : "quasi-static solver: the state cannot be saved: " + failure);
+  SavedRun run;
+  run.problem = problem_key(p_);
+  run.ranks = Utilities::MPI::n_mpi_processes(comm_);
+  // The points first, then the displacement: resume() unpacks them by these handles.
+  run.points_handle = triangulation_.register_data_attach(
+      [&](const CellIterator& cell, CellStatus) { return packed.at(cell->id()); }, /*variable size*/ true);
+  DistributedVector ghosted(owned_, relevant_, comm_);
+  ghosted = u_committed_;
+  parallel::distributed::SolutionTransfer<dim, DistributedVector> transfer(dofs_);
+  transfer.prepare_for_serialization(ghosted);
+  triangulation_.save(stem);
+  run.committed_lambda = committed_lambda_;
+  run.achievable = achievable;
+  run.steps = steps;
+  run.pvd_entries = pvd_entries_;
+  run.measure_names = measure_names_;
+  std::string written;
+  if (Utilities::MPI::this_mpi_process(comm_) == 0) {
+    const std::vector<char> bytes = Utilities::pack(run, /*allow_compression=*/false);
+    std::ofstream out(stem + ".solver", std::ios::binary);
+    out << SavedRun::kHead;
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    out.close();
+    if (!out) written = "quasi-static solver: cannot write " + stem + ".solver";
+  }
+  throw_first_failure(written);
+}
+
+template <int dim>
+SavedRun QuasiStaticSolver<dim>::resume(const std::string& stem) {
+  using CellIterator = typename Triangulation<dim>::cell_iterator;
+  using CellStatus = typename Triangulation<dim>::CellStatus;
+  // Where the loading stands first: a state of another problem is refused before p4est reads its
+  // mesh.
+  SavedRun run;
+  std::string failure;
+  try {
+    std::ifstream in(stem + ".solver", std::ios::binary);
+    const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    const std::string head = SavedRun::kHead;
+    if (!in.good() && !in.eof()) throw std::runtime_error("cannot be read");
+    if (bytes.compare(0, head.size(), head) != 0) throw std::runtime_error("is not a state of this solver");
+    const std::vector<char> body(bytes.begin() + static_cast<std::ptrdiff_t>(head.size()), bytes.end());
+    run = Utilities::unpack<SavedRun>(body, /*allow_compression=*/false);
+    if (run.problem != problem_key(p_))
+      throw std::runtime_error(
+          "is the state of another problem (its mesh, faces, loading or Newton parameters differ)");
+    if (run.steps.empty()) throw std::runtime_error("holds no converged step");
+  } catch (const std::exception& e) {
+    failure = "quasi-static solver: " + stem + ".solver " + e.what();
+  }
+  throw_first_failure(failure);
+  triangulation_.load(stem);
+  setup_system();
+  parallel::distributed::SolutionTransfer<dim, DistributedVector> transfer(dofs_);
+  transfer.deserialize(u_committed_);
+  u_trial_ = u_committed_;
+  // Registered again, as deal.II's SolutionTransfer::deserialize does, so that the triangulation
+  // counts this data set as unpacked and forgets its callbacks afterwards (a callback left over
+  // would be called by the next repartition). Registered in the order of save(), it gets the
+  // handle its bytes were saved under.
+  const unsigned handle = triangulation_.register_data_attach(
+      [](const CellIterator&, CellStatus) { return std::vector<char>(); }, /*variable size*/ true);
+  if (handle != run.points_handle)
+    throw std::logic_error("quasi-static solver: the points' data are not where save() put them");
+  FEValues<dim> fv(fe_, quadrature_, update_quadrature_points);
+  double cost = 0.0;
+  triangulation_.notify_ready_to_unpack(
+      handle, [&](const CellIterator& cell, CellStatus,
+                  const boost::iterator_range<std::vector<char>::const_iterator>& data) {
+        unpack_cell(cell, data, fv, cost, failure);
+      });
+  throw_first_failure(failure.empty() ? failure
+                                      : "quasi-static solver: resuming from " + stem + ": " + failure);
+  // p4est loads the cells split evenly; a run that was repartitioned by cost gets its partition
+  // back from the same weights, and with it the same sums in the same order.
+  if (Utilities::MPI::max(partition_weight_.empty() ? 0u : 1u, comm_) > 0) move_cells(partition_weight_);
+  committed_lambda_ = run.committed_lambda;
+  committed_answers_ = true;
+  pvd_entries_ = run.pvd_entries;
+  measure_names_ = run.measure_names;
+  return run;
 }
 
 template <int dim>
@@ -845,16 +1046,23 @@ std::vector<PointSummary> QuasiStaticSolver<dim>::point_summaries() const {
 template <int dim>
 QuasiStaticResult QuasiStaticSolver<dim>::run() {
   make_mesh();
-  setup_system();
-  make_points();
+  QuasiStaticResult result;
+  double achievable = 1.0;  // the last repartition's weights over its partition
+  if (checkpoints_.resume.empty()) {
+    setup_system();
+    make_points();
+  } else {
+    SavedRun saved = resume(checkpoints_.resume);
+    result.steps = std::move(saved.steps);
+    achievable = saved.achievable;
+    if (checkpoints_.resumed) checkpoints_.resumed(result.steps);
+  }
   if (!output_.folder.empty() && Utilities::MPI::this_mpi_process(comm_) == 0)
     std::filesystem::create_directories(output_.folder);
 
-  QuasiStaticResult result;
   result.n_dofs = dofs_.n_dofs();
   result.n_cells = triangulation_.n_global_active_cells();
   auto started = std::chrono::steady_clock::now();
-  double achievable = 1.0;  // the last repartition's weights over its partition
   const auto record_step = [&](LoadStepRecord record, double lambda) {
     const auto now = std::chrono::steady_clock::now();
     record.seconds = Utilities::MPI::max(std::chrono::duration<double>(now - started).count(), comm_);
@@ -880,18 +1088,23 @@ QuasiStaticResult QuasiStaticSolver<dim>::run() {
     write_step(result.steps.back().step);
     if (output_.on_step) output_.on_step(result.steps.back());
     if (output_.on_points) output_.on_points(result.steps.back(), measure_names_, point_summaries());
+    if (checkpoints_.stem)
+      if (const std::string stem = checkpoints_.stem(result.steps.back()); !stem.empty()) {
+        save(stem, result.steps, achievable);
+        if (checkpoints_.saved) checkpoints_.saved(result.steps.back(), stem);
+      }
   };
 
   // Step 0: the body force and the pressures on the points' initial stresses.
-  {
+  if (result.steps.empty()) {
     LoadStepRecord record;
     const StepFailure failure = newton(0.0, record);
     if (failure.failed) throw std::runtime_error("femxdem: the equilibrium step 0 failed: " + failure.what);
     commit(0.0);
     record_step(record, 0.0);
   }
-  double reached = 0.0;
-  for (unsigned step = 1; step <= p_.load_steps; ++step) {
+  double reached = committed_lambda_;
+  for (unsigned step = result.steps.back().step + 1; step <= p_.load_steps; ++step) {
     const double target = static_cast<double>(step) / p_.load_steps;
     LoadStepRecord record;
     record.step = step;
@@ -953,11 +1166,13 @@ void validate(const QuasiStaticProblem& p) {
 }
 
 QuasiStaticResult solve_quasi_static(const QuasiStaticProblem& problem, const PointFactory& make_point,
-                                     MPI_Comm comm, const QuasiStaticOutput& output) {
+                                     MPI_Comm comm, const QuasiStaticOutput& output,
+                                     const QuasiStaticCheckpoints& checkpoints) {
   validate(problem);
   column_mesh::silence_p4est();
-  if (problem.dimension == 2) return QuasiStaticSolver<2>(problem, make_point, comm, output).run();
-  return QuasiStaticSolver<3>(problem, make_point, comm, output).run();
+  if (problem.dimension == 2)
+    return QuasiStaticSolver<2>(problem, make_point, comm, output, checkpoints).run();
+  return QuasiStaticSolver<3>(problem, make_point, comm, output, checkpoints).run();
 }
 
 }  // namespace upgrain::fem

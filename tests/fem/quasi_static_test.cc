@@ -555,6 +555,69 @@ TEST(QuasiStatic, RanksAreBalancedByThePointsCost) {
   }
 }
 
+// A checkpoint's whole state: a solve stopped after the step it saved and resumed from it
+// continues with the same bits as the solve that never stopped, on the partition the costs had
+// given it (2 ranks: repartitioned after step 0), with every point's history; a state of another
+// problem is refused by name.
+TEST(QuasiStatic, ARestartContinuesWithTheSameBits) {
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() /
+                                       ("upgrain_quasi_static_restart_" + std::to_string(test::world_size()));
+  if (test::world_rank() == 0) {
+    std::filesystem::remove_all(folder);
+    std::filesystem::create_directories(folder);
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  QuasiStaticProblem p = uniaxial();
+  p.cells = {4, 4, 1};
+  p.load_steps = 4;
+  const auto make = [](const PointPlace& place) { return std::make_unique<CostlyPoint>(place.position[1]); };
+  const QuasiStaticResult whole = solve_quasi_static(p, make, MPI_COMM_WORLD);
+
+  struct Stopped {};
+  const std::string stem = (folder / "state").string();
+  QuasiStaticCheckpoints stop_at_2;
+  stop_at_2.stem = [&](const LoadStepRecord& s) { return s.step == 2 ? stem : std::string(); };
+  stop_at_2.saved = [](const LoadStepRecord&, const std::string&) { throw Stopped{}; };
+  EXPECT_THROW(solve_quasi_static(p, make, MPI_COMM_WORLD, {}, stop_at_2), Stopped);
+  for (const char* f : {"state", "state.info", "state_variable.data", "state.solver"})
+    EXPECT_TRUE(std::filesystem::exists(folder / f)) << f;
+
+  QuasiStaticCheckpoints resume;
+  resume.resume = stem;
+  std::vector<unsigned> known;
+  resume.resumed = [&](const std::vector<LoadStepRecord>& steps) {
+    for (const LoadStepRecord& s : steps) known.push_back(s.step);
+  };
+  const QuasiStaticResult resumed = solve_quasi_static(p, make, MPI_COMM_WORLD, {}, resume);
+  EXPECT_EQ(known, (std::vector<unsigned>{0, 1, 2}));
+  ASSERT_EQ(resumed.steps.size(), whole.steps.size());
+  for (std::size_t k = 0; k < whole.steps.size(); ++k) {
+    EXPECT_EQ(resumed.steps[k].platen_force, whole.steps[k].platen_force) << k;
+    EXPECT_EQ(resumed.steps[k].residuals, whole.steps[k].residuals) << k;
+    EXPECT_EQ(resumed.steps[k].cost, whole.steps[k].cost) << k;
+    EXPECT_EQ(resumed.steps[k].repartitioned, whole.steps[k].repartitioned) << k;
+  }
+  ASSERT_EQ(resumed.points.size(), whole.points.size());
+  for (std::size_t i = 0; i < whole.points.size(); ++i) {
+    EXPECT_EQ(resumed.points[i].place.cell, whole.points[i].place.cell);
+    EXPECT_EQ(resumed.points[i].measures, whole.points[i].measures) << i;  // 5 commits, the same sum
+    EXPECT_TRUE((resumed.points[i].stress.array() == whole.points[i].stress.array()).all()) << i;
+    EXPECT_TRUE(
+        (resumed.points[i].displacement_gradient.array() == whole.points[i].displacement_gradient.array())
+            .all())
+        << i;
+  }
+
+  p.load_steps = 5;
+  try {
+    solve_quasi_static(p, make, MPI_COMM_WORLD, {}, resume);
+    ADD_FAILURE() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("state.solver is the state of another problem"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(QuasiStatic, RefusesBadProblems) {
   QuasiStaticProblem p = uniaxial();
   p.faces[3].support = FaceSupport::roller;

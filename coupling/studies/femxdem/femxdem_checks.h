@@ -14,7 +14,7 @@ void check_femxdem_study(SceneInput& in, const std::string& where);
 // FEMxDEM section; not its container, fill or lid.
 inline constexpr StudyUse kFemxdemUse{.name = "femxdem",
                                       .scene_lid = false,
-                                      .checkpoints = false,
+                                      .own_state = true,
                                       .runs_scene = false,
                                       .check = check_femxdem_study};
 

@@ -10,6 +10,7 @@
 #include "coupling/femxdem/rve_packings.h"
 #include "coupling/femxdem/rve_point.h"
 #include "coupling/studies/dem_run.h"
+#include "coupling/studies/femxdem/femxdem_checkpoints.h"
 #include "coupling/studies/figure_script.h"
 #include "coupling/studies/report_format.h"
 #include "dem/files/atomic_file.h"
@@ -166,12 +167,24 @@ int run_femxdem_study(const SceneInput& in, MPI_Comm comm, const StudyHooks&) {
                                    points_head("at every load step", measures) + history);
   };
   const fem::QuasiStaticOutput output{folder.string(), "femxdem", on_step, on_points};
+  // The point history so far is kept with each checkpoint; load_displacement.csv is made again
+  // from the solver's steps.
+  FemxdemCheckpoints checkpoints(in, comm);
+  const fem::QuasiStaticCheckpoints saving = checkpoints.for_solver(
+      [&] { return history; },
+      [&](const std::vector<fem::LoadStepRecord>& before, const std::string& tables) {
+        if (rank != 0) return;
+        steps = before;
+        history = tables;
+        std::printf("  femxdem: resumed after load step %u of %u (eps_a %.4f)\n", before.back().step,
+                    problem.load_steps, 0.0 - before.back().platen_displacement / o.height);
+      });
   const RveOptions rve = o.rve;
   const auto t1 = std::chrono::steady_clock::now();
   const fem::QuasiStaticResult r = fem::solve_quasi_static(
       problem,
       [&](const fem::PointPlace& place) { return std::make_unique<RveCell>(packings.for_point(place), rve); },
-      comm, output);
+      comm, output, saving);
   const double solve_seconds = seconds_since(t1);
   // Every packing's preparation, on the rank that spent the most; those that a point first needed
   // inside the solve (on the rank it moved to, too) are also part of solve_s.
@@ -186,10 +199,12 @@ int run_femxdem_study(const SceneInput& in, MPI_Comm comm, const StudyHooks&) {
         folder / "points.csv",
         points_head("at the last load step", r.measure_names) + point_rows(r.steps.back().step, r.points));
     using dem::io::json_number;
-    double grain_steps = 0.0, busiest = 0.0;
+    double grain_steps = 0.0, busiest = 0.0, solved_grain_steps = 0.0;
     unsigned iterations = 0, repartitions = 0, halvings = 0;
     for (const fem::LoadStepRecord& s : r.steps) {
       grain_steps += s.cost;
+      // The throughput of this run's solve: a restart's steps only.
+      if (static_cast<long>(s.step) > checkpoints.resumed_after()) solved_grain_steps += s.cost;
       busiest += s.cost * s.imbalance;
       iterations += s.newton_iterations;
       halvings += s.line_search_halvings;
@@ -203,10 +218,11 @@ int run_femxdem_study(const SceneInput& in, MPI_Comm comm, const StudyHooks&) {
       << ",\n  \"grains_per_cell\": " << prepared->grains << ",\n  \"cell_contacts\": " << prepared->contacts
       << ",\n  \"cell_packings\": " << o.cell_packings << ",\n  \"preparation_steps\": " << prepared->steps
       << ",\n  \"preparation_s\": " << json_number(preparation_seconds)
-      << ",\n  \"solve_s\": " << json_number(solve_seconds) << ",\n  \"load_steps\": " << r.steps.size() - 1
-      << ",\n  \"newton_iterations\": " << iterations << ",\n  \"line_search_halvings\": " << halvings
-      << ",\n  \"grain_steps\": " << json_number(grain_steps)
-      << ",\n  \"grain_steps_per_core_second\": " << json_number(grain_steps / (solve_seconds * ranks))
+      << ",\n  \"solve_s\": " << json_number(solve_seconds) << ",\n  \"resumed_after_step\": "
+      << (checkpoints.resumed_after() < 0 ? std::string("null") : std::to_string(checkpoints.resumed_after()))
+      << ",\n  \"load_steps\": " << r.steps.size() - 1 << ",\n  \"newton_iterations\": " << iterations
+      << ",\n  \"line_search_halvings\": " << halvings << ",\n  \"grain_steps\": " << json_number(grain_steps)
+      << ",\n  \"grain_steps_per_core_second\": " << json_number(solved_grain_steps / (solve_seconds * ranks))
       << ",\n  \"imbalance\": " << json_number(grain_steps > 0.0 ? busiest / grain_steps : 1.0)
       << ",\n  \"repartitions\": " << repartitions
       << ",\n  \"final_axial_stress_Pa\": " << json_number(axial_stress(r.steps.back(), o)) << "\n}\n";
@@ -216,7 +232,8 @@ int run_femxdem_study(const SceneInput& in, MPI_Comm comm, const StudyHooks&) {
     std::printf(
         "  femxdem: %zu Gauss points, %u Newton iterations, %.3g grain-steps in %.1f s (%.3g per "
         "core-second)\n",
-        r.points.size(), iterations, grain_steps, solve_seconds, grain_steps / (solve_seconds * ranks));
+        r.points.size(), iterations, solved_grain_steps, solve_seconds,
+        solved_grain_steps / (solve_seconds * ranks));
   });
   return 0;
 }

@@ -4,4 +4,5 @@ list(APPEND UPGRAIN_STUDY_INPUT_SOURCES
   coupling/studies/femxdem/femxdem_section.cc
   coupling/studies/femxdem/femxdem_checks.cc)
 list(APPEND UPGRAIN_STUDY_SOURCES
+  coupling/studies/femxdem/femxdem_checkpoints.cc
   coupling/studies/femxdem/femxdem_study.cc)

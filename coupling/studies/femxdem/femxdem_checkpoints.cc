@@ -1,0 +1,127 @@
+#include "coupling/studies/femxdem/femxdem_checkpoints.h"
+
+#include <algorithm>
+#include <fstream>
+#include <iterator>
+#include <utility>
+
+#include "coupling/run/checkpoint.h"
+#include "coupling/run/stop_request.h"
+#include "dem/core/error.h"
+#include "dem/parallel/exchange.h"
+
+namespace upgrain::coupling {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kStudy = "femxdem";
+constexpr const char* kTables = "point_history.csv";  // the block of the study's own record
+constexpr const char* kStem = "state";                // the solver's files: state, state.info, ...
+
+std::vector<char> file_bytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::vector<char> bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (!in.good() && !in.eof()) throw Error("cannot read " + file.string());
+  return bytes;
+}
+
+void write_bytes(const fs::path& file, const std::vector<char>& bytes) {
+  std::ofstream out(file, std::ios::binary);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  out.close();
+  if (!out) throw Error("cannot write " + file.string());
+}
+
+}  // namespace
+
+FemxdemCheckpoints::FemxdemCheckpoints(const SceneInput& in, MPI_Comm comm)
+    : in_(in), comm_(comm), last_(std::chrono::steady_clock::now()) {
+  MPI_Comm_rank(comm, &rank_);
+  work_ = fs::path(in.output.folder) / "checkpoints" / "femxdem_state";
+  if (!in.restarting) return;
+  long step = -1;
+  dem::run_on_root(comm, [&] {
+    const Checkpoint& c = *in.resume;
+    if (!c.study || c.study->study != kStudy)
+      throw Error("checkpoint " + c.file.string() + " holds no FEM x DEM state");
+    fs::remove_all(work_);
+    fs::create_directories(work_);
+    for (const auto& [name, bytes] : c.study->blocks) {
+      if (name == kTables)
+        restored_tables_.assign(bytes.begin(), bytes.end());
+      else
+        write_bytes(work_ / name, bytes);
+    }
+    (void)c.study->block(std::string(kStem) + ".solver", c.file);
+    step = c.step;
+  });
+  MPI_Bcast(&step, 1, MPI_LONG, 0, comm);
+  resumed_after_ = step;
+  resume_stem_ = (work_ / kStem).string();
+}
+
+FemxdemCheckpoints::~FemxdemCheckpoints() {
+  if (rank_ != 0) return;
+  std::error_code ec;
+  fs::remove_all(work_, ec);
+}
+
+fem::QuasiStaticCheckpoints FemxdemCheckpoints::for_solver(
+    std::function<std::string()> tables,
+    std::function<void(const std::vector<fem::LoadStepRecord>&, const std::string&)> restored) {
+  fem::QuasiStaticCheckpoints c;
+  c.resume = resume_stem_;
+  c.resumed = [this, restored](const std::vector<fem::LoadStepRecord>& steps) {
+    // Every rank has read the files (the solver's collective calls after its load): they go.
+    if (rank_ == 0) {
+      std::error_code ec;
+      fs::remove_all(work_, ec);
+    }
+    restored(steps, restored_tables_);
+    restored_tables_.clear();
+  };
+  // The wall clock and the stop request are each rank's own: the ranks agree on them here, in one
+  // reduction after each converged step.
+  c.stem = [this](const fem::LoadStepRecord&) -> std::string {
+    const CheckpointOptions& o = in_.output.checkpoint;
+    const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_).count();
+    int local[2] = {stop_signal(), o.wall_interval > 0.0 && since >= o.wall_interval ? 1 : 0};
+    int global[2] = {0, 0};
+    MPI_Allreduce(local, global, 2, MPI_INT, MPI_MAX, comm_);
+    stop_ = global[0];
+    if (global[0] == 0 && global[1] == 0) return {};
+    dem::run_on_root(comm_, [&] {
+      fs::remove_all(work_);
+      fs::create_directories(work_);
+    });
+    return (work_ / kStem).string();
+  };
+  c.saved = [this, tables](const fem::LoadStepRecord& record, const std::string&) {
+    fs::path written;
+    dem::run_on_root(comm_, [&] {
+      Checkpoint k;
+      k.step = record.step;
+      k.scene = in_.output.checkpoint.scene;
+      StudyState s;
+      s.study = kStudy;
+      std::vector<fs::path> files;
+      for (const fs::directory_entry& e : fs::directory_iterator(work_)) files.push_back(e.path());
+      std::sort(files.begin(), files.end());
+      for (const fs::path& f : files) s.blocks.emplace_back(f.filename().string(), file_bytes(f));
+      const std::string t = tables();
+      s.blocks.emplace_back(kTables, std::vector<char>(t.begin(), t.end()));
+      k.study = std::move(s);
+      written = write_checkpoint(in_.output.folder, k, in_.output.checkpoint.keep);
+      fs::remove_all(work_);
+    });
+    last_ = std::chrono::steady_clock::now();
+    if (stop_ != 0)
+      throw RunStopped(stop_, static_cast<long>(record.step),
+                       written.empty() ? fs::path(in_.output.folder) / "checkpoints" : written);
+  };
+  return c;
+}
+
+}  // namespace upgrain::coupling

@@ -1,0 +1,93 @@
+#!/usr/bin/python3
+"""Stops the FEM x DEM study (docs/femxdem.md, "Checkpoints and restart") with SIGTERM after its
+first load step and continues it with `upgrain --study femxdem --restart`, then checks:
+- the stopped run wrote one checkpoint, after the step it stopped at, exited with 143 and said how
+  to continue; no working folder of the solver's files is left;
+- `upgrain --restart` without --study is refused by name;
+- the continued run resumed after that step and wrote the same bytes as a run that was not
+  stopped: points.csv, point_history.csv, every femxdem-NNNN piece and .pvtu, femxdem.pvd, and
+  load_displacement.csv but its wall-time column; summary.json the same but its timings and
+  resume step;
+- the same checkpoint continued on 2 ranks (the cells repartitioned by p4est) gives the same
+  points to 1e-6 (not bitwise: the matrix is summed in another order).
+
+Usage: check_femxdem_restart.py UPGRAIN SCENE WORK [MPIEXEC]
+"""
+import csv
+import filecmp
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+
+upgrain, scene, work = sys.argv[1:4]
+mpiexec = sys.argv[4] if len(sys.argv) > 4 else 'mpiexec'
+shutil.rmtree(work, ignore_errors=True)
+os.makedirs(work)
+whole, broken, other = (os.path.join(work, n) for n in ('whole', 'broken', 'broken_on_2_ranks'))
+
+
+def run(cmd):
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit(f'{" ".join(cmd)}: exit {r.returncode}\n{r.stdout}\n{r.stderr}')
+    return r.stdout
+
+
+def table(path, drop=()):
+    rows = list(csv.DictReader(l for l in open(path) if not l.startswith('#')))
+    return [{k: v for k, v in row.items() if k not in drop} for row in rows]
+
+
+run([upgrain, '--study', 'femxdem', '--output', whole, scene])
+
+# Stopped as soon as its first load step is in the log (three more to go).
+proc = subprocess.Popen([upgrain, '--study', 'femxdem', '--output', broken, scene], stdout=subprocess.PIPE,
+                        stderr=subprocess.STDOUT, text=True)
+log = ''
+for line in proc.stdout:
+    log += line
+    if 'femxdem: step 1/' in line:
+        proc.send_signal(signal.SIGTERM)
+code = proc.wait()
+assert code == 143, f'a run stopped by SIGTERM must exit with 143, not {code}\n{log}'
+assert 'stopped by signal 15' in log and 'after step 1, checkpoint' in log, log
+assert 'continue with: upgrain --study femxdem --restart ' + broken in log, log
+checkpoints = sorted(os.listdir(os.path.join(broken, 'checkpoints')))
+assert checkpoints == ['checkpoint_000000001.h5'], checkpoints
+
+r = subprocess.run([upgrain, '--restart', broken], capture_output=True, text=True)
+assert r.returncode != 0 and 'it is a run of --study femxdem; continue it with upgrain --study femxdem ' \
+    '--restart' in r.stdout + r.stderr, r.stdout + r.stderr
+
+shutil.copytree(broken, other)
+log = run([upgrain, '--study', 'femxdem', '--restart', broken])
+assert 'resuming from ' + os.path.join(broken, 'checkpoints', checkpoints[0]) + ' after load step 1' in log, log
+assert 'femxdem: resumed after load step 1 of 4' in log, log
+assert 'femxdem: step 1/' not in log and 'femxdem: step 2/4' in log, log
+assert not os.path.exists(os.path.join(broken, 'checkpoints', 'femxdem_state')), 'the working folder is left'
+
+a, b = os.path.join(whole, 'femxdem'), os.path.join(broken, 'femxdem')
+same = [f for f in sorted(os.listdir(a)) if f.endswith(('.vtu', '.pvtu', '.pvd')) or f.startswith('point')]
+assert len(same) >= 13, same
+_, mismatch, errors = filecmp.cmpfiles(a, b, same, shallow=False)
+assert not mismatch and not errors, (mismatch, errors)
+assert table(os.path.join(a, 'load_displacement.csv'), ('wall_s',)) == \
+    table(os.path.join(b, 'load_displacement.csv'), ('wall_s',))
+timing = ('preparation_s', 'solve_s', 'grain_steps_per_core_second', 'resumed_after_step')
+s1, s2 = (json.load(open(os.path.join(f, 'summary.json'))) for f in (whole, broken))
+assert s1['resumed_after_step'] is None and s2['resumed_after_step'] == 1, (s1, s2)
+assert {k: v for k, v in s1.items() if k not in timing} == {k: v for k, v in s2.items() if k not in timing}
+
+log = run([mpiexec, '-n', '2', upgrain, '--study', 'femxdem', '--restart', other])
+assert 'femxdem: resumed after load step 1 of 4' in log, log
+p1, p2 = table(os.path.join(a, 'points.csv')), table(os.path.join(other, 'femxdem', 'points.csv'))
+assert len(p1) == len(p2) == 8, (len(p1), len(p2))
+for x, y in zip(p1, p2):
+    assert (x['cell'], x['point']) == (y['cell'], y['point']), (x, y)
+    for k in ('sigma_xx', 'sigma_yy', 'sigma_xy', 'eps_yy', 'solid_fraction'):
+        u, v = float(x[k]), float(y[k])
+        assert abs(u - v) <= 1e-6 * max(abs(u), abs(v), 1e-3), (k, x, y)
+print('FEM x DEM restart: stopped after step 1, continued to the same bytes on 1 rank and to 1e-6 on 2')
