@@ -10,6 +10,7 @@
 #include "coupling/femxdem/rve_tangent.h"
 #include "coupling/studies/element/element_cell.h"
 #include "dem/core/error.h"
+#include "dem/io/hdf5_snapshot.h"
 #include "dem/parallel/byte_stream.h"
 
 namespace upgrain::coupling {
@@ -168,6 +169,10 @@ void RveCell::load(const std::vector<char>& bytes) {
   reader.get(r.grain_rotation);
   record_ = r;
   trial_.reset();
+}
+
+void RveCell::write_snapshot(const std::filesystem::path& file, double time, long step) const {
+  dem::io::write_snapshot(file, committed_.particles, {}, {}, time, step, /*images=*/true);
 }
 
 std::unique_ptr<fem::PointState> RveCell::clone() const { return std::make_unique<RveCell>(*this); }

@@ -7,6 +7,7 @@
 // velocity gradient over the increment's steps, holds it still and relaxes it (held_cell.h); the
 // stress is turned back by Q. Plane strain in x-y (and any stretch along z) only: a tilt of R
 // other than (x, y) is refused (std::invalid_argument). The engine runs on MPI_COMM_SELF.
+#include <filesystem>
 #include <memory>
 #include <optional>
 
@@ -44,6 +45,10 @@ class RveCell : public fem::PointState {
   // the same template and options continues with the same bits.
   [[nodiscard]] std::vector<char> save() const override;
   void load(const std::vector<char>& bytes) override;
+  // The committed cell's grains as an HDF5 snapshot for ParaView (dem/io/hdf5_snapshot.h: ids,
+  // radii, positions, velocities, forces and the periodic images), in the cell's own frame: the
+  // stretch R of F = QR, without the rotation Q.
+  void write_snapshot(const std::filesystem::path& file, double time, long step) const;
 
   // The last respond()'s main trial (not the perturbations').
   [[nodiscard]] const RveTrialRecord& last_trial() const { return record_; }

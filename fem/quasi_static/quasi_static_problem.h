@@ -11,6 +11,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fem/quasi_static/point_state.h"
@@ -123,6 +124,11 @@ struct QuasiStaticOutput {
   std::function<void(const LoadStepRecord&, const std::vector<std::string>& measure_names,
                      const std::vector<PointSummary>&)>
       on_points;
+  // Called on every rank after each converged step, before on_points, with the place and the
+  // committed state of each point the rank owns (collective: the caller may gather). A DEM cell's
+  // grains are written for a viewer this way, where the cell is.
+  std::function<void(const LoadStepRecord&, const std::vector<std::pair<PointPlace, const PointState*>>&)>
+      on_owned_points;
 };
 
 // Checkpoints of the solver's whole state (docs/femxdem.md, "Checkpoints and restart"): the mesh

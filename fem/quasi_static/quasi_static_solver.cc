@@ -269,6 +269,11 @@ class QuasiStaticSolver {
   double platen_force() const;
   void write_step(unsigned step);
   std::vector<PointSummary> point_summaries() const;
+  // This rank's points: each one's place and committed state.
+  std::vector<std::pair<PointPlace, const PointState*>> owned_points() const;
+  // Calls visit(place, record) for each point of the locally owned cells, in the cells' order.
+  template <class Visit>
+  void for_each_owned_point(const Visit& visit) const;
 
   QuasiStaticProblem p_;
   PointFactory make_point_;
@@ -1003,26 +1008,46 @@ void QuasiStaticSolver<dim>::write_step(unsigned step) {
 }
 
 template <int dim>
-std::vector<PointSummary> QuasiStaticSolver<dim>::point_summaries() const {
-  using Packed = std::pair<std::string, std::vector<double>>;
-  std::vector<Packed> local;
+template <class Visit>
+void QuasiStaticSolver<dim>::for_each_owned_point(const Visit& visit) const {
   FEValues<dim> fv(fe_, quadrature_, update_quadrature_points);
   for (const auto& cell : triangulation_.active_cell_iterators()) {
     if (!cell->is_locally_owned()) continue;
     fv.reinit(cell);
     const auto records = history_.get_data(cell);
     for (unsigned q = 0; q < records.size(); ++q) {
-      std::vector<double> v{static_cast<double>(q)};
-      for (int d = 0; d < 3; ++d) v.push_back(d < dim ? fv.quadrature_point(q)[d] : 0.0);
-      for (int k = 0; k < 6; ++k) v.push_back(records[q]->committed_response.stress[k]);
-      for (int k = 0; k < 9; ++k) v.push_back(records[q]->committed_gradient(k / 3, k % 3));
-      // As many as named (make_points() checked that every point names the same).
-      const std::vector<PointMeasure> m = records[q]->state->measures();
-      for (std::size_t k = 0; k < measure_names_.size(); ++k)
-        v.push_back(k < m.size() ? m[k].value : std::nan(""));
-      local.emplace_back(cell->id().to_string(), std::move(v));
+      PointPlace place;
+      place.cell = cell->id().to_string();
+      place.index = q;
+      for (int d = 0; d < dim; ++d) place.position[d] = fv.quadrature_point(q)[d];
+      visit(place, *records[q]);
     }
   }
+}
+
+template <int dim>
+std::vector<std::pair<PointPlace, const PointState*>> QuasiStaticSolver<dim>::owned_points() const {
+  std::vector<std::pair<PointPlace, const PointState*>> out;
+  for_each_owned_point(
+      [&](const PointPlace& place, const PointRecord& r) { out.emplace_back(place, r.state.get()); });
+  return out;
+}
+
+template <int dim>
+std::vector<PointSummary> QuasiStaticSolver<dim>::point_summaries() const {
+  using Packed = std::pair<std::string, std::vector<double>>;
+  std::vector<Packed> local;
+  for_each_owned_point([&](const PointPlace& place, const PointRecord& r) {
+    std::vector<double> v{static_cast<double>(place.index)};
+    for (int d = 0; d < 3; ++d) v.push_back(place.position[d]);
+    for (int k = 0; k < 6; ++k) v.push_back(r.committed_response.stress[k]);
+    for (int k = 0; k < 9; ++k) v.push_back(r.committed_gradient(k / 3, k % 3));
+    // As many as named (make_points() checked that every point names the same).
+    const std::vector<PointMeasure> m = r.state->measures();
+    for (std::size_t k = 0; k < measure_names_.size(); ++k)
+      v.push_back(k < m.size() ? m[k].value : std::nan(""));
+    local.emplace_back(place.cell, std::move(v));
+  });
   std::vector<Packed> all;
   for (auto& part : Utilities::MPI::all_gather(comm_, local)) all.insert(all.end(), part.begin(), part.end());
   std::sort(all.begin(), all.end(), [](const Packed& a, const Packed& b) {
@@ -1087,6 +1112,7 @@ QuasiStaticResult QuasiStaticSolver<dim>::run() {
     result.steps.push_back(std::move(record));
     write_step(result.steps.back().step);
     if (output_.on_step) output_.on_step(result.steps.back());
+    if (output_.on_owned_points) output_.on_owned_points(result.steps.back(), owned_points());
     if (output_.on_points) output_.on_points(result.steps.back(), measure_names_, point_summaries());
     if (checkpoints_.stem)
       if (const std::string stem = checkpoints_.stem(result.steps.back()); !stem.empty()) {

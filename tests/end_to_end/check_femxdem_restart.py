@@ -9,7 +9,11 @@ first load step and continues it with `upgrain --study femxdem --restart`, then 
   load_displacement.csv but its wall-time column; summary.json the same but its timings and
   resume step;
 - the same checkpoint continued on 2 ranks (the cells repartitioned by p4est) gives the same
-  points to 1e-6 (not bitwise: the matrix is summed in another order).
+  points to 1e-6 (not bitwise: the matrix is summed in another order);
+- the two cells the scene asks for (FEMxDEM/cell snapshots = 0:0, 1:3, written here into the
+  scene) have a snapshot of every load step, before and after the restart, each of the cell's 60
+  grains with their periodic images, the same bytes as the uninterrupted run's, and an XDMF
+  series listing them all; on 2 ranks, where the second element's cells are the other rank's, too.
 
 Usage: check_femxdem_restart.py UPGRAIN SCENE WORK [MPIEXEC]
 """
@@ -26,6 +30,11 @@ upgrain, scene, work = sys.argv[1:4]
 mpiexec = sys.argv[4] if len(sys.argv) > 4 else 'mpiexec'
 shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
+with open(scene) as f:
+    text = f.read().replace('subsection FEMxDEM\n', 'subsection FEMxDEM\n  set cell snapshots = 0:0, 1:3\n', 1)
+scene = os.path.join(work, 'scene.prm')
+with open(scene, 'w') as f:
+    f.write(text)
 whole, broken, other = (os.path.join(work, n) for n in ('whole', 'broken', 'broken_on_2_ranks'))
 
 
@@ -90,4 +99,24 @@ for x, y in zip(p1, p2):
     for k in ('sigma_xx', 'sigma_yy', 'sigma_xy', 'eps_yy', 'solid_fraction'):
         u, v = float(x[k]), float(y[k])
         assert abs(u - v) <= 1e-6 * max(abs(u), abs(v), 1e-3), (k, x, y)
+for run_folder in (whole, broken, other):
+    for cell in ('0_0', '1_3'):
+        d = os.path.join(run_folder, 'femxdem', 'cells', cell)
+        files = sorted(os.listdir(d))
+        assert files == ['cell.xdmf'] + [f'cell_{k:04d}.h5' for k in range(5)], (d, files)
+        xdmf = open(os.path.join(d, 'cell.xdmf')).read()
+        assert all(f'cell_{k:04d}.h5:/particles/position' in xdmf for k in range(5)), xdmf
+    assert sorted(os.listdir(os.path.join(run_folder, 'femxdem', 'cells'))) == ['0_0', '1_3']
+for cell in ('0_0', '1_3'):
+    names = [f'cell_{k:04d}.h5' for k in range(5)] + ['cell.xdmf']
+    _, mismatch, errors = filecmp.cmpfiles(os.path.join(a, 'cells', cell), os.path.join(b, 'cells', cell),
+                                           names, shallow=False)
+    assert not mismatch and not errors, (cell, mismatch, errors)
+try:
+    import h5py
+    with h5py.File(os.path.join(a, 'cells', '1_3', 'cell_0004.h5'), 'r') as f:
+        assert f['particles/position'].shape == (60, 3) and f['particles/image'].shape == (60, 3)
+        assert int(f.attrs['step']) == 4
+except ImportError:
+    pass
 print('FEM x DEM restart: stopped after step 1, continued to the same bytes on 1 rank and to 1e-6 on 2')

@@ -417,7 +417,7 @@ TEST(QuasiStatic, WritesEachStepAndASeries) {
   };
   const QuasiStaticResult r = solve_quasi_static(
       p, [](const PointPlace& place) { return std::make_unique<MeasuredPoint>(place.position[1]); },
-      MPI_COMM_WORLD, {folder, "biaxial", nullptr, on_points});
+      MPI_COMM_WORLD, {folder, "biaxial", nullptr, on_points, nullptr});
   EXPECT_EQ(steps, (std::vector<unsigned>{0, 1, 2}));
   EXPECT_EQ(r.measure_names, (std::vector<std::string>{"h_yy", "y"}));
   for (const char* f : {"biaxial-0000.pvtu", "biaxial-0001.pvtu", "biaxial-0002.pvtu", "biaxial.pvd",

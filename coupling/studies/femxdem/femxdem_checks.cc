@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "coupling/studies/femxdem/cell_choice.h"
 #include "dem/core/error.h"
 
 namespace upgrain::coupling {
@@ -19,6 +20,19 @@ void check_femxdem_study(SceneInput& in, const std::string& where) {
     throw Error(
         study + "FEMxDEM/rebalance threshold = " + std::to_string(o.rebalance_threshold) +
         ": it is the busiest rank's grain-steps over the ranks' mean, at least 1 (0: never rebalance)");
+  try {
+    const CellSnapshotChoice chosen = parse_cell_snapshots(o.cell_snapshots);
+    const long elements = static_cast<long>(o.cells_x) * o.cells_y;
+    const int per_axis = o.quadrature_points > 0 ? o.quadrature_points : o.degree + 1;
+    const auto points = static_cast<unsigned>(per_axis * per_axis);
+    for (const auto& [element, point] : chosen.points)
+      if (element >= elements || point >= points)
+        throw Error("FEMxDEM/cell snapshots: " + std::to_string(element) + ":" + std::to_string(point) +
+                    " is not a Gauss point of the mesh: elements 0 to " + std::to_string(elements - 1) +
+                    ", points 0 to " + std::to_string(points - 1) + " in each");
+  } catch (const Error& e) {
+    throw Error(study + e.what());
+  }
   if (o.degree == 1 && o.quadrature_points == 1)
     throw Error(study +
                 "FEMxDEM/quadrature points = 1 with degree = 1: the specimen's sides are free, and one Gauss "

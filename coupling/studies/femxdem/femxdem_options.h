@@ -2,6 +2,8 @@
 // The FEMxDEM section of a scene file (docs/femxdem.md): the specimen, its mesh and loading, the
 // Newton iteration, and the DEM cell at each quadrature point (coupling/femxdem/rve_options.h).
 // Each default written here once.
+#include <string>
+
 #include "coupling/femxdem/rve_options.h"
 #include "fem/quasi_static/quasi_static_problem.h"
 
@@ -35,6 +37,10 @@ struct FemxdemOptions {
   // Distinct DEM cells: each Gauss point copies one of this many packings (seeds cell seed, cell
   // seed + 1, ...), chosen by its place; 0: every point its own (coupling/femxdem/rve_packings.h).
   int cell_packings = 1;
+  // The DEM cells whose grains are written at every converged load step, for ParaView: "all", or
+  // a list of element:point (the element's number, the first of points.csv's cell column, and the
+  // Gauss point's index); empty: none.
+  std::string cell_snapshots;
   RveOptions rve;
 };
 

@@ -65,6 +65,11 @@ Section femxdem_section() {
                "copies the one its place picks (the same on any rank count). 1: one cell copied to every "
                "point, a specimen that stays symmetric; more: point-to-point scatter, which triggers "
                "localisation; 0: every point its own packing (docs/femxdem.md)."),
+       text("cell snapshots", femxdem(&FemxdemOptions::cell_snapshots), "-",
+            "The DEM cells whose grains are written after every converged load step, as HDF5 snapshots "
+            "with an XDMF series per cell for ParaView (femxdem/cells/E_P/): 'all', or a comma-separated "
+            "list of element:point, as points.csv numbers them (the element is the first number of its "
+            "cell column, the point its point column); empty: none."),
        real("preparation friction", femxdem(&FemxdemOptions::rve, &RveOptions::preparation_friction), -1.0,
             10.0, "-",
             "The grains' friction coefficient while the DEM cell is squeezed to the confining pressure: the "

@@ -10,6 +10,7 @@
 #include "coupling/femxdem/rve_packings.h"
 #include "coupling/femxdem/rve_point.h"
 #include "coupling/studies/dem_run.h"
+#include "coupling/studies/femxdem/cell_snapshots.h"
 #include "coupling/studies/femxdem/femxdem_checkpoints.h"
 #include "coupling/studies/figure_script.h"
 #include "coupling/studies/report_format.h"
@@ -166,13 +167,20 @@ int run_femxdem_study(const SceneInput& in, MPI_Comm comm, const StudyHooks&) {
     dem::io::write_text_atomically(folder / "point_history.csv",
                                    points_head("at every load step", measures) + history);
   };
-  const fem::QuasiStaticOutput output{folder.string(), "femxdem", on_step, on_points};
+  CellSnapshots snapshots(parse_cell_snapshots(o.cell_snapshots), folder, prepared->grains, comm);
+  const fem::QuasiStaticOutput output{
+      folder.string(), "femxdem", on_step, on_points,
+      [&](const fem::LoadStepRecord& s,
+          const std::vector<std::pair<fem::PointPlace, const fem::PointState*>>& owned) {
+        snapshots.write(s, owned);
+      }};
   // The point history so far is kept with each checkpoint; load_displacement.csv is made again
   // from the solver's steps.
   FemxdemCheckpoints checkpoints(in, comm);
   const fem::QuasiStaticCheckpoints saving = checkpoints.for_solver(
       [&] { return history; },
       [&](const std::vector<fem::LoadStepRecord>& before, const std::string& tables) {
+        snapshots.resumed(before);
         if (rank != 0) return;
         steps = before;
         history = tables;
