@@ -63,6 +63,8 @@ for line in proc.stdout:
 code = proc.wait()
 assert code == 143, f'a run stopped by SIGTERM must exit with 143, not {code}\n{log}'
 assert 'stopped by signal 15' in log and 'after step 1, checkpoint' in log, log
+assert 'femxdem: checkpoint ' + os.path.join(broken, 'checkpoints', 'checkpoint_000000001.h5') + \
+    ' after load step 1 (' in log, log
 assert 'continue with: upgrain --study femxdem --restart ' + broken in log, log
 checkpoints = sorted(os.listdir(os.path.join(broken, 'checkpoints')))
 assert checkpoints == ['checkpoint_000000001.h5'], checkpoints

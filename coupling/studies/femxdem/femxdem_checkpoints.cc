@@ -1,6 +1,7 @@
 #include "coupling/studies/femxdem/femxdem_checkpoints.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <utility>
@@ -96,6 +97,7 @@ fem::QuasiStaticCheckpoints FemxdemCheckpoints::for_solver(
       fs::remove_all(work_);
       fs::create_directories(work_);
     });
+    saving_since_ = std::chrono::steady_clock::now();
     return (work_ / kStem).string();
   };
   c.saved = [this, tables](const fem::LoadStepRecord& record, const std::string&) {
@@ -115,6 +117,10 @@ fem::QuasiStaticCheckpoints FemxdemCheckpoints::for_solver(
       k.study = std::move(s);
       written = write_checkpoint(in_.output.folder, k, in_.output.checkpoint.keep);
       fs::remove_all(work_);
+      std::printf("  femxdem: checkpoint %s after load step %u (%.3g MB in %.2g s)\n", written.c_str(),
+                  record.step, static_cast<double>(fs::file_size(written)) / 1e6,
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - saving_since_).count());
+      std::fflush(stdout);
     });
     last_ = std::chrono::steady_clock::now();
     if (stop_ != 0)
