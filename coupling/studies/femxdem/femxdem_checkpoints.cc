@@ -50,6 +50,10 @@ FemxdemCheckpoints::FemxdemCheckpoints(const SceneInput& in, MPI_Comm comm)
     fs::remove_all(work_);
     fs::create_directories(work_);
     for (const auto& [name, bytes] : c.study->blocks) {
+      // A file of the working folder, never a path out of it.
+      if (name.empty() || name.find('/') != std::string::npos || name.front() == '.')
+        throw Error("checkpoint " + c.file.string() + ": its FEM x DEM state has a block named '" + name +
+                    "', which is not a file name");
       if (name == kTables)
         restored_tables_.assign(bytes.begin(), bytes.end());
       else
