@@ -633,12 +633,14 @@ void QuasiStaticSolver<dim>::save(const std::string& stem, const std::vector<Loa
   run.measure_names = measure_names_;
   std::string written;
   if (Utilities::MPI::this_mpi_process(comm_) == 0) {
-    const std::vector<char> bytes = Utilities::pack(run, /*allow_compression=*/false);
-    std::ofstream out(stem + ".solver", std::ios::binary);
-    out << SavedRun::kHead;
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    out.close();
-    if (!out) written = "quasi-static solver: cannot write " + stem + ".solver";
+    const std::vector<char> body = Utilities::pack(run, /*allow_compression=*/false);
+    std::string bytes = SavedRun::kHead;
+    bytes.append(body.begin(), body.end());
+    try {
+      dem::io::write_bytes(stem + ".solver", bytes.data(), bytes.size(), stem + ".solver");
+    } catch (const std::exception& e) {
+      written = std::string("quasi-static solver: ") + e.what();
+    }
   }
   throw_first_failure(written);
 }

@@ -9,6 +9,7 @@
 #include "coupling/run/checkpoint.h"
 #include "coupling/run/stop_request.h"
 #include "dem/core/error.h"
+#include "dem/files/atomic_file.h"
 #include "dem/parallel/exchange.h"
 
 namespace upgrain::coupling {
@@ -26,13 +27,6 @@ std::vector<char> file_bytes(const fs::path& file) {
   std::vector<char> bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   if (!in.good() && !in.eof()) throw Error("cannot read " + file.string());
   return bytes;
-}
-
-void write_bytes(const fs::path& file, const std::vector<char>& bytes) {
-  std::ofstream out(file, std::ios::binary);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  out.close();
-  if (!out) throw Error("cannot write " + file.string());
 }
 
 }  // namespace
@@ -57,7 +51,7 @@ FemxdemCheckpoints::FemxdemCheckpoints(const SceneInput& in, MPI_Comm comm)
       if (name == kTables)
         restored_tables_.assign(bytes.begin(), bytes.end());
       else
-        write_bytes(work_ / name, bytes);
+        dem::io::write_bytes(work_ / name, bytes.data(), bytes.size(), (work_ / name).string());
     }
     (void)c.study->block(std::string(kStem) + ".solver", c.file);
     step = c.step;
