@@ -21,7 +21,7 @@ std::string non_finite_state(const ParticleStore& p, int n_owned, long step, dou
 }
 
 std::string runaway_overlap(double ratio, double limit, long step, double time, const SceneConfig& scene,
-                            const OverlapSite& site) {
+                            const OverlapSite& site, const AssemblyLoad& load) {
   if (!(ratio > limit)) return {};
   std::ostringstream m;
   m.precision(3);
@@ -44,6 +44,7 @@ std::string runaway_overlap(double ratio, double limit, long step, double time, 
   // any time step, while a time step too large lets fast contacts overshoot. The overlap the
   // weight alone gives by the contact law tells them apart.
   const double weight = weight_overlap_ratio(scene);
+  const double stressed = stress_overlap_ratio(scene, load);
   if (weight > kStaticOverlapBound) {
     m << "the grains are too soft for their weight: by the " << scene.contact_law
       << " law a grain's weight alone presses it " << weight
@@ -52,6 +53,16 @@ std::string runaway_overlap(double ratio, double limit, long step, double time, 
       << "), and a bed stacks many; raise Particles/youngs modulus "
       << "(now " << scene.particles.material.youngs_modulus
       << " Pa) or the law's stiffness, not the time step";
+  } else if (stressed > kStaticOverlapBound) {
+    // A cell that carries a stress presses its grains into each other more as the stress grows;
+    // its force chains carry several times the mean force, and the largest overlap follows.
+    m << "the grains are too soft for the stress they carry: at the cell's mean stress " << load.pressure
+      << " Pa (coordination " << load.coordination << ", solid fraction " << load.solid_fraction << ") the "
+      << scene.contact_law << " law gives a mean contact overlap of " << stressed
+      << " of a radius (DEM keeps static overlaps below " << kStaticOverlapBound
+      << "), and force chains carry several times the mean force; raise Particles/youngs modulus (now "
+      << scene.particles.material.youngs_modulus
+      << " Pa; Hertz overlaps fall as its -2/3 power) or the law's stiffness, not the time step";
   } else if (const TimeStepEstimate ts = estimate_time_step(scene);
              impact_overlap_ratio(scene, ts.impact_speed) > limit) {
     // The law itself gives this overlap at the scene's impact speed: no time step helps.

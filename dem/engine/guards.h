@@ -11,6 +11,7 @@
 
 #include "dem/core/particle_store.h"
 #include "dem/scene/scene_config.h"
+#include "dem/scene/weight_overlap.h"
 
 namespace upgrain::dem {
 
@@ -28,10 +29,10 @@ struct OverlapSite {
 
 // An overlap above `limit` of the smallest semi-axis at the evaluation of `step`, naming its
 // contact, with its cause: a grain passing through a wall (an overlap of a whole semi-axis at
-// a wall), grains too soft for their weight (dem/scene/weight_overlap.h), or a time step too
-// large for the impacts.
+// a wall), grains too soft for their weight or for the stress of the cell they fill (`load`,
+// when known; dem/scene/weight_overlap.h), or a time step too large for the impacts.
 std::string runaway_overlap(double ratio, double limit, long step, double time, const SceneConfig& scene,
-                            const OverlapSite& site = {});
+                            const OverlapSite& site = {}, const AssemblyLoad& load = {});
 
 // The global particle count after a migration differs from the scene's.
 std::string lost_particles(long count, long expected, long step);

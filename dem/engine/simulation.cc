@@ -515,7 +515,20 @@ void Simulation::check_overlap(double global_max) const {
   if (site.partner < 0 && -site.partner - 1 < static_cast<GlobalId>(walls_.size()))
     site.wall = walls_[static_cast<std::size_t>(-site.partner - 1)].name;
   throw CollectiveError(runaway_overlap(global_max, kRunawayOverlapRatio, last_overlap_step_,
-                                        static_cast<double>(last_overlap_step_) * dt_, scene_, site));
+                                        static_cast<double>(last_overlap_step_) * dt_, scene_, site,
+                                        assembly_load()));
+}
+
+AssemblyLoad Simulation::assembly_load() const {
+  // Known where the engine follows the cell's Love-Weber stress: a deforming periodic cell.
+  double sums[2] = {static_cast<double>(out_.pair_contacts), 0.0};
+  for (int i = 0; i < n_owned_; ++i) sums[1] += p_.volume(static_cast<std::size_t>(i));
+  MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, comm());
+  if (!(deforming_ && cell_stress_known_)) return {};
+  const Box& box = decomposition().cell().box;
+  return {.pressure = -cell_stress_.trace() / 3.0,
+          .coordination = 2.0 * sums[0] / static_cast<double>(std::max(particle_count(), 1L)),
+          .solid_fraction = sums[1] / (box.hi - box.lo).prod()};
 }
 
 void Simulation::add_to(std::array<ExactSum, kChannels>& sums, const DissipatedEnergy& d) {

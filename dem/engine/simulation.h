@@ -40,6 +40,7 @@
 #include "dem/parallel/records.h"
 #include "dem/scene/insertion.h"
 #include "dem/scene/scene_config.h"
+#include "dem/scene/weight_overlap.h"
 #include "dem/stress/grid_stress.h"
 
 namespace upgrain::dem {
@@ -270,6 +271,9 @@ class Simulation {
   // exceeds the limit, every rank throws the diagnosis, naming the contact of the rank that
   // holds it. Collective (every rank has the same `global_max`).
   void check_overlap(double global_max) const;
+  // The cell's mean stress, coordination and solid fraction for the guard's diagnosis
+  // (collective; pressure 0 where the cell's stress is not followed).
+  [[nodiscard]] AssemblyLoad assembly_load() const;
   [[nodiscard]] int owner_of_local(std::size_t i) const;
   static double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

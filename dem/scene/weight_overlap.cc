@@ -1,6 +1,7 @@
 #include "dem/scene/weight_overlap.h"
 
 #include <numbers>
+#include <vector>
 
 #include "dem/contact/contact_laws.h"
 
@@ -20,6 +21,25 @@ double overlap_ratio_where(const Grows& grows, double target, double r) {
     (grows(mid) < target ? lo : hi) = mid;
   }
   return 0.5 * (lo + hi) / r;
+}
+
+// The radius half the grains' mass is finer than (a gradation's d50 / 2, by linear interpolation
+// on the curve), or the mean radius of a packing.
+double median_radius(const ParticleSpec& p) {
+  if (p.packing && p.packing->size() > 0) {
+    double sum = 0.0;
+    for (const double r : p.packing->radius) sum += r;
+    return sum / static_cast<double>(p.packing->size());
+  }
+  const std::vector<GradationPoint>& g = p.gradation;
+  if (g.empty()) return p.radius;
+  for (std::size_t k = 1; k < g.size(); ++k)
+    if (g[k].fraction_passing >= 0.5) {
+      const double span = g[k].fraction_passing - g[k - 1].fraction_passing;
+      const double t = span > 0.0 ? (0.5 - g[k - 1].fraction_passing) / span : 1.0;
+      return g[k - 1].radius + t * (g[k].radius - g[k - 1].radius);
+    }
+  return g.back().radius;
 }
 
 }  // namespace
@@ -52,6 +72,24 @@ double impact_overlap_ratio(const SceneConfig& s, double speed) {
       return Law::Normal::energy(Law::Normal::response(c, p, delta), delta);
     };
     return overlap_ratio_where(energy, kinetic, r);
+  });
+}
+
+double stress_overlap_ratio(const SceneConfig& s, const AssemblyLoad& load) {
+  if (!(load.pressure > 0.0 && load.coordination > 0.0 && load.solid_fraction > 0.0)) return 0.0;
+  const double r = median_radius(s.particles);
+  const double mass = s.particles.material.density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  const double mean_force =
+      4.0 * std::numbers::pi * r * r * load.pressure / (load.coordination * load.solid_fraction);
+  return with_contact_law(s.contact_law, [&]<class Law>() {
+    const auto c = Law::Normal::constants(s.particles.material, s.law_parameters).pair;
+    const ContactParameters p{.r_star = 0.5 * r,
+                              .m_star = 0.5 * mass,
+                              .friction = s.friction,
+                              .zeta = s.damping_ratio,
+                              .dt = s.time_step};
+    const auto force = [&](double delta) { return Law::Normal::response(c, p, delta).force; };
+    return overlap_ratio_where(force, mean_force, r);
   });
 }
 

@@ -20,6 +20,7 @@
 #include "coupling/femxdem/rve_point.h"
 #include "coupling/femxdem/rve_preparation.h"
 #include "dem/core/periodic_cell.h"
+#include "dem/scene/weight_overlap.h"
 #include "tests/femxdem/small_cell.h"
 
 using namespace upgrain;
@@ -397,4 +398,39 @@ TEST(RveCell, FrictionlessPreparationGivesADenserCell) {
   const double ratio = std::sqrt(1.5) * fem::mandel::deviator(r.stress).norm() / mean_stress(r.stress);
   std::printf("dense cell after 1 %% plane-strain compression: q/p %.3f\n", ratio);
   EXPECT_GT(ratio, 0.4);
+}
+
+// The mean overlap that the stress of a cell gives by the law (dem/scene/weight_overlap.h, the
+// estimate the runaway-overlap guard names) against the prepared cell's own contacts. The estimate
+// takes equal grains and the mean force, so it bounds the measured mean from above but for the
+// spread of radii: by Jensen's inequality the mean of f^(2/3) is at most the 2/3 power of the mean
+// force (0.90 of it for exponentially distributed forces).
+TEST(RveCell, MeanOverlapIsTheOneTheCellsStressGives) {
+  const RveOptions o = small_cell();
+  const auto t = prepared(o);
+  const dem::ParticleStore& p = t->state.particles;
+  const dem::Mat3 h = t->reference_cell;
+  const dem::Mat3 h_inverse = h.inverse();
+  double sum = 0.0;
+  long touching = 0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    for (std::size_t j = i + 1; j < p.size(); ++j) {
+      dem::Vec3 s = h_inverse * (p.x[i] - p.x[j]);
+      for (int d = 0; d < 3; ++d) s[d] -= std::round(s[d]);
+      const double overlap = p.radius[i] + p.radius[j] - (h * s).norm();
+      if (overlap <= 0.0) continue;
+      sum += overlap / (0.5 * (p.radius[i] + p.radius[j]));
+      ++touching;
+    }
+  ASSERT_EQ(touching, t->contacts);
+  const double measured = sum / static_cast<double>(touching);
+  const dem::AssemblyLoad load{
+      .pressure = mean_stress(t->stress),
+      .coordination = 2.0 * static_cast<double>(touching) / static_cast<double>(t->grains),
+      .solid_fraction = t->grain_volume / std::abs(h.determinant())};
+  const double estimate = dem::stress_overlap_ratio(sphere_scene(), load);
+  std::printf("mean overlap %.4g of a radius, estimated %.4g (p %.4g Pa, Z %.3g, phi %.4g)\n", measured,
+              estimate, load.pressure, load.coordination, load.solid_fraction);
+  EXPECT_GT(measured, 0.8 * estimate);
+  EXPECT_LT(measured, 1.05 * estimate);
 }

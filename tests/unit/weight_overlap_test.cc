@@ -93,5 +93,48 @@ TEST(RunawayOverlap, TellsSoftGrainsFromATooLargeTimeStep) {
   EXPECT_TRUE(runaway_overlap(0.2, 0.25, 100, 1e-3, stiff).empty());
 }
 
+TEST(StressOverlap, HertzMatchesTheClosedFormAndDoesNotDependOnTheSize) {
+  const AssemblyLoad load{.pressure = 3e5, .coordination = 6.0, .solid_fraction = 0.65};
+  for (double r : {0.5e-3, 2e-3}) {
+    SceneConfig s = resting_scene(1e8);
+    s.particles.radius = r;
+    const double e_star = effective_youngs_modulus(s.particles.material, s.particles.material);
+    // f = 4 pi r^2 p / (Z phi) = 4/3 E* sqrt(r / 2) delta^(3/2) (Johnson 1985, eq. 4.23).
+    const double expected = std::pow(3.0 * std::sqrt(2.0) * std::numbers::pi * load.pressure /
+                                         (load.coordination * load.solid_fraction * e_star),
+                                     2.0 / 3.0);
+    EXPECT_NEAR(stress_overlap_ratio(s, load), expected, 1e-9 * expected) << "r " << r;
+  }
+}
+
+// The median radius of a gradation (d50 / 2) sets the mean force; Hooke's overlap is f / k_n.
+TEST(StressOverlap, HookeIsTheMeanForceOverTheSpringAtTheMedianRadius) {
+  SceneConfig s = resting_scene(1e8);
+  s.contact_law = "hooke";
+  s.law_parameters = {{"normal stiffness", 1e5}};
+  s.particles.gradation = {{0.8e-3, 0.0}, {1.2e-3, 1.0}};  // median 1.0e-3
+  const AssemblyLoad load{.pressure = 1e5, .coordination = 5.0, .solid_fraction = 0.6};
+  const double r = 1e-3;
+  const double f = 4.0 * std::numbers::pi * r * r * load.pressure / (load.coordination * load.solid_fraction);
+  EXPECT_NEAR(stress_overlap_ratio(s, load), f / 1e5 / r, 1e-9);
+  EXPECT_EQ(stress_overlap_ratio(s, AssemblyLoad{}), 0.0) << "no load known";
+}
+
+// Grains that carry their weight and the scene's impacts but not the stress of the cell they
+// fill: the guard names the stress, with its mean overlap, not the time step.
+TEST(RunawayOverlap, TellsGrainsTooSoftForTheCellsStress) {
+  SceneConfig s = resting_scene(1e8);
+  s.effects.gravity = false;
+  s.time_step = 0.5 * estimate_time_step(s).safe_step;
+  const AssemblyLoad stressed{.pressure = 3.35e5, .coordination = 6.33, .solid_fraction = 0.69};
+  const std::string m = runaway_overlap(0.26, 0.25, 100, 1e-3, s, {}, stressed);
+  EXPECT_NE(m.find("too soft for the stress they carry"), std::string::npos) << m;
+  EXPECT_NE(m.find("mean stress 3.35e+05 Pa"), std::string::npos) << m;
+  EXPECT_EQ(m.find("time step "), std::string::npos) << m;
+  const AssemblyLoad light{.pressure = 1e2, .coordination = 6.0, .solid_fraction = 0.65};
+  EXPECT_NE(runaway_overlap(0.26, 0.25, 100, 1e-3, s, {}, light).find("is too large for the impacts"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace upgrain::dem

@@ -17,6 +17,7 @@
 #include "dem/files/atomic_file.h"
 #include "dem/files/json_number.h"
 #include "dem/scene/effect_choice.h"
+#include "dem/scene/weight_overlap.h"
 
 namespace upgrain::coupling {
 
@@ -143,6 +144,24 @@ int run_femxdem_study(const SceneInput& in, MPI_Comm comm, const StudyHooks&) {
         : o.cell_packings == 0
             ? "; every Gauss point its own packing"
             : ("; one of " + std::to_string(o.cell_packings) + " packings at each Gauss point").c_str());
+
+  // How far the cell's stress presses its grains into each other (dem/scene/weight_overlap.h): it
+  // grows as p^(2/3) through the loading, and a cell whose largest overlap reaches the
+  // runaway-overlap guard's limit refuses its trial.
+  const double overlap = dem::stress_overlap_ratio(
+      prepared->scene,
+      {.pressure = -fem::mandel::trace(prepared->stress) / 3.0,
+       .coordination = 2.0 * static_cast<double>(prepared->contacts) / static_cast<double>(prepared->grains),
+       .solid_fraction = prepared->grain_volume / std::abs(prepared->reference_cell.determinant())});
+  if (rank == 0)
+    std::printf(
+        "  femxdem: the cell's mean contact overlap %.3g of a radius at its pressure by the %s law%s\n",
+        overlap, prepared->scene.contact_law.c_str(),
+        overlap > dem::kStaticOverlapBound
+            ? " (DEM keeps static overlaps below 0.01; it grows as the pressure's 2/3 power, and a cell "
+              "whose largest overlap reaches 0.25 of a radius refuses its trial: stiffer grains, "
+              "Particles/youngs modulus, keep the cells within the law)"
+            : "");
 
   const fem::QuasiStaticProblem problem = biaxial_problem(o);
   // The tables so far, rewritten after each converged step: a run that stops keeps its path.
