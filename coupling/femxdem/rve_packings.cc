@@ -42,6 +42,18 @@ std::shared_ptr<const RveTemplate> RvePackings::for_point(const fem::PointPlace&
   return with_seed(seed_of(place));
 }
 
+std::shared_ptr<const RveTemplate> RvePackings::frame_for_point(const fem::PointPlace& place) {
+  const std::uint64_t seed = seed_of(place);
+  if (const auto prepared = prepared_.find(seed); prepared != prepared_.end()) return prepared->second;
+  auto& made = frames_[seed];
+  if (!made) {
+    RveOptions o = options_;
+    o.seed = seed;
+    made = std::make_shared<const RveTemplate>(rve_frame(scene_, o));
+  }
+  return made;
+}
+
 std::shared_ptr<const RveTemplate> RvePackings::first() { return with_seed(options_.seed); }
 
 }  // namespace upgrain::coupling

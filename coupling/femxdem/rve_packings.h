@@ -6,7 +6,8 @@
 // (Shahin et al. 2016, Int. J. Numer. Meth. Engng, doi:10.1002/nme.5202). A point's packing is a
 // function of its place alone (its cell's id and its index in the cell), so it is the same on
 // every rank count and after the point moves to another rank. The packings are prepared where
-// and when a point first needs one (on MPI_COMM_SELF, deterministic) and then shared.
+// and when a point starting a run first needs one (on MPI_COMM_SELF, deterministic) and then
+// shared; a point that arrives with its bytes (a restart, a move) takes only its packing's frame.
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -26,6 +27,9 @@ class RvePackings {
 
   // The packing of the point at `place`, prepared on first use.
   [[nodiscard]] std::shared_ptr<const RveTemplate> for_point(const fem::PointPlace& place);
+  // The frame of that packing (rve_frame(): its scene, engine and grains, not prepared), for a
+  // cell loaded from its bytes; the packing itself when it was prepared here already.
+  [[nodiscard]] std::shared_ptr<const RveTemplate> frame_for_point(const fem::PointPlace& place);
   // The packing of seed o.seed: the first one (what the study reports).
   [[nodiscard]] std::shared_ptr<const RveTemplate> first();
   // The seed of the point at `place`.
@@ -41,6 +45,7 @@ class RvePackings {
   RveOptions options_;
   int count_;
   std::map<std::uint64_t, std::shared_ptr<const RveTemplate>> prepared_;
+  std::map<std::uint64_t, std::shared_ptr<const RveTemplate>> frames_;
   double seconds_ = 0.0;
 };
 

@@ -1,7 +1,9 @@
 #include "coupling/femxdem/rve_point.h"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -24,6 +26,10 @@ double mean_spin_z(const dem::Simulation& sim) {
   return sim.owned() > 0 ? sum / sim.owned() : 0.0;
 }
 
+// The first word of a cell's bytes: their layout's name and version, so that bytes of another
+// layout (an older checkpoint) are refused by name instead of being misread.
+constexpr std::uint64_t kCellBytesTag = 0x55706772524556'02ull;  // "UpgrREV", layout 2
+
 void put(dem::ByteWriter& w, const dem::Mat3& m) {
   for (int k = 0; k < 9; ++k) w.put(m.data()[k]);
 }
@@ -40,26 +46,43 @@ std::string number(double v) {
 }  // namespace
 
 RveCell::RveCell(std::shared_ptr<const RveTemplate> prepared, const RveOptions& o)
-    : prepared_(std::move(prepared)), options_(o), committed_(prepared_->state) {
+    : source_{[prepared] { return prepared; }, [prepared] { return prepared; }}, options_(o) {
+  start();
+}
+
+RveCell::RveCell(RveSource source, const RveOptions& o) : source_(std::move(source)), options_(o) {}
+
+void RveCell::start() {
+  prepared_ = source_.prepared();
+  committed_ = prepared_->state;
+  committed_h_ = fem::Mat3x3::Zero();
+  committed_record_ = {};
   committed_record_.unbalanced_force = prepared_->unbalanced_force;
   committed_record_.contacts = prepared_->contacts;
   committed_record_.cell = prepared_->reference_cell;
+  trial_.reset();
+}
+
+const RveTemplate& RveCell::packing() const {
+  if (!prepared_) throw std::logic_error("the DEM cell was asked before it was started or loaded");
+  return *prepared_;
 }
 
 RveCell::Trial RveCell::run_trial(const fem::Mat3x3& h) const {
+  const RveTemplate& prepared = packing();
   const CellFactor f = upper_triangular_factor(fem::Mat3x3::Identity() + h);
   check_one_tilt(f.stretch);
-  const dem::Mat3 target = f.stretch * prepared_->reference_cell;
-  const double dt = prepared_->scene.time_step;
+  const dem::Mat3 target = f.stretch * prepared.reference_cell;
+  const double dt = prepared.scene.time_step;
   const long n = increment_steps(h - committed_h_, options_);
   const dem::Mat3 l = increment_velocity_gradient(committed_record_.cell, target, n, dt);
   dem::CellMotion m;
   m.axis = {cell_rate(l(0, 0)), cell_rate(l(1, 1)), cell_rate(l(2, 2))};
   m.shear = {{kTiltShear, kTiltGradient}, l(kTiltShear, kTiltGradient)};
-  dem::SceneConfig scene = prepared_->scene;
+  dem::SceneConfig scene = prepared.scene;
   dem::EngineState s = committed_;
   continue_under(scene, s, m);
-  dem::Simulation sim(scene, s, MPI_COMM_SELF, prepared_->engine);
+  dem::Simulation sim(scene, s, MPI_COMM_SELF, prepared.engine);
   double rotation = committed_record_.grain_rotation;
   const auto turn = [&] { rotation += mean_spin_z(sim) * dt; };
   for (long k = 0; k < n; ++k) {
@@ -97,7 +120,7 @@ fem::PointResponse RveCell::respond(const fem::Mat3x3& h) {
       out.tangent = t.contact_tangent;
       break;
     case RveTangent::elastic:
-      out.tangent = prepared_->elastic_tangent;
+      out.tangent = packing().elastic_tangent;
       break;
     case RveTangent::perturbation: {
       // Forward differences in the strain components the cell can take (xx, yy, zz, xy); the
@@ -133,15 +156,21 @@ void RveCell::commit() {
 
 std::vector<fem::PointMeasure> RveCell::measures() const {
   const RveTrialRecord& r = committed_record_;
-  return {{"solid_fraction", prepared_->grain_volume / std::abs(r.cell.determinant())},
-          {"coordination", 2.0 * static_cast<double>(r.contacts) / static_cast<double>(prepared_->grains)},
+  const RveTemplate& prepared = packing();
+  return {{"solid_fraction", prepared.grain_volume / std::abs(r.cell.determinant())},
+          {"coordination", 2.0 * static_cast<double>(r.contacts) / static_cast<double>(prepared.grains)},
           {"grain_rotation", r.grain_rotation},
           {"held_steps", static_cast<double>(r.relaxation_steps)},
           {"unbalanced_force", r.unbalanced_force}};
 }
 
 std::vector<char> RveCell::save() const {
+  const RveTemplate& prepared = packing();
   dem::ByteWriter w;
+  w.put(kCellBytesTag);
+  put(w, prepared.reference_cell);
+  w.put(prepared.grain_volume);
+  for (int k = 0; k < 36; ++k) w.put(prepared.elastic_tangent.data()[k]);
   w.put(dem::to_bytes(committed_));
   put(w, committed_h_);
   const RveTrialRecord& r = committed_record_;
@@ -156,6 +185,20 @@ std::vector<char> RveCell::save() const {
 
 void RveCell::load(const std::vector<char>& bytes) {
   dem::ByteReader reader(bytes);
+  std::uint64_t tag = 0;
+  reader.get(tag);
+  if (tag != kCellBytesTag)
+    throw Error(
+        "the DEM cell's saved bytes are of another layout (a checkpoint of another version of "
+        "Upgrain); continue that run with the version that wrote it");
+  // The frame (scene, engine, grains) from the source, the rest of the packing from the bytes: a
+  // loaded cell is not prepared again. The frame's own state (its unprepared fill) is not kept.
+  auto t = std::make_shared<RveTemplate>(*source_.frame());
+  t->state = {};
+  get(reader, t->reference_cell);
+  reader.get(t->grain_volume);
+  for (int k = 0; k < 36; ++k) reader.get(t->elastic_tangent.data()[k]);
+  prepared_ = std::move(t);
   std::vector<char> state;
   reader.get(state);
   committed_ = dem::from_bytes(state);

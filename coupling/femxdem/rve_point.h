@@ -8,6 +8,7 @@
 // stress is turned back by Q. Plane strain in x-y (and any stretch along z) only: a tilt of R
 // other than (x, y) is refused (std::invalid_argument). The engine runs on MPI_COMM_SELF.
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -29,11 +30,23 @@ struct RveTrialRecord {
   double grain_rotation = 0.0;
 };
 
+// Where a cell gets its packing (coupling/femxdem/rve_packings.h): prepared (the servo run) when
+// it starts a run, or only its frame (rve_frame(): scene, engine, grains) when it is loaded from
+// its bytes, which carry the rest.
+struct RveSource {
+  std::function<std::shared_ptr<const RveTemplate>()> prepared;
+  std::function<std::shared_ptr<const RveTemplate>()> frame;
+};
+
 class RveCell : public fem::PointState {
  public:
   // A copy of the prepared cell, its committed H zero. The template is shared, read only.
   RveCell(std::shared_ptr<const RveTemplate> prepared, const RveOptions& o);
+  // A cell that takes its packing from `source` when it is started or loaded (nothing before).
+  RveCell(RveSource source, const RveOptions& o);
 
+  // Takes the prepared packing (a cell made from a template already has it).
+  void start() override;
   fem::PointResponse respond(const fem::Mat3x3& h) override;
   void commit() override;
   [[nodiscard]] std::unique_ptr<fem::PointState> clone() const override;
@@ -41,8 +54,10 @@ class RveCell : public fem::PointState {
   // (2 touching pairs per grain), grain_rotation (RveTrialRecord), held_steps and
   // unbalanced_force (of its last trial's relaxation).
   [[nodiscard]] std::vector<fem::PointMeasure> measures() const override;
-  // The committed engine state (dem::to_bytes), H and trial record; load() into a cell made from
-  // the same template and options continues with the same bits.
+  // The committed engine state (dem::to_bytes), H and trial record, and what the cell keeps of its
+  // packing besides its frame (the reference cell, the grains' volume, the elastic tangent);
+  // load() into a cell of the same source or template and options continues with the same bits,
+  // without preparing the packing again.
   [[nodiscard]] std::vector<char> save() const override;
   void load(const std::vector<char>& bytes) override;
   // The committed cell's grains as an HDF5 snapshot for ParaView (dem/io/hdf5_snapshot.h: ids,
@@ -67,6 +82,10 @@ class RveCell : public fem::PointState {
   // A trial from the committed state, without keeping it.
   [[nodiscard]] Trial run_trial(const fem::Mat3x3& h) const;
 
+  // The packing, once started or loaded; throws std::logic_error before.
+  [[nodiscard]] const RveTemplate& packing() const;
+
+  RveSource source_;
   std::shared_ptr<const RveTemplate> prepared_;
   RveOptions options_;
   dem::EngineState committed_;

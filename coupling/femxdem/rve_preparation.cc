@@ -58,44 +58,60 @@ bool at_pressure(const dem::Simulation& sim, const RveOptions& o) {
   return true;
 }
 
+// The template's frame from the still cell: the scene its state is continued under (with the
+// scene's own friction back), the engine's options and the grains.
+RveTemplate frame_of(const dem::Simulation& sim, const dem::SceneConfig& scene_in) {
+  RveTemplate t;
+  t.scene = sim.scene();
+  t.scene.friction = scene_in.friction;
+  t.engine = sim.options();
+  t.grains = sim.particle_count();
+  for (int i = 0; i < sim.owned(); ++i)
+    t.grain_volume += 4.0 / 3.0 * std::numbers::pi * std::pow(sim.particles().radius[i], 3);
+  return t;
+}
+
 }  // namespace
+
+RveTemplate rve_frame(const dem::SceneConfig& scene_in, const RveOptions& o) {
+  if (o.grains < 2) throw Error("the DEM cell: at least 2 grains");
+  const dem::SceneConfig scene = cell_scene(scene_in, o);
+  ElementCell cell(scene, dem::fill_container(scene), MPI_COMM_SELF, {}, {});
+  cell.control(still_cell());
+  return frame_of(cell.sim(), scene_in);
+}
 
 RveTemplate prepare_rve(const dem::SceneConfig& scene_in, const RveOptions& o) {
   if (o.grains < 2) throw Error("the DEM cell: at least 2 grains");
   dem::SceneConfig scene = cell_scene(scene_in, o);
   ElementCell cell(scene, dem::fill_container(scene), MPI_COMM_SELF, {}, {});
-  RveTemplate t;
+  long steps = 0;
   while (!(at_pressure(cell.sim(), o) &&
            dem::unbalanced_force_ratio(cell.sim()) <= o.unbalanced_force_tolerance)) {
-    if (t.steps >= o.preparation_step_cap)
+    if (steps >= o.preparation_step_cap)
       throw Error("the DEM cell's preparation: the servo did not bring every axis within " +
                   std::to_string(o.servo_tolerance) + " of p0 = " + std::to_string(o.mean_stress) +
                   " Pa at an unbalanced-force ratio of " + std::to_string(o.unbalanced_force_tolerance) +
                   " in " + std::to_string(o.preparation_step_cap) + " steps");
     cell.sim().run(kServoCheckEvery);
-    t.steps += kServoCheckEvery;
+    steps += kServoCheckEvery;
   }
   cell.control(still_cell());
-  const HeldCellRelaxation r = relax_held_cell(cell.sim(), o.relaxation, o.unbalanced_force_tolerance,
-                                               o.preparation_step_cap - t.steps);
-  t.steps += r.steps;
+  const HeldCellRelaxation r =
+      relax_held_cell(cell.sim(), o.relaxation, o.unbalanced_force_tolerance, o.preparation_step_cap - steps);
+  steps += r.steps;
   if (!r.converged)
     throw Error("the DEM cell's preparation: the held cell did not relax to an unbalanced-force ratio of " +
                 std::to_string(o.unbalanced_force_tolerance) + " (" + std::to_string(r.unbalanced_force) +
                 ")");
   dem::Simulation& sim = cell.sim();
-  // The template's scene: the still cell the state was captured under.
-  t.scene = sim.scene();
-  t.scene.friction = scene_in.friction;
-  t.engine = sim.options();
+  RveTemplate t = frame_of(sim, scene_in);
+  t.steps = steps;
   t.state = sim.capture_state();
   t.reference_cell = sim.cell_matrix();
   const dem::Mat3 sigma = sim.cell_stress();
   t.stress = fem::mandel::from_matrix(0.5 * (sigma + sigma.transpose()));
   t.elastic_tangent = contact_tangent(sim, dem::Mat3::Identity());
-  t.grains = sim.particle_count();
-  for (int i = 0; i < sim.owned(); ++i)
-    t.grain_volume += 4.0 / 3.0 * std::numbers::pi * std::pow(sim.particles().radius[i], 3);
   t.contacts = sim.diagnostics().particle_contacts;
   t.unbalanced_force = r.unbalanced_force;
   return t;

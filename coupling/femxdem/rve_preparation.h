@@ -29,6 +29,12 @@ struct RveTemplate {
   double unbalanced_force = 0;  // the ratio at the end
 };
 
+// The frame of the cell prepare_rve() makes with these options: its scene, engine options, grains
+// and their volume, from the same fill held still, without the servo and the relaxation (a
+// fill and one engine, milliseconds against the preparation's seconds). A cell loaded from its
+// bytes needs no more (RveCell::load). The state, stress, tangents and counts are left empty.
+[[nodiscard]] RveTemplate rve_frame(const dem::SceneConfig& scene, const RveOptions& o);
+
 // Collective over nothing: the cell runs on MPI_COMM_SELF. Throws upgrain::Error when the servo
 // or the relaxation does not reach its target within RveOptions::preparation_step_cap steps.
 [[nodiscard]] RveTemplate prepare_rve(const dem::SceneConfig& scene, const RveOptions& o);

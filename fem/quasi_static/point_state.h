@@ -44,6 +44,11 @@ struct PointMeasure {
 class PointState {
  public:
   virtual ~PointState() = default;
+  // Called once on a point that starts a run afresh, before anything else is asked of it, and
+  // never on one that is then loaded from its bytes (a restart, a move to another rank): the
+  // place for a costly set-up that a loaded point does without (a DEM cell's preparation). It
+  // may throw; the solver stops every rank with the first rank's words.
+  virtual void start() {}
   // The response to the total displacement gradient `h`, from the last committed state; the
   // state keeps it as its trial.
   virtual PointResponse respond(const Mat3x3& h) = 0;

@@ -415,6 +415,7 @@ void QuasiStaticSolver<dim>::make_points() {
     for (unsigned q = 0; q < quadrature_.size() && made.empty(); ++q) {
       try {
         records[q]->state = make_point(fv, cell, q);
+        records[q]->state->start();
       } catch (const std::exception& e) {
         made = e.what();
       }

@@ -10,6 +10,9 @@ first load step and continues it with `upgrain --study femxdem --restart`, then 
   resume step;
 - the same checkpoint continued on 2 ranks (the cells repartitioned by p4est) gives the same
   points to 1e-6 (not bitwise: the matrix is summed in another order);
+- every point has its own packing (FEMxDEM/cell packings = 0), and a continued run prepares none
+  of them again: its cells come with their packings in the checkpoint (summary.json's
+  packings_prepared counts only the first, which the log reports, on each rank);
 - the two cells the scene asks for (FEMxDEM/cell snapshots = 0:0, 1:3, written here into the
   scene) have a snapshot of every load step, before and after the restart, each of the cell's 60
   grains with their periodic images, the same bytes as the uninterrupted run's, and an XDMF
@@ -31,7 +34,8 @@ mpiexec = sys.argv[4] if len(sys.argv) > 4 else 'mpiexec'
 shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
 with open(scene) as f:
-    text = f.read().replace('subsection FEMxDEM\n', 'subsection FEMxDEM\n  set cell snapshots = 0:0, 1:3\n', 1)
+    text = f.read().replace('subsection FEMxDEM\n',
+                            'subsection FEMxDEM\n  set cell snapshots = 0:0, 1:3\n  set cell packings = 0\n', 1)
 scene = os.path.join(work, 'scene.prm')
 with open(scene, 'w') as f:
     f.write(text)
@@ -87,13 +91,18 @@ _, mismatch, errors = filecmp.cmpfiles(a, b, same, shallow=False)
 assert not mismatch and not errors, (mismatch, errors)
 assert table(os.path.join(a, 'load_displacement.csv'), ('wall_s',)) == \
     table(os.path.join(b, 'load_displacement.csv'), ('wall_s',))
-timing = ('preparation_s', 'solve_s', 'grain_steps_per_core_second', 'resumed_after_step')
+timing = ('preparation_s', 'solve_s', 'grain_steps_per_core_second', 'resumed_after_step', 'packings_prepared')
 s1, s2 = (json.load(open(os.path.join(f, 'summary.json'))) for f in (whole, broken))
 assert s1['resumed_after_step'] is None and s2['resumed_after_step'] == 1, (s1, s2)
+# Every point its own packing: the run prepared each point's and the first (the log's); the
+# continued run only the first, its cells loaded from the checkpoint with their packings.
+assert s1['packings_prepared'] == 9 and s2['packings_prepared'] == 1, (s1, s2)
 assert {k: v for k, v in s1.items() if k not in timing} == {k: v for k, v in s2.items() if k not in timing}
 
 log = run([mpiexec, '-n', '2', upgrain, '--study', 'femxdem', '--restart', other])
 assert 'femxdem: resumed after load step 1 of 4' in log, log
+s3 = json.load(open(os.path.join(other, 'summary.json')))
+assert s3['packings_prepared'] == 2, s3  # the first, on each rank
 p1, p2 = table(os.path.join(a, 'points.csv')), table(os.path.join(other, 'femxdem', 'points.csv'))
 assert len(p1) == len(p2) == 8, (len(p1), len(p2))
 for x, y in zip(p1, p2):

@@ -5,9 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "coupling/femxdem/rve_point.h"
+#include "dem/core/error.h"
 #include "tests/femxdem/small_cell.h"
 
 namespace upgrain::coupling {
@@ -75,6 +78,61 @@ TEST(RvePackings, EveryPointItsOwnSeed) {
   for (const fem::PointPlace& p : mesh_places()) seeds.insert(packings.seed_of(p));
   EXPECT_EQ(seeds.size(), 32u);
   EXPECT_EQ(packings.prepared(), 0u);  // nothing prepared until a point asks
+}
+
+// A cell that arrives with its bytes (a restart, a move to another rank) is not prepared again: its
+// packing's frame comes from the fill alone and the rest from the bytes, and it answers the next
+// trial with the same bits as the cell it was saved from, its measures the same; the frame has the
+// prepared packing's grains, cell size and seed.
+TEST(RvePackings, ALoadedCellIsNotPreparedAgain) {
+  const RveOptions o = small_cell();
+  const fem::PointPlace place{"5_0:", 2, {}};
+  const auto source = [&](RvePackings& packings) {
+    return RveSource{[&packings, place] { return packings.for_point(place); },
+                     [&packings, place] { return packings.frame_for_point(place); }};
+  };
+  fem::Mat3x3 h1 = fem::Mat3x3::Zero(), h2 = fem::Mat3x3::Zero();
+  h1(0, 0) = -2e-4;
+  h1(0, 1) = 1e-4;
+  h2 = 2.0 * h1;
+  h2(1, 1) = 1e-4;
+
+  RvePackings here(sphere_scene(), o, 0);
+  RveCell saved(source(here), o);
+  EXPECT_THROW((void)saved.measures(), std::logic_error) << "neither started nor loaded";
+  saved.start();
+  (void)saved.respond(h1);
+  saved.commit();
+  const std::vector<char> bytes = saved.save();
+  const fem::PointResponse expected = saved.respond(h2);
+
+  RvePackings there(sphere_scene(), o, 0);
+  RveCell loaded(source(there), o);
+  loaded.load(bytes);
+  const fem::PointResponse got = loaded.respond(h2);
+  EXPECT_EQ(there.prepared(), 0u);
+  EXPECT_TRUE(got.stress == expected.stress);
+  EXPECT_TRUE(got.tangent == expected.tangent);
+  EXPECT_EQ(got.cost, expected.cost);
+  loaded.commit();
+  saved.commit();
+  const auto a = saved.measures(), b = loaded.measures();
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) EXPECT_EQ(a[k].value, b[k].value) << a[k].name;
+  EXPECT_EQ(saved.save(), loaded.save());
+
+  std::vector<char> older = bytes;
+  older[0] ^= 1;  // another layout's first word
+  RveCell refused(source(there), o);
+  EXPECT_THROW(refused.load(older), Error);
+
+  const auto frame = there.frame_for_point(place);
+  const auto prepared = here.for_point(place);
+  EXPECT_EQ(frame->grains, prepared->grains);
+  EXPECT_EQ(frame->engine.summation, prepared->engine.summation);
+  EXPECT_EQ(frame->engine.box.has_value(), prepared->engine.box.has_value());
+  EXPECT_EQ(frame->scene.container.lx, prepared->scene.container.lx);
+  EXPECT_EQ(frame->scene.fill.seed, prepared->scene.fill.seed);
 }
 
 }  // namespace

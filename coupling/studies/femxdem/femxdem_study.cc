@@ -210,16 +210,24 @@ int run_femxdem_study(const SceneInput& in, MPI_Comm comm, const StudyHooks&) {
   const auto t1 = std::chrono::steady_clock::now();
   const fem::QuasiStaticResult r = fem::solve_quasi_static(
       problem,
-      [&](const fem::PointPlace& place) { return std::make_unique<RveCell>(packings.for_point(place), rve); },
+      [&](const fem::PointPlace& place) {
+        return std::make_unique<RveCell>(
+            RveSource{[&packings, place] { return packings.for_point(place); },
+                      [&packings, place] { return packings.frame_for_point(place); }},
+            rve);
+      },
       comm, output, saving);
   const double solve_seconds = seconds_since(t1);
   // Every packing's preparation, on the rank that spent the most; those that a point first needed
-  // inside the solve (on the rank it moved to, too) are also part of solve_s.
+  // inside the solve are also part of solve_s. A point that moved to another rank, or was resumed,
+  // brought its packing in its bytes and prepared nothing.
   const double preparation_seconds = [&] {
     double s = packings.preparation_seconds(), most = 0.0;
     MPI_Allreduce(&s, &most, 1, MPI_DOUBLE, MPI_MAX, comm);
     return most;
   }();
+  long packings_prepared = static_cast<long>(packings.prepared());
+  MPI_Allreduce(MPI_IN_PLACE, &packings_prepared, 1, MPI_LONG, MPI_SUM, comm);
 
   on_rank0(comm, [&] {
     dem::io::write_text_atomically(
@@ -244,6 +252,7 @@ int run_femxdem_study(const SceneInput& in, MPI_Comm comm, const StudyHooks&) {
       << ",\n  \"gauss_points\": " << r.points.size() << ",\n  \"dofs\": " << r.n_dofs
       << ",\n  \"grains_per_cell\": " << prepared->grains << ",\n  \"cell_contacts\": " << prepared->contacts
       << ",\n  \"cell_packings\": " << o.cell_packings << ",\n  \"preparation_steps\": " << prepared->steps
+      << ",\n  \"packings_prepared\": " << packings_prepared
       << ",\n  \"preparation_s\": " << json_number(preparation_seconds)
       << ",\n  \"solve_s\": " << json_number(solve_seconds) << ",\n  \"resumed_after_step\": "
       << (checkpoints.resumed_after() < 0 ? std::string("null") : std::to_string(checkpoints.resumed_after()))
