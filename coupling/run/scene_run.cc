@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "coupling/run/checkpoint_clock.h"
 #include "coupling/run/grid_evaluation.h"
 #include "coupling/run/progress_clock.h"
 #include "coupling/run/run_files.h"
@@ -21,45 +22,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 namespace fs = std::filesystem;
-
-double seconds_between(Clock::time_point a, Clock::time_point b) {
-  return std::chrono::duration<double>(b - a).count();
-}
-
-// When to write a checkpoint: every `interval` of simulated time (the same steps in every run
-// of the scene), every `wall_interval` of wall-clock time, and when the run is asked to stop.
-// The wall clock and the stop request are each rank's own: the ranks agree on them at the
-// time-series rows, in one reduction.
-class CheckpointClock {
- public:
-  CheckpointClock(const CheckpointOptions& o, double dt, bool output)
-      : options_(o), output_(output), last_(Clock::now()) {
-    if (output && o.interval > 0.0) every_ = std::max(1L, static_cast<long>(std::llround(o.interval / dt)));
-  }
-  struct Decision {
-    bool write = false;
-    int stop = 0;  // the signal that asked the run to stop
-  };
-  Decision at(long s, bool sync, MPI_Comm comm) {
-    Decision d;
-    d.write = every_ > 0 && s % every_ == 0;
-    if (!sync) return d;
-    int local[2] = {stop_signal(), output_ && options_.wall_interval > 0.0 &&
-                                       seconds_between(last_, Clock::now()) >= options_.wall_interval};
-    int global[2] = {0, 0};
-    MPI_Allreduce(local, global, 2, MPI_INT, MPI_MAX, comm);
-    d.stop = global[0];
-    d.write = d.write || (output_ && (global[0] != 0 || global[1] != 0));
-    return d;
-  }
-  void written() { last_ = Clock::now(); }
-
- private:
-  const CheckpointOptions& options_;
-  bool output_;
-  long every_ = 0;
-  Clock::time_point last_;
-};
 
 // Walls taken out at their time (the collapse scenes, dem/boundary/wall_release.h). The bed is
 // not "at rest" while a release is pending, nor in the first tenth of the time left after the

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "coupling/run/checkpoint.h"
+#include "coupling/run/checkpoint_clock.h"
 #include "coupling/run/stop_request.h"
 #include "dem/core/error.h"
 #include "dem/files/atomic_file.h"
@@ -32,7 +33,7 @@ std::vector<char> file_bytes(const fs::path& file) {
 }  // namespace
 
 FemxdemCheckpoints::FemxdemCheckpoints(const SceneInput& in, MPI_Comm comm)
-    : in_(in), comm_(comm), last_(std::chrono::steady_clock::now()) {
+    : in_(in), comm_(comm), clock_(in.output.checkpoint, /*dt=*/0.0, /*output=*/true) {
   MPI_Comm_rank(comm, &rank_);
   work_ = fs::path(in.output.folder) / "checkpoints" / "femxdem_state";
   if (!in.restarting) return;
@@ -83,14 +84,10 @@ fem::QuasiStaticCheckpoints FemxdemCheckpoints::for_solver(
   };
   // The wall clock and the stop request are each rank's own: the ranks agree on them here, in one
   // reduction after each converged step.
-  c.stem = [this](const fem::LoadStepRecord&) -> std::string {
-    const CheckpointOptions& o = in_.output.checkpoint;
-    const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_).count();
-    int local[2] = {stop_signal(), o.wall_interval > 0.0 && since >= o.wall_interval ? 1 : 0};
-    int global[2] = {0, 0};
-    MPI_Allreduce(local, global, 2, MPI_INT, MPI_MAX, comm_);
-    stop_ = global[0];
-    if (global[0] == 0 && global[1] == 0) return {};
+  c.stem = [this](const fem::LoadStepRecord& record) -> std::string {
+    const CheckpointClock::Decision d = clock_.at(static_cast<long>(record.step), true, comm_);
+    stop_ = d.stop;
+    if (!d.write) return {};
     dem::run_on_root(comm_, [&] {
       fs::remove_all(work_);
       fs::create_directories(work_);
@@ -120,7 +117,7 @@ fem::QuasiStaticCheckpoints FemxdemCheckpoints::for_solver(
                   std::chrono::duration<double>(std::chrono::steady_clock::now() - saving_since_).count());
       std::fflush(stdout);
     });
-    last_ = std::chrono::steady_clock::now();
+    clock_.written();
     if (stop_ != 0)
       throw RunStopped(stop_, static_cast<long>(record.step),
                        written.empty() ? fs::path(in_.output.folder) / "checkpoints" : written);

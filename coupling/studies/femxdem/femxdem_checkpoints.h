@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "coupling/input/scene_input.h"
+#include "coupling/run/checkpoint_clock.h"
 #include "fem/quasi_static/quasi_static_problem.h"
 
 namespace upgrain::coupling {
@@ -49,7 +50,7 @@ class FemxdemCheckpoints {
   std::string resume_stem_;      // empty for a fresh run
   std::string restored_tables_;  // rank 0's, from the checkpoint resumed
   long resumed_after_ = -1;
-  std::chrono::steady_clock::time_point last_;          // the last checkpoint's end (or the start)
+  CheckpointClock clock_;  // the wall interval, from the last checkpoint's end (or the start)
   std::chrono::steady_clock::time_point saving_since_;  // the one being written: its start
   int stop_ = 0;  // the signal that asked the run to stop, once the ranks agree on it
 };
