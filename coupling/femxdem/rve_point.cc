@@ -10,6 +10,7 @@
 #include "coupling/femxdem/cell_increment.h"
 #include "coupling/femxdem/held_cell.h"
 #include "coupling/femxdem/rve_tangent.h"
+#include "coupling/run/stop_request.h"
 #include "coupling/studies/element/element_cell.h"
 #include "dem/core/error.h"
 #include "dem/io/hdf5_snapshot.h"
@@ -36,6 +37,9 @@ void put(dem::ByteWriter& w, const dem::Mat3& m) {
 void get(dem::ByteReader& r, dem::Mat3& m) {
   for (int k = 0; k < 9; ++k) r.get(m.data()[k]);
 }
+
+// How often a trial looks at the stop request (a flag read: nothing against a step's cost).
+constexpr long kStopCheckEvery = 64;
 
 std::string number(double v) {
   char b[32];
@@ -84,13 +88,30 @@ RveCell::Trial RveCell::run_trial(const fem::Mat3x3& h) const {
   continue_under(scene, s, m);
   dem::Simulation sim(scene, s, MPI_COMM_SELF, prepared.engine);
   double rotation = committed_record_.grain_rotation;
-  const auto turn = [&] { rotation += mean_spin_z(sim) * dt; };
-  for (long k = 0; k < n; ++k) {
-    sim.step();
-    turn();
+  // A run asked to stop (coupling/run/stop_request.h) drops the trial within kStopCheckEvery steps:
+  // the solver abandons the load step and saves the last converged one (docs/femxdem.md,
+  // "Checkpoints and restart").
+  struct Interrupted {};
+  long stepped = 0;
+  const auto turn = [&] {
+    rotation += mean_spin_z(sim) * dt;
+    if (++stepped % kStopCheckEvery == 0 && stop_signal() != 0) throw Interrupted{};
+  };
+  HeldCellRelaxation r;
+  try {
+    for (long k = 0; k < n; ++k) {
+      sim.step();
+      turn();
+    }
+    r = relax_held_cell(sim, options_.relaxation, options_.unbalanced_force_tolerance,
+                        options_.relaxation_step_cap, turn);
+  } catch (const Interrupted&) {
+    Trial t;
+    t.converged = false;
+    t.interrupted = true;
+    t.grain_steps = sim.particle_count() * stepped;
+    return t;
   }
-  const HeldCellRelaxation r = relax_held_cell(sim, options_.relaxation, options_.unbalanced_force_tolerance,
-                                               options_.relaxation_step_cap, turn);
   Trial t;
   t.h = h;
   t.record = {n,       r.steps, r.unbalanced_force, sim.diagnostics().particle_contacts, sim.cell_matrix(),
@@ -111,6 +132,11 @@ fem::PointResponse RveCell::respond(const fem::Mat3x3& h) {
   out.stress = t.stress;
   out.cost = static_cast<double>(t.grain_steps);
   std::string failure;
+  if (t.interrupted) {
+    out.converged = false;
+    out.failure = "the trial was dropped: the run was asked to stop";
+    return out;
+  }
   if (!t.converged)
     failure = "the DEM cell did not relax: unbalanced-force ratio " + number(t.record.unbalanced_force) +
               " above the tolerance " + number(options_.unbalanced_force_tolerance) + " after the cap of " +
@@ -130,6 +156,11 @@ fem::PointResponse RveCell::respond(const fem::Mat3x3& h) {
       const double e = options_.perturbation;
       for (int k = 0; k < 4; ++k) {
         const Trial p = run_trial(h + e * fem::mandel::to_matrix(fem::Vec6::Unit(k)));
+        if (p.interrupted) {
+          out.converged = false;
+          out.failure = "the trial was dropped: the run was asked to stop";
+          return out;
+        }
         out.tangent.col(k) = (p.stress - t.stress) / e;
         out.cost += static_cast<double>(p.grain_steps);
         if (!p.converged && failure.empty())

@@ -77,6 +77,7 @@ class RveCell : public fem::PointState {
     fem::Mat6 contact_tangent = fem::Mat6::Zero();
     RveTrialRecord record;
     bool converged = true;
+    bool interrupted = false;  // dropped because the run was asked to stop
     long grain_steps = 0;
   };
   // A trial from the committed state, without keeping it.

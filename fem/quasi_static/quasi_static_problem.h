@@ -152,6 +152,14 @@ struct QuasiStaticCheckpoints {
   // Called on every rank once the state is restored, with the steps it had converged (the step
   // records of QuasiStaticResult::steps so far), before the first new step.
   std::function<void(const std::vector<LoadStepRecord>&)> resumed;
+  // Asked on every rank after the points have answered an assembly (local and cheap: a signal's
+  // flag). When any rank says yes, the step in progress is abandoned and the state of the last
+  // converged step is saved at once (`stem` and `saved` as after a step; `saved` is expected to
+  // stop the solve by throwing), so that a stop is served within one round of the points'
+  // answers, not at the end of a load step that may take minutes: a launcher or a batch system
+  // kills what has not stopped within seconds (Open MPI's mpirun within 1 s, Slurm's KillWait 30 s
+  // by default). Points may cut their answers short meanwhile; those answers are dropped.
+  std::function<bool()> stop_requested;
 };
 
 // Throws std::invalid_argument naming the first bad parameter.

@@ -196,6 +196,9 @@ struct StepFailure {
   std::string what;
 };
 
+// The ranks agreed on a stop request inside a step (QuasiStaticCheckpoints::stop_requested).
+struct StopAgreed {};
+
 template <int dim>
 class QuasiStaticSolver {
  public:
@@ -800,6 +803,9 @@ double QuasiStaticSolver<dim>::assemble(const AffineConstraints<double>& constra
   for (DistributedVector* v : {&residual_, &internal_full_, &external_full_})
     v->compress(VectorOperation::add);
 
+  // A stop request abandons the step before its answers, which may have been cut short, are used.
+  if (checkpoints_.stop_requested && Utilities::MPI::max(checkpoints_.stop_requested() ? 1 : 0, comm_) > 0)
+    throw StopAgreed{};
   failure.what = first_failure(local_failure);
   if (!failure.what.empty()) {
     failure.failed = true;
@@ -1124,10 +1130,32 @@ QuasiStaticResult QuasiStaticSolver<dim>::run() {
       }
   };
 
+  // Asked to stop inside a step: the last converged step's state is saved now, as after that step
+  // (the state committed since, part of an increment that was cut, goes with it and is continued
+  // from; the step is done again whole).
+  const auto stop_inside_step = [&](unsigned step) {
+    if (result.steps.empty())
+      throw std::runtime_error(
+          "quasi-static solver: asked to stop during the equilibrium step 0: nothing to "
+          "continue from");
+    if (checkpoints_.stem)
+      if (const std::string stem = checkpoints_.stem(result.steps.back()); !stem.empty()) {
+        save(stem, result.steps, achievable);
+        if (checkpoints_.saved) checkpoints_.saved(result.steps.back(), stem);
+      }
+    throw std::runtime_error("quasi-static solver: asked to stop during load step " + std::to_string(step) +
+                             "; no state was saved to continue from");
+  };
+
   // Step 0: the body force and the pressures on the points' initial stresses.
   if (result.steps.empty()) {
     LoadStepRecord record;
-    const StepFailure failure = newton(0.0, record);
+    StepFailure failure;
+    try {
+      failure = newton(0.0, record);
+    } catch (const StopAgreed&) {
+      stop_inside_step(0);
+    }
     if (failure.failed) throw std::runtime_error("femxdem: the equilibrium step 0 failed: " + failure.what);
     commit(0.0);
     record_step(record, 0.0);
@@ -1142,7 +1170,12 @@ QuasiStaticResult QuasiStaticSolver<dim>::run() {
     while (reached != target) {
       const bool last = std::abs(increment) >= std::abs(target - reached);
       const double lambda = last ? target : reached + increment;
-      const StepFailure failure = newton(lambda, record);
+      StepFailure failure;
+      try {
+        failure = newton(lambda, record);
+      } catch (const StopAgreed&) {
+        stop_inside_step(step);
+      }
       iterations += record.newton_iterations;
       if (!failure.failed) {
         commit(lambda);

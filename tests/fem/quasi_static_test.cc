@@ -555,22 +555,39 @@ TEST(QuasiStatic, RanksAreBalancedByThePointsCost) {
   }
 }
 
-// A checkpoint's whole state: a solve stopped after the step it saved and resumed from it
-// continues with the same bits as the solve that never stopped, on the partition the costs had
-// given it (2 ranks: repartitioned after step 0), with every point's history; a state of another
-// problem is refused by name.
-TEST(QuasiStatic, ARestartContinuesWithTheSameBits) {
-  const std::filesystem::path folder = std::filesystem::temp_directory_path() /
-                                       ("upgrain_quasi_static_restart_" + std::to_string(test::world_size()));
+// An empty folder of the run's own in the temporary directory (every rank sees it made), the
+// problem of the restart tests (4 x 4 cells, 4 load steps) and its points (CostlyPoint: a history
+// and a cost that repartitions 2 ranks after step 0).
+std::filesystem::path empty_folder(const std::string& name) {
+  const std::filesystem::path folder =
+      std::filesystem::temp_directory_path() / (name + "_" + std::to_string(test::world_size()));
   if (test::world_rank() == 0) {
     std::filesystem::remove_all(folder);
     std::filesystem::create_directories(folder);
   }
   MPI_Barrier(MPI_COMM_WORLD);
+  return folder;
+}
+
+QuasiStaticProblem restart_problem() {
   QuasiStaticProblem p = uniaxial();
   p.cells = {4, 4, 1};
   p.load_steps = 4;
-  const auto make = [](const PointPlace& place) { return std::make_unique<CostlyPoint>(place.position[1]); };
+  return p;
+}
+
+std::unique_ptr<PointState> costly_point(const PointPlace& place) {
+  return std::make_unique<CostlyPoint>(place.position[1]);
+}
+
+// A checkpoint's whole state: a solve stopped after the step it saved and resumed from it
+// continues with the same bits as the solve that never stopped, on the partition the costs had
+// given it (2 ranks: repartitioned after step 0), with every point's history; a state of another
+// problem is refused by name.
+TEST(QuasiStatic, ARestartContinuesWithTheSameBits) {
+  const std::filesystem::path folder = empty_folder("upgrain_quasi_static_restart");
+  QuasiStaticProblem p = restart_problem();
+  const PointFactory make = costly_point;
   const QuasiStaticResult whole = solve_quasi_static(p, make, MPI_COMM_WORLD);
 
   struct Stopped {};
@@ -614,6 +631,59 @@ TEST(QuasiStatic, ARestartContinuesWithTheSameBits) {
     ADD_FAILURE() << "no exception";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("state.solver is the state of another problem"), std::string::npos)
+        << e.what();
+  }
+}
+
+// A stop asked for inside a load step: the solver abandons the step at the next assembly, saves
+// the last converged step's state at once, and a solve resumed from it continues with the same
+// bits as the one that never stopped.
+TEST(QuasiStatic, AStopInsideAStepSavesTheLastConvergedStep) {
+  const std::filesystem::path folder = empty_folder("upgrain_quasi_static_stop");
+  const QuasiStaticProblem p = restart_problem();
+  const PointFactory make = costly_point;
+  const QuasiStaticResult whole = solve_quasi_static(p, make, MPI_COMM_WORLD);
+
+  struct Stopped {};
+  const std::string stem = (folder / "state").string();
+  bool armed = false, stopping = false;
+  unsigned saved_after = 0;
+  QuasiStaticCheckpoints c;
+  c.stem = [&](const LoadStepRecord& s) {
+    if (stopping) return stem;
+    armed = armed || s.step == 2;  // the request comes during step 3
+    return std::string();
+  };
+  c.stop_requested = [&] { return stopping = stopping || armed; };
+  c.saved = [&](const LoadStepRecord& s, const std::string&) {
+    saved_after = s.step;
+    throw Stopped{};
+  };
+  EXPECT_THROW(solve_quasi_static(p, make, MPI_COMM_WORLD, {}, c), Stopped);
+  EXPECT_EQ(saved_after, 2u);
+
+  QuasiStaticCheckpoints resume;
+  resume.resume = stem;
+  const QuasiStaticResult resumed = solve_quasi_static(p, make, MPI_COMM_WORLD, {}, resume);
+  ASSERT_EQ(resumed.steps.size(), whole.steps.size());
+  for (std::size_t k = 0; k < whole.steps.size(); ++k) {
+    EXPECT_EQ(resumed.steps[k].platen_force, whole.steps[k].platen_force) << k;
+    EXPECT_EQ(resumed.steps[k].residuals, whole.steps[k].residuals) << k;
+  }
+  ASSERT_EQ(resumed.points.size(), whole.points.size());
+  for (std::size_t i = 0; i < whole.points.size(); ++i) {
+    EXPECT_EQ(resumed.points[i].measures, whole.points[i].measures) << i;
+    EXPECT_TRUE((resumed.points[i].stress.array() == whole.points[i].stress.array()).all()) << i;
+  }
+
+  // Without a stem to save under, the stop is an error that says nothing was saved.
+  QuasiStaticCheckpoints unsaved;
+  unsaved.stop_requested = [] { return true; };
+  try {
+    solve_quasi_static(p, make, MPI_COMM_WORLD, {}, unsaved);
+    ADD_FAILURE() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("asked to stop during the equilibrium step 0"), std::string::npos)
         << e.what();
   }
 }

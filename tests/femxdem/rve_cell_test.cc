@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
@@ -19,6 +20,7 @@
 #include "coupling/femxdem/cell_increment.h"
 #include "coupling/femxdem/rve_point.h"
 #include "coupling/femxdem/rve_preparation.h"
+#include "coupling/run/stop_request.h"
 #include "dem/core/periodic_cell.h"
 #include "dem/scene/weight_overlap.h"
 #include "tests/femxdem/small_cell.h"
@@ -433,4 +435,24 @@ TEST(RveCell, MeanOverlapIsTheOneTheCellsStressGives) {
               estimate, load.pressure, load.coordination, load.solid_fraction);
   EXPECT_GT(measured, 0.8 * estimate);
   EXPECT_LT(measured, 1.05 * estimate);
+}
+
+// A run asked to stop: a trial is dropped within a few dozen of the cell's steps (the solver then
+// abandons the load step and saves the last converged one), and the cell answers as before once
+// the request is gone.
+TEST(RveCell, ATrialIsDroppedWhenTheRunIsAskedToStop) {
+  RveOptions o = small_cell();
+  o.tangent = RveTangent::perturbation;
+  RveCell cell(prepared(o), o);
+  Mat3x3 h = Mat3x3::Zero();
+  h(1, 1) = -2e-3;
+  coupling::request_stop(SIGTERM);
+  const fem::PointResponse dropped = cell.respond(h);
+  coupling::request_stop(0);
+  EXPECT_FALSE(dropped.converged);
+  EXPECT_NE(dropped.failure.find("asked to stop"), std::string::npos) << dropped.failure;
+  EXPECT_LE(dropped.cost, 64.0 * o.grains) << "dropped within 64 steps";
+  const fem::PointResponse answered = cell.respond(h);
+  EXPECT_TRUE(answered.converged) << answered.failure;
+  EXPECT_GT(answered.cost, 64.0 * o.grains);
 }

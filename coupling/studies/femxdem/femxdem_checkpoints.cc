@@ -95,6 +95,9 @@ fem::QuasiStaticCheckpoints FemxdemCheckpoints::for_solver(
     saving_since_ = std::chrono::steady_clock::now();
     return (work_ / kStem).string();
   };
+  // A signal is served inside a load step (minutes long): the step is abandoned at the cells' next
+  // answers, which a cell cuts short itself (RveCell), and the last converged step is saved.
+  c.stop_requested = [] { return stop_signal() != 0; };
   c.saved = [this, tables](const fem::LoadStepRecord& record, const std::string&) {
     fs::path written;
     dem::run_on_root(comm_, [&] {
