@@ -38,8 +38,10 @@ void get(dem::ByteReader& r, dem::Mat3& m) {
   for (int k = 0; k < 9; ++k) r.get(m.data()[k]);
 }
 
-// How often a trial looks at the stop request (a flag read: nothing against a step's cost).
+// How often a trial looks at the stop request (a flag read: nothing against a step's cost), and
+// what a dropped trial answers.
 constexpr long kStopCheckEvery = 64;
+constexpr const char* kDropped = "the trial was dropped: the run was asked to stop";
 
 std::string number(double v) {
   char b[32];
@@ -134,7 +136,7 @@ fem::PointResponse RveCell::respond(const fem::Mat3x3& h) {
   std::string failure;
   if (t.interrupted) {
     out.converged = false;
-    out.failure = "the trial was dropped: the run was asked to stop";
+    out.failure = kDropped;
     return out;
   }
   if (!t.converged)
@@ -158,7 +160,7 @@ fem::PointResponse RveCell::respond(const fem::Mat3x3& h) {
         const Trial p = run_trial(h + e * fem::mandel::to_matrix(fem::Vec6::Unit(k)));
         if (p.interrupted) {
           out.converged = false;
-          out.failure = "the trial was dropped: the run was asked to stop";
+          out.failure = kDropped;
           return out;
         }
         out.tangent.col(k) = (p.stress - t.stress) / e;
