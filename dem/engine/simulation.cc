@@ -520,11 +520,12 @@ void Simulation::check_overlap(double global_max) const {
 }
 
 AssemblyLoad Simulation::assembly_load() const {
-  // Known where the engine follows the cell's Love-Weber stress: a deforming periodic cell.
+  // Known where the engine follows the cell's Love-Weber stress: a deforming periodic cell (the
+  // same on every rank).
+  if (!(deforming_ && cell_stress_known_)) return {};
   double sums[2] = {static_cast<double>(out_.pair_contacts), 0.0};
   for (int i = 0; i < n_owned_; ++i) sums[1] += p_.volume(static_cast<std::size_t>(i));
   MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, comm());
-  if (!(deforming_ && cell_stress_known_)) return {};
   const Box& box = decomposition().cell().box;
   return {.pressure = -cell_stress_.trace() / 3.0,
           .coordination = 2.0 * sums[0] / static_cast<double>(std::max(particle_count(), 1L)),

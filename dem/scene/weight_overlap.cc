@@ -42,26 +42,41 @@ double median_radius(const ParticleSpec& p) {
   return g.back().radius;
 }
 
+double grain_mass(const SceneConfig& s, double r) {
+  return s.particles.material.density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+}
+
+// What a grain of radius r presses against: the floor (R* = R, m* = m: the wall does not move),
+// or an equal grain (R* = R / 2, m* = m / 2).
+enum class Partner { wall, grain };
+
+// The overlap at which the law's normal force against `partner` reaches `force`, as a fraction of r.
+double overlap_ratio_at_force(const SceneConfig& s, Partner partner, double r, double force) {
+  const double share = partner == Partner::wall ? 1.0 : 0.5;
+  const ContactParameters p{.r_star = share * r,
+                            .m_star = share * grain_mass(s, r),
+                            .friction = s.friction,
+                            .zeta = s.damping_ratio,
+                            .dt = s.time_step};
+  return with_contact_law(s.contact_law, [&]<class Law>() {
+    const auto both = Law::Normal::constants(s.particles.material, s.law_parameters);
+    const auto& c = partner == Partner::wall ? both.wall : both.pair;
+    const auto grows = [&](double delta) { return Law::Normal::response(c, p, delta).force; };
+    return overlap_ratio_where(grows, force, r);
+  });
+}
+
 }  // namespace
 
 double weight_overlap_ratio(const SceneConfig& s) {
   if (!s.effects.gravity || s.gravity <= 0.0) return 0.0;
   const double r = s.particles.largest_radius();
-  const double mass = s.particles.material.density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
-  const double weight = mass * s.gravity;
-  return with_contact_law(s.contact_law, [&]<class Law>() {
-    const auto c = Law::Normal::constants(s.particles.material, s.law_parameters).wall;
-    // A grain on the floor: R* = R, m* = m (the wall does not move).
-    const ContactParameters p{
-        .r_star = r, .m_star = mass, .friction = s.friction, .zeta = s.damping_ratio, .dt = s.time_step};
-    const auto force = [&](double delta) { return Law::Normal::response(c, p, delta).force; };
-    return overlap_ratio_where(force, weight, r);
-  });
+  return overlap_ratio_at_force(s, Partner::wall, r, grain_mass(s, r) * s.gravity);
 }
 
 double impact_overlap_ratio(const SceneConfig& s, double speed) {
   const double r = s.particles.gradation.empty() ? s.particles.radius : s.particles.gradation.back().radius;
-  const double mass = s.particles.material.density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  const double mass = grain_mass(s, r);
   const double kinetic = 0.5 * mass * speed * speed;
   if (!(kinetic > 0.0)) return 0.0;
   return with_contact_law(s.contact_law, [&]<class Law>() {
@@ -78,19 +93,9 @@ double impact_overlap_ratio(const SceneConfig& s, double speed) {
 double stress_overlap_ratio(const SceneConfig& s, const AssemblyLoad& load) {
   if (!(load.pressure > 0.0 && load.coordination > 0.0 && load.solid_fraction > 0.0)) return 0.0;
   const double r = median_radius(s.particles);
-  const double mass = s.particles.material.density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
   const double mean_force =
       4.0 * std::numbers::pi * r * r * load.pressure / (load.coordination * load.solid_fraction);
-  return with_contact_law(s.contact_law, [&]<class Law>() {
-    const auto c = Law::Normal::constants(s.particles.material, s.law_parameters).pair;
-    const ContactParameters p{.r_star = 0.5 * r,
-                              .m_star = 0.5 * mass,
-                              .friction = s.friction,
-                              .zeta = s.damping_ratio,
-                              .dt = s.time_step};
-    const auto force = [&](double delta) { return Law::Normal::response(c, p, delta).force; };
-    return overlap_ratio_where(force, mean_force, r);
-  });
+  return overlap_ratio_at_force(s, Partner::grain, r, mean_force);
 }
 
 }  // namespace upgrain::dem

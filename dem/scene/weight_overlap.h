@@ -36,8 +36,8 @@ struct AssemblyLoad {
 // V = N 4/3 pi r^3 / phi, pressed by the law between two such grains (R* = r/2, m* = m/2). For
 // Hertz it is (3 sqrt(2) pi p / (Z phi E*))^(2/3) whatever r: the overlaps of a stressed
 // assembly fall as E^(-2/3) (Agnolin and Roux 2007, Phys. Rev. E 76, 061302, call
-// kappa = (E / ((1 - nu^2) p))^(2/3) = (2 E* / p)^(2/3) its stiffness number). Force chains carry several times the mean
-// force. 0 when the load is not known.
+// kappa = (E / ((1 - nu^2) p))^(2/3) = (2 E* / p)^(2/3) its stiffness number). Force chains carry several
+// times the mean force. 0 when the load is not known.
 double stress_overlap_ratio(const SceneConfig& scene, const AssemblyLoad& load);
 
 // DEM practice's bound on a static overlap, as a fraction of the radius.
