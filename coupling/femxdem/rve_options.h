@@ -56,7 +56,7 @@ struct RveOptions {
   // lower, the denser the packing it jams in (0: the densest, as Thornton 2000, Geotechnique 50,
   // 43, prepares dense samples); the scene's coefficient is restored for the trials.
   double preparation_friction = -1.0;
-  long preparation_step_cap = 400000;
+  long preparation_step_cap = 2000000;
 
   friend bool operator==(const RveOptions&, const RveOptions&) = default;
 };

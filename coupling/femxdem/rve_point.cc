@@ -197,6 +197,11 @@ std::vector<fem::PointMeasure> RveCell::measures() const {
           {"unbalanced_force", r.unbalanced_force}};
 }
 
+std::optional<double> RveCell::density() const {
+  const RveTemplate& prepared = packing();
+  return prepared.grain_mass / std::abs(prepared.reference_cell.determinant());
+}
+
 std::vector<char> RveCell::save() const {
   const RveTemplate& prepared = packing();
   dem::ByteWriter w;

@@ -54,6 +54,8 @@ class RveCell : public fem::PointState {
   // (2 touching pairs per grain), grain_rotation (RveTrialRecord), held_steps and
   // unbalanced_force (of its last trial's relaxation).
   [[nodiscard]] std::vector<fem::PointMeasure> measures() const override;
+  // The grains' mass over the prepared cell's volume: the density of the continuum at its point.
+  [[nodiscard]] std::optional<double> density() const override;
   // The committed engine state (dem::to_bytes), H and trial record, and what the cell keeps of its
   // packing besides its frame (the reference cell, the grains' volume, the elastic tangent);
   // load() into a cell of the same source or template and options continues with the same bits,

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "coupling/femxdem/held_cell.h"
 #include "coupling/femxdem/rve_tangent.h"
@@ -11,6 +12,7 @@
 #include "dem/core/error.h"
 #include "dem/engine/unbalanced_force.h"
 #include "dem/scene/fill.h"
+#include "dem/scene/weight_overlap.h"
 
 namespace upgrain::coupling {
 
@@ -18,6 +20,63 @@ namespace {
 
 // The servo's progress is looked at every this many steps.
 constexpr long kServoCheckEvery = 100;
+
+// The servo L_dd = g (p_dd - p) / p corrects the pressure at the rate g M / p (M the packing's
+// constrained modulus at p); the cell answers only after a stress wave has crossed it, in
+// t_w = L sqrt(rho / M) (L its side, rho its grains' mass over its volume). A loop whose
+// correction outpaces its delay, g (M / p) t_w > 1, overshoots and hunts instead of settling (a
+// delayed proportional control). This is that number, estimated before the fill for a random
+// packing of the scene's grains at p: the mean contact force 4 pi r^2 p / (Z phi) and its
+// overlap by the law (dem/scene/weight_overlap.h) give the contact stiffness k_n = dF / d delta,
+// and the effective medium of such contacts K = Z phi k_n / (12 pi r), M ~ 2K (Walton 1987,
+// J. Mech. Phys. Solids 35, 213), with Z = 6 and phi = 0.6. For Hertz grains M grows as p^(1/3),
+// so the number grows as p^(-5/6): a servo that follows a cell of 1e9 Pa grains at 1e5 Pa (0.2)
+// hunts at the hundreds of pascals a bed carries under its own weight.
+double servo_delay_number(const dem::SceneConfig& scene, const std::vector<double>& radii, double gain,
+                          double p) {
+  constexpr double kCoordination = 6.0, kSolidFraction = 0.6;
+  double solids = 0.0, r_mean = 0.0;
+  for (const double r : radii) {
+    solids += 4.0 / 3.0 * std::numbers::pi * r * r * r;
+    r_mean += r / static_cast<double>(radii.size());
+  }
+  const auto overlap = [&](double pressure) {
+    return r_mean * dem::stress_overlap_ratio(scene, {pressure, kCoordination, kSolidFraction});
+  };
+  const double force = 4.0 * std::numbers::pi * r_mean * r_mean * p / (kCoordination * kSolidFraction);
+  const double stiffness = 0.01 * force / (overlap(1.01 * p) - overlap(p));
+  const double modulus =
+      2.0 * kCoordination * kSolidFraction * stiffness / (12.0 * std::numbers::pi * r_mean);
+  const double side = std::cbrt(solids / kSolidFraction);
+  const double density = scene.particles.material.density * kSolidFraction;
+  return gain * modulus / p * side * std::sqrt(density / modulus);
+}
+
+// How a servo brings a cell to p0 where the configured one would hunt there
+// (servo_delay_number() above 1/2, stiff grains at a low pressure; docs/femxdem.md, "Preparing a
+// cell at a low pressure"). A fill squeezed towards a low target never jams: the stress of a
+// single collision between stiff grains already exceeds it, and the servo backs off. So the fill
+// is jammed by the configured servo at `jamming`, the first of 2 p0, 4 p0, ... where that servo
+// follows the cell, and then brought down to p0 by a servo whose gain makes the number 1/2 and
+// whose rate is bounded by that gain: the pressure then changes by at most its own size in a few
+// wave times, slowly enough that the packing unloads through equilibrium states instead of
+// springing apart. Stiff grains jam in the same packing at either pressure: the overlaps are a
+// small fraction of a radius at both.
+struct LowPressureServo {
+  double jamming = 0.0;  // Pa; equal to p0 when the configured servo follows the cell at p0
+  double gain = 0.0;     // 1/s, the settling servo's gain and rate bound
+};
+
+LowPressureServo low_pressure_servo(const dem::SceneConfig& scene, const std::vector<double>& radii,
+                                    const RveOptions& o) {
+  LowPressureServo s{o.mean_stress, o.servo_gain};
+  const double number = servo_delay_number(scene, radii, o.servo_gain, o.mean_stress);
+  if (number <= 0.5) return s;
+  s.gain = o.servo_gain * 0.5 / number;
+  while (servo_delay_number(scene, radii, o.servo_gain, s.jamming) > 0.5 && s.jamming < 1e12)
+    s.jamming *= 2.0;
+  return s;
+}
 
 // The scene's grains in a fully periodic cube, no gravity, no walls, no pour, squeezed by a servo to p0 on
 // every axis. The random fill keeps each grain a radius from the box's faces (dem/scene/fill.cc), so
@@ -40,7 +99,7 @@ dem::SceneConfig cell_scene(dem::SceneConfig scene, const RveOptions& o) {
   scene.fill.seed = o.seed;
   if (o.preparation_friction >= 0.0) scene.friction = o.preparation_friction;
   double solids = 0.0, r_max = 0.0;
-  for (double r : dem::plan_fill(scene).radii) {
+  for (const double r : dem::plan_fill(scene).radii) {
     solids += 4.0 / 3.0 * std::numbers::pi * r * r * r;
     r_max = std::max(r_max, r);
   }
@@ -66,8 +125,10 @@ RveTemplate frame_of(const dem::Simulation& sim, const dem::SceneConfig& scene_i
   t.scene.friction = scene_in.friction;
   t.engine = sim.options();
   t.grains = sim.particle_count();
-  for (int i = 0; i < sim.owned(); ++i)
+  for (int i = 0; i < sim.owned(); ++i) {
     t.grain_volume += 4.0 / 3.0 * std::numbers::pi * std::pow(sim.particles().radius[i], 3);
+    t.grain_mass += sim.particles().mass(static_cast<std::size_t>(i));
+  }
   return t;
 }
 
@@ -86,6 +147,21 @@ RveTemplate prepare_rve(const dem::SceneConfig& scene_in, const RveOptions& o) {
   dem::SceneConfig scene = cell_scene(scene_in, o);
   ElementCell cell(scene, dem::fill_container(scene), MPI_COMM_SELF, {}, {});
   long steps = 0;
+  const LowPressureServo low = low_pressure_servo(scene, dem::plan_fill(scene).radii, o);
+  const auto mean_pressure = [&] { return -cell.sim().cell_stress().trace() / 3.0; };
+  if (low.jamming != o.mean_stress) {
+    cell.control(every_axis(cell_servo(low.jamming, o.servo_gain, o.max_strain_rate)));
+    while (mean_pressure() < (1.0 - o.servo_tolerance) * low.jamming) {
+      if (steps >= o.preparation_step_cap)
+        throw Error("the DEM cell's preparation: the servo did not jam the cell at " +
+                    std::to_string(low.jamming) +
+                    " Pa (to come down to p0 = " + std::to_string(o.mean_stress) + " Pa from there) in " +
+                    std::to_string(o.preparation_step_cap) + " steps");
+      cell.sim().run(kServoCheckEvery);
+      steps += kServoCheckEvery;
+    }
+    cell.control(every_axis(cell_servo(o.mean_stress, low.gain, low.gain)));
+  }
   while (!(at_pressure(cell.sim(), o) &&
            dem::unbalanced_force_ratio(cell.sim()) <= o.unbalanced_force_tolerance)) {
     if (steps >= o.preparation_step_cap)

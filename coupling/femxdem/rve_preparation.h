@@ -24,6 +24,8 @@ struct RveTemplate {
   fem::Mat6 elastic_tangent = fem::Mat6::Zero();     // its contact-stiffness tangent
   long grains = 0;
   double grain_volume = 0.0;    // the grains' volume (m^3), the solid of the solid fraction
+  double grain_mass = 0.0;      // the grains' mass (kg): over the reference cell's volume, the
+                                // density the continuum's body force acts on
   long contacts = 0;            // touching pairs at the end
   long steps = 0;               // the preparation's steps (servo and relaxation)
   double unbalanced_force = 0;  // the ratio at the end

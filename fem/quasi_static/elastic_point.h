@@ -4,6 +4,7 @@
 // elasticity and its Newton iteration against the quadratic convergence an exact tangent gives
 // (Wriggers 2008, Nonlinear Finite Element Methods, sec. 5.1). Plain values, no deal.II.
 #include <memory>
+#include <optional>
 
 #include "fem/quasi_static/point_state.h"
 
@@ -12,12 +13,14 @@ namespace upgrain::fem {
 // The small-strain tensor eps = (H + H^T) / 2 of a displacement gradient, as a Mandel vector.
 inline Vec6 small_strain(const Mat3x3& h) { return mandel::from_matrix(0.5 * (h + h.transpose())); }
 
-// Isotropic linear elasticity about an initial stress: sigma = sigma_0 + C : eps. Its history is
-// the strain alone, so commit() and save() have nothing to keep.
+// Isotropic linear elasticity about an initial stress: sigma = sigma_0 + C : eps, with a density
+// of its own when given (else the problem's). Its history is the strain alone, so commit() and
+// save() have nothing to keep.
 class LinearElasticPoint final : public PointState {
  public:
-  explicit LinearElasticPoint(const Elasticity& e, const Vec6& initial_stress = Vec6::Zero())
-      : elasticity_(e), initial_stress_(initial_stress) {}
+  explicit LinearElasticPoint(const Elasticity& e, const Vec6& initial_stress = Vec6::Zero(),
+                              std::optional<double> density = std::nullopt)
+      : elasticity_(e), initial_stress_(initial_stress), density_(density) {}
 
   PointResponse respond(const Mat3x3& h) override {
     PointResponse r;
@@ -29,12 +32,14 @@ class LinearElasticPoint final : public PointState {
   [[nodiscard]] std::unique_ptr<PointState> clone() const override {
     return std::make_unique<LinearElasticPoint>(*this);
   }
+  [[nodiscard]] std::optional<double> density() const override { return density_; }
   [[nodiscard]] std::vector<char> save() const override { return {}; }
   void load(const std::vector<char>&) override {}
 
  private:
   Elasticity elasticity_;
   Vec6 initial_stress_;
+  std::optional<double> density_;
 };
 
 // A nonlinear elastic law whose volume stiffens under compression as a granular assembly's

@@ -12,6 +12,7 @@
 // the stress it returns is the Cauchy stress in the solver's frame. Plain C++ and Eigen.
 #include <array>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -59,6 +60,10 @@ class PointState {
   // Scalars of the committed state for the output: the same names in the same order for every
   // point of a problem. None by default.
   [[nodiscard]] virtual std::vector<PointMeasure> measures() const { return {}; }
+  // The mass per unit reference volume that the body force acts on (kg/m^3), when the state has
+  // one of its own (a DEM cell: its grains' mass over its reference cell's volume); none: the
+  // problem's (QuasiStaticProblem::density).
+  [[nodiscard]] virtual std::optional<double> density() const { return std::nullopt; }
   // The committed state as bytes, every bit kept, and back into a point that the same factory
   // made at the same place: a point that moves to another rank when the mesh is repartitioned by
   // cost. A trial in progress is not kept. A state that cannot do this says so when it is asked.

@@ -41,8 +41,20 @@ struct QuasiStaticProblem {
   unsigned quadrature_points = 0;
   // Faces 2d (x_d = 0) and 2d + 1 (x_d = size_d), as deal.II's colorized boxes number them.
   std::array<FaceCondition, 6> faces{};
-  double density = 0.0;                          // the body force rho g (kg/m^3)
+  // The body force rho g; a point whose state has a density of its own (PointState::density)
+  // uses that one.
+  double density = 0.0;                          // (kg/m^3)
   std::array<double, 3> gravity{0.0, 0.0, 0.0};  // (m/s^2)
+  // false: the body force is applied whole at step 0. true: it grows with the load factor, from
+  // nothing at step 0 to whole at the last step, as the weight of a column that settles under
+  // gravity is taken up (a body whose points start from a stress of their own that does not
+  // balance the weight, and whose path to it matters: a granular column's K0). The points' first
+  // answers, at step 0, are then taken as balanced, with the pressures on the faces, as a
+  // geotechnical analysis takes its initial stresses: the loads act on the change from them
+  // (internal forces of sigma - sigma_0 against the body force), so the scatter of stresses of
+  // their own (prepared DEM cells: a few per cent of shear stress, which no face holds) is not a
+  // load that Newton would have to work off through the cells' noise. Step 0 does not iterate.
+  bool body_force_follows_load = false;
   // The platens' displacement along their outward normal at the end of the loading (m; < 0
   // pushes into the body), reached in `load_steps` equal steps after an equilibrium step 0 that
   // applies the body force and the pressures.
@@ -100,6 +112,7 @@ struct PointSummary {
   PointPlace place;
   Vec6 stress = Vec6::Zero();
   Mat3x3 displacement_gradient = Mat3x3::Zero();
+  double density = 0.0;          // the body force's (PointState::density, else the problem's)
   std::vector<double> measures;  // PointState::measures(), named by the problem's measure names
 };
 

@@ -65,6 +65,9 @@ struct PointRecord {
   Mat3x3 displacement_gradient = Mat3x3::Zero();  // of the latest trial
   PointResponse committed_response;
   Mat3x3 committed_gradient = Mat3x3::Zero();
+  // The stress of its first answer, taken as balanced when the body force follows the load
+  // (QuasiStaticProblem::body_force_follows_load): the loads then act on the change from it.
+  Vec6 initial_stress = Vec6::Zero();
   double step_cost = 0.0;  // its answers' cost in the load step so far (the partition's weight)
 };
 
@@ -135,6 +138,10 @@ class AffineDisplacement : public Function<dim> {
 // point's state as its own bytes.
 struct CellPack {
   static constexpr std::size_t kPointNumbers = 6 + 36 + 9;
+  // Those of a problem whose points keep their initial stress (the 6 of it after them).
+  static std::size_t point_numbers(const QuasiStaticProblem& p) {
+    return kPointNumbers + (p.body_force_follows_load ? 6 : 0);
+  }
   double cost = 0.0;
   unsigned weight = 0;
   std::vector<double> numbers;
@@ -171,6 +178,9 @@ std::string problem_key(const QuasiStaticProblem& p) {
   k << ';' << p.load_steps << ';' << p.residual_tolerance << ';' << p.correction_tolerance << ';'
     << p.max_newton_iterations << ';' << p.line_search_halvings << ';' << p.max_step_cuts << ';'
     << p.rebalance_threshold;
+  // Written only when set: the checkpoints of problems that apply the body force at step 0 keep
+  // their key.
+  if (p.body_force_follows_load) k << ";body force follows the load";
   return k.str();
 }
 
@@ -297,6 +307,7 @@ class QuasiStaticSolver {
   CellDataStorage<typename Triangulation<dim>::cell_iterator, PointRecord> history_;
   double cost_ = 0.0;  // this rank's points' cost since the last record
   double committed_lambda_ = 0.0;
+  double body_force_factor_ = 1.0;  // of the body force, at the load factor being solved for
   bool committed_answers_ = false;  // the points have answered at the committed state
   std::vector<std::string> pvd_entries_;
   std::vector<std::string> measure_names_;  // the points' PointState::measures(), every rank's
@@ -498,6 +509,8 @@ std::vector<char> QuasiStaticSolver<dim>::pack_cell(const typename Triangulation
     pack.numbers.insert(pack.numbers.end(), stress, stress + 6);
     pack.numbers.insert(pack.numbers.end(), tangent, tangent + 36);
     pack.numbers.insert(pack.numbers.end(), gradient, gradient + 9);
+    if (p_.body_force_follows_load)
+      pack.numbers.insert(pack.numbers.end(), r->initial_stress.data(), r->initial_stress.data() + 6);
     try {
       pack.states.push_back(r->state->save());
     } catch (const std::exception& e) {
@@ -521,16 +534,17 @@ void QuasiStaticSolver<dim>::unpack_cell(const typename Triangulation<dim>::cell
     if (pack.weight > 0) partition_weight_[cell->id()] = pack.weight;
     const auto records = history_.get_data(cell);
     if (pack.states.size() != records.size() ||
-        pack.numbers.size() != CellPack::kPointNumbers * records.size())
+        pack.numbers.size() != CellPack::point_numbers(p_) * records.size())
       throw std::runtime_error("its bytes hold " + std::to_string(pack.states.size()) + " points, not " +
                                std::to_string(records.size()));
     fv.reinit(cell);
     for (unsigned q = 0; q < records.size(); ++q) {
       PointRecord& r = *records[q];
-      const double* x = pack.numbers.data() + CellPack::kPointNumbers * q;
+      const double* x = pack.numbers.data() + CellPack::point_numbers(p_) * q;
       std::copy(x, x + 6, r.committed_response.stress.data());
       std::copy(x + 6, x + 42, r.committed_response.tangent.data());
       std::copy(x + 42, x + 51, r.committed_gradient.data());
+      if (p_.body_force_follows_load) std::copy(x + 51, x + 57, r.initial_stress.data());
       r.state = make_point(fv, cell, q);
       r.state->load(pack.states[q]);
       r.response = r.committed_response;
@@ -737,8 +751,9 @@ double QuasiStaticSolver<dim>::assemble(const AffineConstraints<double>& constra
   std::vector<types::global_dof_index> local(n);
   std::vector<Tensor<2, dim>> grads(nq);
   std::vector<Vec6> shape_strain(n);
-  Tensor<1, dim> body;
-  for (int d = 0; d < dim; ++d) body[d] = p_.density * p_.gravity[d];
+  // The body force per unit density at the load factor of the state assembled.
+  Tensor<1, dim> gravity;
+  for (int d = 0; d < dim; ++d) gravity[d] = body_force_factor_ * p_.gravity[d];
   std::string local_failure;
 
   for (const auto& cell : dofs_.active_cell_iterators()) {
@@ -768,6 +783,8 @@ double QuasiStaticSolver<dim>::assemble(const AffineConstraints<double>& constra
         // instead of waiting in the next collective call for a rank that threw.
         try {
           r.response = r.state->respond(r.displacement_gradient);
+          // Step 0's answers, before anything is committed: the initial stresses.
+          if (p_.body_force_follows_load && !committed_answers_) r.initial_stress = r.response.stress;
           cost_ += r.response.cost;
           r.step_cost += r.response.cost;
           if (!r.response.converged) local_failure = where() + " did not converge: " + r.response.failure;
@@ -777,9 +794,11 @@ double QuasiStaticSolver<dim>::assemble(const AffineConstraints<double>& constra
       }
       const PointResponse& answer = committed ? r.committed_response : r.response;
       const double jxw = fv.JxW(q);
+      const Tensor<1, dim> body = r.state->density().value_or(p_.density) * gravity;
+      const Vec6 stress = p_.body_force_follows_load ? Vec6(answer.stress - r.initial_stress) : answer.stress;
       for (unsigned i = 0; i < n; ++i) shape_strain[i] = mandel_strain<dim>(fv[u].gradient(i, q));
       for (unsigned i = 0; i < n; ++i) {
-        cell_internal(i) += answer.stress.dot(shape_strain[i]) * jxw;
+        cell_internal(i) += stress.dot(shape_strain[i]) * jxw;
         cell_external(i) += fv[u].value(i, q) * body * jxw;
         const Vec6 d_eps = answer.tangent.transpose() * shape_strain[i];
         for (unsigned j = 0; j < n; ++j) cell_matrix(i, j) += d_eps.dot(shape_strain[j]) * jxw;
@@ -788,7 +807,8 @@ double QuasiStaticSolver<dim>::assemble(const AffineConstraints<double>& constra
     for (const unsigned f : cell->face_indices()) {
       if (!cell->at_boundary(f)) continue;
       const FaceCondition& c = p_.faces[cell->face(f)->boundary_id()];
-      if (c.support != FaceSupport::pressure) continue;
+      // With the initial stresses taken as balanced, the constant pressures are in them.
+      if (c.support != FaceSupport::pressure || p_.body_force_follows_load) continue;
       ffv.reinit(cell, f);
       for (unsigned q = 0; q < face_quadrature_.size(); ++q)
         for (unsigned i = 0; i < n; ++i)
@@ -844,6 +864,7 @@ StepFailure QuasiStaticSolver<dim>::newton(double lambda, LoadStepRecord& record
     constraints.distribute(correction);
   };
   record.residuals.clear();
+  body_force_factor_ = p_.body_force_follows_load ? lambda : 1.0;
   u_trial_ = u_committed_;
   StepFailure failure;
   if (committed_answers_) {
@@ -869,6 +890,9 @@ StepFailure QuasiStaticSolver<dim>::newton(double lambda, LoadStepRecord& record
     record.residuals.push_back(r);
     record.newton_iterations = it;
     if (r <= p_.residual_tolerance || small_correction) return {};
+    // Nothing is applied at step 0 of a body force that follows the load: the points' first
+    // answers are the start (QuasiStaticProblem::body_force_follows_load).
+    if (lambda == 0.0 && p_.body_force_follows_load) return {};
     if (it == p_.max_newton_iterations)
       return {true, "Newton's method did not converge in " + std::to_string(it) +
                         " iterations: out-of-balance force " + std::to_string(r) + " of the internal force"};
@@ -1051,6 +1075,7 @@ std::vector<PointSummary> QuasiStaticSolver<dim>::point_summaries() const {
     for (int d = 0; d < 3; ++d) v.push_back(place.position[d]);
     for (int k = 0; k < 6; ++k) v.push_back(r.committed_response.stress[k]);
     for (int k = 0; k < 9; ++k) v.push_back(r.committed_gradient(k / 3, k % 3));
+    v.push_back(r.state->density().value_or(p_.density));
     // As many as named (make_points() checked that every point names the same).
     const std::vector<PointMeasure> m = r.state->measures();
     for (std::size_t k = 0; k < measure_names_.size(); ++k)
@@ -1071,7 +1096,8 @@ std::vector<PointSummary> QuasiStaticSolver<dim>::point_summaries() const {
     for (int d = 0; d < 3; ++d) s.place.position[d] = v[1 + d];
     for (int k = 0; k < 6; ++k) s.stress[k] = v[4 + k];
     for (int k = 0; k < 9; ++k) s.displacement_gradient(k / 3, k % 3) = v[10 + k];
-    s.measures.assign(v.begin() + 19, v.end());
+    s.density = v[19];
+    s.measures.assign(v.begin() + 20, v.end());
     out.push_back(s);
   }
   return out;

@@ -79,6 +79,52 @@ TEST(QuasiStatic, QuadraticElementsHoldTheConfinedColumnExactly) {
   }
 }
 
+// The weight taken up in load steps (a column that settles under gravity), by points that carry
+// their own density and start from a stress of their own that no face balances (a pressure, and
+// a shear stress, as a prepared DEM cell's scatter): their initial stresses are taken as
+// balanced, so after each step every point's stress is its initial one plus the exact column's of
+// that step's fraction of the weight, with the points' density, not the problem's.
+TEST(QuasiStatic, AWeightTakenUpInStepsGivesTheColumnOfEachStep) {
+  constexpr double kOwnDensity = 2100.0, kTop = 1000.0;
+  for (const int dimension : {2, 3}) {
+    QuasiStaticProblem p = confined_column(dimension, 2);
+    p.body_force_follows_load = true;
+    p.load_steps = 4;
+    p.faces[2 * dimension - 1] = {FaceSupport::pressure, kTop};
+    Mat3x3 start = -kTop * Mat3x3::Identity();
+    start(0, 1) = start(1, 0) = 15.0;
+    const Vec6 initial = mandel::from_matrix(start);
+    const PointFactory points = [=](const PointPlace&) {
+      return std::make_unique<LinearElasticPoint>(elasticity(), initial, kOwnDensity);
+    };
+    const ConfinedColumn exact{kOwnDensity * kGravity, p.size[p.dimension - 1], kYoungs, kPoisson};
+    const int v = dimension - 1;
+    std::vector<double> worst;
+    QuasiStaticOutput output;
+    output.on_points = [&](const LoadStepRecord& step, const std::vector<std::string>&,
+                           const std::vector<PointSummary>& summaries) {
+      const double lambda = static_cast<double>(step.step) / p.load_steps;
+      double w = 0.0;
+      for (const PointSummary& s : summaries) {
+        const Mat3x3 sigma = mandel::to_matrix(s.stress) - start;
+        const double z = s.place.position[v];
+        w = std::max(w, std::abs(sigma(v, v) - lambda * exact.vertical_stress(z)));
+        for (int d = 0; d < dimension; ++d)
+          if (d != v) w = std::max(w, std::abs(sigma(d, d) - lambda * exact.k0() * exact.vertical_stress(z)));
+        w = std::max(w, std::abs(sigma(0, 1)));
+        w = std::max(w, std::abs(s.density - kOwnDensity));
+      }
+      worst.push_back(w / (exact.unit_weight * exact.height));
+    };
+    const QuasiStaticResult r = solve_quasi_static(p, points, MPI_COMM_WORLD, output);
+    ASSERT_EQ(r.steps.size(), 5u) << dimension << "D";
+    ASSERT_EQ(worst.size(), 5u);
+    for (std::size_t k = 0; k < worst.size(); ++k) EXPECT_LT(worst[k], 1e-10) << dimension << "D, step " << k;
+    // Step 0 took the points' first answers as the start without iterating.
+    EXPECT_EQ(r.steps[0].newton_iterations, 0u);
+  }
+}
+
 // The same mesh, elements and law as deal.II's elastic column solver (fem/elastic_column.cc,
 // CG with AMG to its tolerance): the stress averaged over each cell agrees to that solver's
 // tolerance.

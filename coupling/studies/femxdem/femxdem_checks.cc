@@ -13,6 +13,10 @@ void check_femxdem_study(SceneInput& in, const std::string& where) {
   if (in.scene.insertion.enabled())
     throw Error(study +
                 "the DEM cells take the scene's grains as a fill; a pour (Insertion/count > 0) is not one");
+  if (o.loading == FemxdemLoading::gravity_column && !(in.scene.effects.gravity && in.scene.gravity > 0.0))
+    throw Error(study +
+                "FEMxDEM/loading = gravity column: the column's weight needs Effects/gravity on and a "
+                "positive Effects/gravity acceleration");
   if (o.residual_tolerance == 0.0 && o.correction_tolerance == 0.0)
     throw Error(study +
                 "FEMxDEM/residual tolerance and correction tolerance are both 0: Newton could never end");

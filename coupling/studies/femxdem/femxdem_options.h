@@ -9,7 +9,21 @@
 
 namespace upgrain::coupling {
 
+// What loads the specimen (docs/femxdem.md).
+enum class FemxdemLoading {
+  // Plane-strain compression: the bottom fixed, the top a platen that shortens the specimen by
+  // axial_strain, the sides under the confining pressure.
+  biaxial,
+  // The column under its own weight, as a bed in a box with smooth walls: the sides on rollers,
+  // the bottom fixed (a rough floor), the top under the confining pressure (a surcharge that keeps
+  // the top cells' grains in contact, as they were prepared); gravity along -y, of the scene's
+  // magnitude, grows from nothing in load_steps equal steps, and each point's body force is its
+  // cell's density (its grains' mass over its volume).
+  gravity_column,
+};
+
 struct FemxdemOptions {
+  FemxdemLoading loading = FemxdemLoading::biaxial;
   // A biaxial (plane-strain) specimen [0, width] x [0, height] in x-y, per unit thickness along z,
   // as Guo and Zhao's (2014) 50 x 100 mm. 3D needs DEM cells with more than one tilt (planned).
   double width = 0.05;  // m

@@ -17,10 +17,14 @@ auto femxdem(Members... m) {
 Section femxdem_section() {
   return {
       "FEMxDEM",
-      {real("width", femxdem(&FemxdemOptions::width), 1e-6, 1e6, "m",
-            "The specimen [0, width] x [0, height] in plane strain in x-y, per unit thickness along z. The "
-            "bottom (y = 0) is fixed, the top a platen, the sides carry the confining pressure "
-            "(docs/femxdem.md)."),
+      {choice("loading", femxdem(&FemxdemOptions::loading),
+              {{"biaxial", FemxdemLoading::biaxial}, {"gravity column", FemxdemLoading::gravity_column}},
+              "biaxial: the bottom (y = 0) fixed, the top a platen that shortens the specimen by 'axial "
+              "strain', the sides under the confining pressure. gravity column: the specimen under its own "
+              "weight (gravity along -y, Effects/gravity acceleration, grown in 'load steps'), the sides on "
+              "rollers, the bottom fixed, the top under the confining pressure (docs/femxdem.md)."),
+       real("width", femxdem(&FemxdemOptions::width), 1e-6, 1e6, "m",
+            "The specimen [0, width] x [0, height] in plane strain in x-y, per unit thickness along z."),
        real("height", femxdem(&FemxdemOptions::height), 1e-6, 1e6, "m", "The specimen's extent along y."),
        integer("cells x", femxdem(&FemxdemOptions::cells_x), 1, 1000, "-",
                "Elements across the width; each has (quadrature points)^2 DEM cells, one per Gauss point."),
@@ -31,8 +35,10 @@ Section femxdem_section() {
                "rule of a single-element test: a mesh of such elements has hourglass modes."),
        choice("platens", femxdem(&FemxdemOptions::rough_platens), {{"rough", true}, {"smooth", false}},
               "Rough platens hold the specimen's ends (no tangential motion), smooth ones let them slide."),
-       real("confining pressure", femxdem(&FemxdemOptions::rve, &RveOptions::mean_stress), 1.0, 1e9, "Pa",
-            "The pressure on the specimen's sides, and the isotropic stress every DEM cell is prepared at."),
+       real(
+           "confining pressure", femxdem(&FemxdemOptions::rve, &RveOptions::mean_stress), 1.0, 1e9, "Pa",
+           "The pressure on the specimen's sides (biaxial) or top (gravity column), and the isotropic stress "
+           "every DEM cell is prepared at."),
        real("axial strain", femxdem(&FemxdemOptions::axial_strain), 1e-7, 0.5, "-",
             "The top platen's shortening of the specimen over the loading."),
        integer("load steps", femxdem(&FemxdemOptions::load_steps), 1, 100000, "-",

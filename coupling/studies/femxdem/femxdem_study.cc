@@ -1,11 +1,15 @@
 #include "coupling/studies/femxdem/femxdem_study.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "coupling/femxdem/rve_packings.h"
 #include "coupling/femxdem/rve_point.h"
@@ -95,21 +99,97 @@ std::string point_rows(unsigned step, const std::vector<fem::PointSummary>& poin
   return t.str();
 }
 
+// The column's stress by level (the Gauss points at one height, averaged across the width) at the
+// load factor `lambda`, beside the weight's: sigma_yy = -(p_top + lambda rho g (H - y)) where rho
+// is the points' mean density, by equilibrium whatever the material (smooth sides carry nothing).
+struct ColumnLevel {
+  double y = 0.0;
+  int points = 0;
+  fem::Mat3x3 stress = fem::Mat3x3::Zero();
+  double solid_fraction = 0.0, coordination = 0.0;
+};
+
+// The unit weight rho g of the column: its points' mean density (each cell's own) times gravity.
+double column_unit_weight(const std::vector<fem::PointSummary>& points, const fem::QuasiStaticProblem& p) {
+  double sum = 0.0;
+  for (const fem::PointSummary& s : points) sum += s.density;
+  return points.empty() ? 0.0 : sum / static_cast<double>(points.size()) * std::abs(p.gravity[1]);
+}
+
+std::vector<ColumnLevel> column_levels(const std::vector<fem::PointSummary>& points,
+                                       const std::vector<std::string>& measures, double height) {
+  const auto index_of = [&](const std::string& name) {
+    for (std::size_t k = 0; k < measures.size(); ++k)
+      if (measures[k] == name) return static_cast<int>(k);
+    return -1;
+  };
+  const int phi = index_of("solid_fraction"), z = index_of("coordination");
+  std::map<long long, ColumnLevel> by_height;  // keyed by the height in units of 1e-9 of the column's
+  for (const fem::PointSummary& s : points) {
+    ColumnLevel& l = by_height[std::llround(s.place.position[1] / height * 1e9)];
+    l.y = s.place.position[1];
+    ++l.points;
+    l.stress += fem::mandel::to_matrix(s.stress);
+    if (phi >= 0) l.solid_fraction += s.measures[static_cast<std::size_t>(phi)];
+    if (z >= 0) l.coordination += s.measures[static_cast<std::size_t>(z)];
+  }
+  std::vector<ColumnLevel> levels;
+  for (auto& [key, l] : by_height) {
+    l.stress /= l.points;
+    l.solid_fraction /= l.points;
+    l.coordination /= l.points;
+    levels.push_back(l);
+  }
+  std::reverse(levels.begin(), levels.end());  // from the top down
+  return levels;
+}
+
+std::string column_table(const std::vector<ColumnLevel>& levels, double height, double top_pressure,
+                         double unit_weight, double lambda) {
+  std::ostringstream t;
+  t << "# Upgrain FEM x DEM column under its own weight (docs/femxdem.md), at the last converged load "
+       "step (the weight's fraction lambda = "
+    << table_number(lambda)
+    << "). SI units, tension positive. One row per level of Gauss points (averaged across the width), "
+       "from the top; depth = height - y; weight_sigma_yy = -(top pressure + lambda rho g depth), the "
+       "stress that equilibrium gives with smooth sides (rho the points' mean density); K0 = "
+       "sigma_xx / sigma_yy; solid_fraction and coordination the cells'\n"
+       "level,y,depth,points,sigma_xx,sigma_yy,sigma_zz,weight_sigma_yy,K0,solid_fraction,coordination\n";
+  int k = 0;
+  for (const ColumnLevel& l : levels) {
+    const double depth = height - l.y;
+    t << k++ << ',' << table_number(l.y) << ',' << table_number(depth) << ',' << l.points << ','
+      << table_number(l.stress(0, 0)) << ',' << table_number(l.stress(1, 1)) << ','
+      << table_number(l.stress(2, 2)) << ',' << table_number(-(top_pressure + lambda * unit_weight * depth))
+      << ',' << table_number(l.stress(0, 0) / l.stress(1, 1)) << ',' << table_number(l.solid_fraction) << ','
+      << table_number(l.coordination) << '\n';
+  }
+  return t.str();
+}
+
 }  // namespace
 
-fem::QuasiStaticProblem biaxial_problem(const FemxdemOptions& o) {
+fem::QuasiStaticProblem femxdem_problem(const FemxdemOptions& o, double gravity) {
   fem::QuasiStaticProblem p;
   p.dimension = 2;
   p.size = {o.width, o.height, 1.0};
   p.cells = {static_cast<unsigned>(o.cells_x), static_cast<unsigned>(o.cells_y), 1};
   p.degree = static_cast<unsigned>(o.degree);
   p.quadrature_points = static_cast<unsigned>(o.quadrature_points);
-  p.faces[0] = {fem::FaceSupport::pressure, o.rve.mean_stress};
-  p.faces[1] = {fem::FaceSupport::pressure, o.rve.mean_stress};
-  p.faces[2].support = fem::FaceSupport::fixed;
-  p.faces[3].support = o.rough_platens ? fem::FaceSupport::rough_platen : fem::FaceSupport::smooth_platen;
-  if (!o.rough_platens) p.faces[2].support = fem::FaceSupport::roller;
-  p.platen_displacement = -o.axial_strain * o.height;
+  if (o.loading == FemxdemLoading::gravity_column) {
+    p.faces[0].support = fem::FaceSupport::roller;
+    p.faces[1].support = fem::FaceSupport::roller;
+    p.faces[2].support = fem::FaceSupport::fixed;
+    p.faces[3] = {fem::FaceSupport::pressure, o.rve.mean_stress};
+    p.gravity = {0.0, -gravity, 0.0};
+    p.body_force_follows_load = true;
+  } else {
+    p.faces[0] = {fem::FaceSupport::pressure, o.rve.mean_stress};
+    p.faces[1] = {fem::FaceSupport::pressure, o.rve.mean_stress};
+    p.faces[2].support = o.rough_platens ? fem::FaceSupport::fixed : fem::FaceSupport::roller;
+    p.faces[3].support = o.rough_platens ? fem::FaceSupport::rough_platen : fem::FaceSupport::smooth_platen;
+    p.platen_displacement = -o.axial_strain * o.height;
+  }
   p.load_steps = static_cast<unsigned>(o.load_steps);
   p.residual_tolerance = o.residual_tolerance;
   p.correction_tolerance = o.correction_tolerance;
@@ -163,32 +243,49 @@ int run_femxdem_study(const SceneInput& in, MPI_Comm comm, const StudyHooks&) {
               "Particles/youngs modulus, keep the cells within the law)"
             : "");
 
-  const fem::QuasiStaticProblem problem = biaxial_problem(o);
+  const bool column = o.loading == FemxdemLoading::gravity_column;
+  fem::QuasiStaticProblem problem = femxdem_problem(o, in.scene.gravity);
+  // The column's top carries the prepared cell's own vertical stress (within the servo's tolerance
+  // of the confining pressure), so that the specimen starts in equilibrium to the last bit: at a
+  // few tens of pascals the servo's 2 % are above what Newton's tolerance lets pass.
+  if (column) problem.faces[3].pressure = -fem::mandel::to_matrix(prepared->stress)(1, 1);
   // The tables so far, rewritten after each converged step: a run that stops keeps its path.
   std::vector<fem::LoadStepRecord> steps;
   std::string history;
-  const auto on_step = [&](const fem::LoadStepRecord& s) {
-    if (rank != 0) return;
-    std::printf(
-        "  femxdem: step %u/%u  eps_a %.4f  sigma_1 %.6g Pa  Newton %u  cuts %u  halvings %u  "
-        "%.3g grain-steps  imbalance %.2f%s  %.1f s\n",
-        s.step, problem.load_steps, 0.0 - s.platen_displacement / o.height, axial_stress(s, o),
-        s.newton_iterations, s.cuts, s.line_search_halvings, s.cost, s.imbalance,
-        s.repartitioned ? " (repartitioned)" : "", s.seconds);
-    std::fflush(stdout);
-  };
+  // The step's line: the platen's stress, or the column's deepest level.
   const auto on_points = [&](const fem::LoadStepRecord& s, const std::vector<std::string>& measures,
                              const std::vector<fem::PointSummary>& points) {
     if (rank != 0) return;
     steps.push_back(s);
     history += point_rows(s.step, points);
-    dem::io::write_text_atomically(folder / "load_displacement.csv", load_displacement_table(steps, o));
+    std::string state;
+    char line[160];
+    if (column) {
+      const double lambda = static_cast<double>(s.step) / problem.load_steps;
+      const std::vector<ColumnLevel> levels = column_levels(points, measures, o.height);
+      dem::io::write_text_atomically(folder / "column.csv",
+                                     column_table(levels, o.height, problem.faces[3].pressure,
+                                                  column_unit_weight(points, problem), lambda));
+      const ColumnLevel& deepest = levels.back();
+      std::snprintf(line, sizeof line, "weight %3.0f %%  deepest level: sigma_yy %.6g Pa  K0 %.4f",
+                    100.0 * lambda, deepest.stress(1, 1), deepest.stress(0, 0) / deepest.stress(1, 1));
+    } else {
+      dem::io::write_text_atomically(folder / "load_displacement.csv", load_displacement_table(steps, o));
+      std::snprintf(line, sizeof line, "eps_a %.4f  sigma_1 %.6g Pa", 0.0 - s.platen_displacement / o.height,
+                    axial_stress(s, o));
+    }
     dem::io::write_text_atomically(folder / "point_history.csv",
                                    points_head("at every load step", measures) + history);
+    std::printf(
+        "  femxdem: step %u/%u  %s  Newton %u  cuts %u  halvings %u  %.3g grain-steps  imbalance %.2f%s  "
+        "%.1f s\n",
+        s.step, problem.load_steps, line, s.newton_iterations, s.cuts, s.line_search_halvings, s.cost,
+        s.imbalance, s.repartitioned ? " (repartitioned)" : "", s.seconds);
+    std::fflush(stdout);
   };
   CellSnapshots snapshots(parse_cell_snapshots(o.cell_snapshots), folder, prepared->grains, comm);
   const fem::QuasiStaticOutput output{
-      folder.string(), "femxdem", on_step, on_points,
+      folder.string(), "femxdem", nullptr, on_points,
       [&](const fem::LoadStepRecord& s,
           const std::vector<std::pair<fem::PointPlace, const fem::PointState*>>& owned) {
         snapshots.write(s, owned);
@@ -260,11 +357,19 @@ int run_femxdem_study(const SceneInput& in, MPI_Comm comm, const StudyHooks&) {
       << ",\n  \"line_search_halvings\": " << halvings << ",\n  \"grain_steps\": " << json_number(grain_steps)
       << ",\n  \"grain_steps_per_core_second\": " << json_number(solved_grain_steps / (solve_seconds * ranks))
       << ",\n  \"imbalance\": " << json_number(grain_steps > 0.0 ? busiest / grain_steps : 1.0)
-      << ",\n  \"repartitions\": " << repartitions
-      << ",\n  \"final_axial_stress_Pa\": " << json_number(axial_stress(r.steps.back(), o)) << "\n}\n";
+      << ",\n  \"repartitions\": " << repartitions << ",\n  \"loading\": \""
+      << (column ? "gravity column" : "biaxial") << '"';
+    if (column) {
+      const std::vector<ColumnLevel> levels = column_levels(r.points, r.measure_names, o.height);
+      j << ",\n  \"deepest_sigma_yy_Pa\": " << json_number(levels.back().stress(1, 1))
+        << ",\n  \"deepest_K0\": " << json_number(levels.back().stress(0, 0) / levels.back().stress(1, 1));
+    } else {
+      j << ",\n  \"final_axial_stress_Pa\": " << json_number(axial_stress(r.steps.back(), o));
+    }
+    j << "\n}\n";
     dem::io::write_text_atomically(fs::path(in.output.folder) / "summary.json", j.str());
     run_figure_script("studies/femxdem/plot_femxdem.py", folder, "plots.log",
-                      {"load_displacement.png", "points.png"});
+                      {column ? "column.png" : "load_displacement.png", "points.png"});
     std::printf(
         "  femxdem: %zu Gauss points, %u Newton iterations, %.3g grain-steps in %.1f s (%.3g per "
         "core-second)\n",

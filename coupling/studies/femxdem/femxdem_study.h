@@ -13,8 +13,9 @@
 
 namespace upgrain::coupling {
 
-// The continuum problem of the FEMxDEM section (plain: the tests build it too).
-fem::QuasiStaticProblem biaxial_problem(const FemxdemOptions& o);
+// The continuum problem of the FEMxDEM section, with gravity's magnitude for a column (plain: the
+// tests build it too).
+fem::QuasiStaticProblem femxdem_problem(const FemxdemOptions& o, double gravity);
 
 int run_femxdem_study(const SceneInput& in, MPI_Comm comm, const StudyHooks& hooks);
 

@@ -2,6 +2,8 @@
 """The figures of `upgrain --study femxdem` (docs/femxdem.md), from the tables in the folder given:
 - load_displacement.png: the deviator stress q = sigma_1 - sigma_3 and the Newton iterations per
   step against the axial strain (load_displacement.csv);
+- column.png, for a column under its own weight instead: sigma_yy and sigma_xx by depth beside
+  the weight's sigma_yy, and K0 = sigma_xx / sigma_yy (column.csv);
 - points.png: the Gauss points at the last step over the specimen (points.csv): the shear strain
   sqrt(((eps_xx - eps_yy) / 2)^2 + eps_xy^2), q/p, the cells' solid fraction and their grains'
   mean rotation, where a shear band shows as a line of high shear strain and rotation."""
@@ -60,7 +62,31 @@ def points_figure(folder: Path) -> None:
     fig.savefig(folder / "points.png", dpi=120)
 
 
+def column_figure(folder: Path) -> None:
+    rows = table(folder / "column.csv")
+    depth = [1e3 * float(r["depth"]) for r in rows]
+    fig, (left, right) = plt.subplots(1, 2, figsize=(8, 5), sharey=True)
+    left.plot([-float(r["weight_sigma_yy"]) for r in rows], depth, "k--", label="weight: −σ_yy")
+    left.plot([-float(r["sigma_yy"]) for r in rows], depth, "o-", ms=4, label="−σ_yy")
+    left.plot([-float(r["sigma_xx"]) for r in rows], depth, "s-", ms=4, label="−σ_xx")
+    left.set_xlabel("stress (Pa)")
+    left.set_ylabel("depth (mm)")
+    left.invert_yaxis()
+    left.grid(alpha=0.3)
+    left.legend(fontsize=8)
+    right.plot([float(r["K0"]) for r in rows], depth, "o-", ms=4)
+    right.set_xlabel("K0 = σ_xx / σ_yy")
+    right.grid(alpha=0.3)
+    fig.suptitle("FEM × DEM column under its own weight")
+    fig.tight_layout()
+    fig.savefig(folder / "column.png", dpi=120)
+
+
 def main(folder: Path) -> None:
+    if (folder / "column.csv").exists():
+        column_figure(folder)
+        points_figure(folder)
+        return
     rows = table(folder / "load_displacement.csv")
     strain = [100.0 * float(r["axial_strain"]) for r in rows]
     q = [float(r["q"]) / 1e3 for r in rows]
