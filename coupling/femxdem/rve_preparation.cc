@@ -60,8 +60,9 @@ double servo_delay_number(const dem::SceneConfig& scene, const std::vector<doubl
 // follows the cell, and then brought down to p0 by a servo whose gain makes the number 1/2 and
 // whose rate is bounded by that gain: the pressure then changes by at most its own size in a few
 // wave times, slowly enough that the packing unloads through equilibrium states instead of
-// springing apart. Stiff grains jam in the same packing at either pressure: the overlaps are a
-// small fraction of a radius at both.
+// springing apart. The overlaps of stiff grains are a small fraction of a radius at either
+// pressure, so the solid fraction hardly depends on which.
+// Whether unloading leaves more contacts at the Coulomb limit than jamming at p0 would is open.
 struct LowPressureServo {
   double jamming = 0.0;  // Pa; equal to p0 when the configured servo follows the cell at p0
   double gain = 0.0;     // 1/s, the settling servo's gain and rate bound
