@@ -99,9 +99,7 @@ std::string point_rows(unsigned step, const std::vector<fem::PointSummary>& poin
   return t.str();
 }
 
-// The column's stress by level (the Gauss points at one height, averaged across the width) at the
-// load factor `lambda`, beside the weight's: sigma_yy = -(p_top + lambda rho g (H - y)) where rho
-// is the points' mean density, by equilibrium whatever the material (smooth sides carry nothing).
+// One level of the column's Gauss points (those at one height), averaged across the width.
 struct ColumnLevel {
   double y = 0.0;
   int points = 0;
@@ -144,6 +142,9 @@ std::vector<ColumnLevel> column_levels(const std::vector<fem::PointSummary>& poi
   return levels;
 }
 
+// The levels from the top at the load factor `lambda`, beside the weight's
+// sigma_yy = -(p_top + lambda rho g (H - y)) (rho the points' mean density): what equilibrium gives
+// whatever the material, smooth sides carrying nothing.
 std::string column_table(const std::vector<ColumnLevel>& levels, double height, double top_pressure,
                          double unit_weight, double lambda) {
   std::ostringstream t;
@@ -246,8 +247,8 @@ int run_femxdem_study(const SceneInput& in, MPI_Comm comm, const StudyHooks&) {
   const bool column = o.loading == FemxdemLoading::gravity_column;
   fem::QuasiStaticProblem problem = femxdem_problem(o, in.scene.gravity);
   // The column's top carries the prepared cell's own vertical stress (within the servo's tolerance
-  // of the confining pressure), so that the specimen starts in equilibrium to the last bit: at a
-  // few tens of pascals the servo's 2 % are above what Newton's tolerance lets pass.
+  // of the confining pressure): the points' initial stresses are taken as balanced with it
+  // (QuasiStaticProblem::body_force_follows_load), and column.csv's weight line starts from it.
   if (column) problem.faces[3].pressure = -fem::mandel::to_matrix(prepared->stress)(1, 1);
   // The tables so far, rewritten after each converged step: a run that stops keeps its path.
   std::vector<fem::LoadStepRecord> steps;
