@@ -148,31 +148,33 @@ RveTemplate prepare_rve(const dem::SceneConfig& scene_in, const RveOptions& o) {
   dem::SceneConfig scene = cell_scene(scene_in, o);
   ElementCell cell(scene, dem::fill_container(scene), MPI_COMM_SELF, {}, {});
   long steps = 0;
-  const LowPressureServo low = low_pressure_servo(scene, dem::plan_fill(scene).radii, o);
-  const auto mean_pressure = [&] { return -cell.sim().cell_stress().trace() / 3.0; };
-  if (low.jamming != o.mean_stress) {
-    cell.control(every_axis(cell_servo(low.jamming, o.servo_gain, o.max_strain_rate)));
-    while (mean_pressure() < (1.0 - o.servo_tolerance) * low.jamming) {
+  // The servo in checks of kServoCheckEvery steps until `reached`, or an error naming its `goal`.
+  const auto servo_until = [&](const auto& reached, const std::string& goal) {
+    while (!reached()) {
       if (steps >= o.preparation_step_cap)
-        throw Error("the DEM cell's preparation: the servo did not jam the cell at " +
-                    std::to_string(low.jamming) +
-                    " Pa (to come down to p0 = " + std::to_string(o.mean_stress) + " Pa from there) in " +
+        throw Error("the DEM cell's preparation: the servo did not " + goal + " in " +
                     std::to_string(o.preparation_step_cap) + " steps");
       cell.sim().run(kServoCheckEvery);
       steps += kServoCheckEvery;
     }
+  };
+  const LowPressureServo low = low_pressure_servo(scene, dem::plan_fill(scene).radii, o);
+  if (low.jamming != o.mean_stress) {
+    cell.control(every_axis(cell_servo(low.jamming, o.servo_gain, o.max_strain_rate)));
+    servo_until(
+        [&] { return -cell.sim().cell_stress().trace() / 3.0 >= (1.0 - o.servo_tolerance) * low.jamming; },
+        "jam the cell at " + std::to_string(low.jamming) +
+            " Pa (to come down to p0 = " + std::to_string(o.mean_stress) + " Pa from there)");
     cell.control(every_axis(cell_servo(o.mean_stress, low.gain, low.gain)));
   }
-  while (!(at_pressure(cell.sim(), o) &&
-           dem::unbalanced_force_ratio(cell.sim()) <= o.unbalanced_force_tolerance)) {
-    if (steps >= o.preparation_step_cap)
-      throw Error("the DEM cell's preparation: the servo did not bring every axis within " +
-                  std::to_string(o.servo_tolerance) + " of p0 = " + std::to_string(o.mean_stress) +
-                  " Pa at an unbalanced-force ratio of " + std::to_string(o.unbalanced_force_tolerance) +
-                  " in " + std::to_string(o.preparation_step_cap) + " steps");
-    cell.sim().run(kServoCheckEvery);
-    steps += kServoCheckEvery;
-  }
+  servo_until(
+      [&] {
+        return at_pressure(cell.sim(), o) &&
+               dem::unbalanced_force_ratio(cell.sim()) <= o.unbalanced_force_tolerance;
+      },
+      "bring every axis within " + std::to_string(o.servo_tolerance) +
+          " of p0 = " + std::to_string(o.mean_stress) + " Pa at an unbalanced-force ratio of " +
+          std::to_string(o.unbalanced_force_tolerance));
   cell.control(still_cell());
   const HeldCellRelaxation r =
       relax_held_cell(cell.sim(), o.relaxation, o.unbalanced_force_tolerance, o.preparation_step_cap - steps);

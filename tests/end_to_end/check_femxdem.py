@@ -23,13 +23,14 @@
 
 Usage: check_femxdem.py UPGRAIN SCENE WORK [MPIEXEC]
 """
-import csv
 import json
 import math
 import os
 import shutil
-import subprocess
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from femxdem_run import run_femxdem, table  # noqa: E402
 
 upgrain, scene, work = sys.argv[1:4]
 mpiexec = sys.argv[4] if len(sys.argv) > 4 else 'mpiexec'
@@ -37,29 +38,20 @@ shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
 
 
-def table(path):
-    return list(csv.DictReader(l for l in open(path) if not l.startswith('#')))
-
-
 folders = {}
 for ranks in (1, 2):
     out = os.path.join(work, f'ranks_{ranks}')
-    cmd = [upgrain, '--study', 'femxdem', '--output', out, scene]
-    if ranks > 1:
-        cmd = [mpiexec, '-n', str(ranks)] + cmd
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    if r.returncode != 0:
-        sys.exit(f'{ranks} rank(s): exit {r.returncode}\n{r.stdout}\n{r.stderr}')
+    stdout = run_femxdem(upgrain, scene, out, ranks, mpiexec)
     # Its checkpoints come after converged load steps, by the wall clock or when it is asked to
     # stop (check_femxdem_restart.py); this run is shorter than the scene's interval: none.
     assert 'checkpoints: every 600 s of wall clock and when asked to stop, after a converged load step, ' \
-        'the last 2 kept' in r.stdout, r.stdout
+        'the last 2 kept' in stdout, stdout
     kept = os.path.join(out, 'checkpoints')
     assert not os.path.isdir(kept) or not os.listdir(kept), os.listdir(kept)
     # Nor the scene's deposition: the cells' effects instead, without gravity, walls or energy.
-    assert "the scene's particle count, end time and effects are not used" in r.stdout, r.stdout
-    assert 'effects (Effects section' not in r.stdout, r.stdout
-    cell = next(l for l in r.stdout.splitlines() if 'femxdem: the DEM cell:' in l)
+    assert "the scene's particle count, end time and effects are not used" in stdout, stdout
+    assert 'effects (Effects section' not in stdout, stdout
+    cell = next(l for l in stdout.splitlines() if 'femxdem: the DEM cell:' in l)
     assert 'effects: tangential friction, damping, rotation' in cell, cell
     for off in ('gravity', 'wall friction', 'energy tracking'):
         assert off not in cell, cell

@@ -16,13 +16,14 @@ weight") on 1 and 2 ranks and checks:
 
 Usage: check_femxdem_column.py UPGRAIN SCENE WORK [MPIEXEC]
 """
-import csv
 import json
 import os
 import re
 import shutil
-import subprocess
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from femxdem_run import run_femxdem, table  # noqa: E402
 
 upgrain, scene, work = sys.argv[1:4]
 mpiexec = sys.argv[4] if len(sys.argv) > 4 else 'mpiexec'
@@ -32,20 +33,11 @@ os.makedirs(work)
 top, steps, height, density, gravity = 1000.0, 4, 0.1, 2650.0, 9.81
 
 
-def table(path):
-    return list(csv.DictReader(l for l in open(path) if not l.startswith('#')))
-
-
 columns = {}
 for ranks in (1, 2):
     out = os.path.join(work, f'ranks_{ranks}')
-    cmd = [upgrain, '--study', 'femxdem', '--output', out, scene]
-    if ranks > 1:
-        cmd = [mpiexec, '-n', str(ranks)] + cmd
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    if r.returncode != 0:
-        sys.exit(f'{ranks} rank(s): exit {r.returncode}\n{r.stdout}\n{r.stderr}')
-    cell = next(l for l in r.stdout.splitlines() if 'femxdem: the DEM cell:' in l)
+    stdout = run_femxdem(upgrain, scene, out, ranks, mpiexec)
+    cell = next(l for l in stdout.splitlines() if 'femxdem: the DEM cell:' in l)
     p = float(re.search(r' p ([0-9.e+-]+) Pa', cell).group(1))
     assert abs(p / top - 1) < 0.02, cell
     folder = os.path.join(out, 'femxdem')
