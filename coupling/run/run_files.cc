@@ -3,11 +3,8 @@
 namespace upgrain::coupling {
 
 RunFiles::RunFiles(dem::Simulation& sim, const std::optional<OutputOptions>& output) : output_(output) {
-  if (output_)
-    sim.on_root([&] {
-      recorder_.emplace(output_->folder);
-      if (output_->force_network) network_.emplace(output_->folder);
-    });
+  if (output_) sim.on_root([&] { recorder_.emplace(output_->folder); });
+  if (output_ && output_->force_network) network_.emplace(sim.comm(), output_->folder);
 }
 
 void RunFiles::record_series(dem::Simulation& sim) {
@@ -27,28 +24,23 @@ void RunFiles::write_snapshot(dem::Simulation& sim) {
   if (!output_) return;
   sim.check_finite();
   const std::vector<dem::Vec3> forces = sim.wall_forces();
-  {
-    // Every rank writes its rows of the state sorted by id into the one file (no rank holds the
-    // whole: docs/parallel.md, "Output"); rank 0 then lists it. A periodic cell's snapshots carry
-    // the image counters (docs/periodic.md).
-    const dem::IdSlice slice = sim.whole_state_slice();
-    const std::filesystem::path name = dem::io::RunRecorder::snapshot_name(sim.step_count());
-    dem::io::write_snapshot(
-        sim.comm(), output_->folder / name, slice.grains,
-        {slice.first_row, slice.total_rows, sim.decomposition().cell().any(), slice.shapes}, sim.walls(),
-        forces, sim.time(), sim.step_count());
-    sim.on_root([&] {
-      recorder_->add_snapshot({name.string(), sim.time(), sim.step_count(), slice.total_rows, slice.shapes});
-    });
-  }
-  if (!output_->force_network || !sim.contacts_recorded()) return;
-  // Every contact once, gathered to rank 0 in the order of the ids: the same file on any rank
-  // count with the deterministic summation.
-  const dem::ParticleStore& all = sim.whole_state();
-  const std::vector<dem::ContactRecord> contacts = sim.gather_contacts_by_id();
+  // Every rank writes its rows of the state sorted by id into the one file (no rank holds the
+  // whole: docs/parallel.md, "Output"); rank 0 then lists it. A periodic cell's snapshots carry
+  // the image counters (docs/periodic.md).
+  dem::IdSlice slice = sim.whole_state_slice();
+  const std::filesystem::path name = dem::io::RunRecorder::snapshot_name(sim.step_count());
+  dem::io::write_snapshot(sim.comm(), output_->folder / name, slice.grains,
+                          {slice.first_row, slice.total_rows, sim.decomposition().cell().any(), slice.shapes},
+                          sim.walls(), forces, sim.time(), sim.step_count());
   sim.on_root([&] {
-    network_->write(all, sim.walls(), contacts, sim.decomposition().cell(), sim.time(), sim.step_count());
+    recorder_->add_snapshot({name.string(), sim.time(), sim.step_count(), slice.total_rows, slice.shapes});
   });
+  if (!network_ || !sim.contacts_recorded()) return;
+  // Every contact once, each rank those of its rows' grains, with the partners from other rows
+  // that they touch: the same data sets on any rank count with the deterministic summation.
+  const std::vector<dem::ContactRecord> contacts = sim.contacts_of_rows(slice);
+  network_->write({slice.grains, slice.first_row, slice.rows}, slice.total_rows, sim.walls(), contacts,
+                  sim.decomposition().cell(), sim.time(), sim.step_count());
 }
 
 dem::io::RunRecorder::State RunFiles::state() {

@@ -1,6 +1,7 @@
 #pragma once
-// The DEM's own files of a run, written by rank 0 (dem/io/run_recorder.h): a time-series row
-// and a snapshot of the whole state on demand, and summary.json at the end. Without output
+// The DEM's own files of a run (dem/io/run_recorder.h): a time-series row and summary.json,
+// written by rank 0, and a snapshot of the whole state (with its force network) on demand,
+// written by every rank. Without output
 // options, nothing is written and the calls do nothing. Collective over the engine's ranks.
 #include <optional>
 
@@ -35,7 +36,7 @@ class RunFiles {
  private:
   const std::optional<OutputOptions>& output_;
   std::optional<dem::io::RunRecorder> recorder_;          // rank 0
-  std::optional<dem::io::ForceNetworkRecorder> network_;  // rank 0, with Output/force network
+  std::optional<dem::io::ForceNetworkRecorder> network_;  // with Output/force network
 };
 
 }  // namespace upgrain::coupling

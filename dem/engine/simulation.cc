@@ -661,6 +661,46 @@ ParticleStore collected_by_id(int n_owned, Pack pack, Append append, Collect col
   return out;
 }
 
+// The grains of `wanted` appended to `s.grains` from the ranks whose rows hold them: each
+// asks the holder of each id, which answers with its record (`pack` of one of its rows).
+template <typename Record, typename Pack, typename Append>
+void add_from_rows(IdSlice& s, const std::vector<GlobalId>& wanted, MPI_Comm comm, Pack pack, Append append) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  struct Request {
+    GlobalId gid;
+    int from;
+  };
+  struct Reply {
+    int to;
+    Record record;
+  };
+  std::vector<Request> ask;
+  ask.reserve(wanted.size());
+  for (const GlobalId gid : wanted) ask.push_back({gid, rank});
+  const std::vector<Request> asked =
+      send_to_ranks(ask, comm, [&](const Request& q) { return row_owner(q.gid, s.total_rows, size); });
+  std::vector<Reply> replies;
+  replies.reserve(asked.size());
+  std::string error;
+  for (const Request& q : asked) {
+    const long row = q.gid - s.first_row;
+    if (row < 0 || row >= static_cast<long>(s.rows) || s.grains.id[static_cast<std::size_t>(row)] != q.gid) {
+      error =
+          "output: grain " + std::to_string(q.gid) + " is not in the rows of rank " + std::to_string(rank);
+      break;
+    }
+    replies.push_back({q.from, pack(s.grains, static_cast<std::size_t>(row))});
+  }
+  throw_if_any(comm, error);
+  std::vector<Reply> got = send_to_ranks(replies, comm, [](const Reply& r) { return r.to; });
+  std::sort(got.begin(), got.end(),
+            [](const Reply& a, const Reply& b) { return record_id(a.record) < record_id(b.record); });
+  s.grains.reserve(s.rows + got.size());
+  for (const Reply& r : got) append(s.grains, r.record);
+}
+
 }  // namespace
 
 template <class Collect>
@@ -697,6 +737,7 @@ IdSlice Simulation::whole_state_slice() {
     return send_to_ranks(mine, comm(),
                          [&](const auto& r) { return row_owner(record_id(r), n_global_, size); });
   });
+  s.rows = s.grains.size();
   // Every grain once: this rank's rows hold exactly the ids first_row .. end - 1.
   long misplaced = static_cast<long>(s.grains.size()) == end - s.first_row ? 0 : 1;
   for (std::size_t k = 0; k < s.grains.size() && misplaced == 0; ++k)
@@ -718,6 +759,23 @@ IdSlice Simulation::whole_state_slice() {
   }
   throw_if_any(comm(), error);
   return s;
+}
+
+void Simulation::add_other_rows(IdSlice& slice, const std::vector<GlobalId>& wanted) const {
+  if (shapes_)
+    add_from_rows<ShapedStateRecord>(
+        slice, wanted, comm(),
+        [](const ParticleStore& p, std::size_t i) {
+          return ShapedStateRecord{pack_state(p, i), pack_shape(p, i)};
+        },
+        [](ParticleStore& out, const ShapedStateRecord& r) {
+          append_state(out, r.state);
+          append_shape(out, r.shape);
+        });
+  else
+    add_from_rows<StateRecord>(
+        slice, wanted, comm(), [](const ParticleStore& p, std::size_t i) { return pack_state(p, i); },
+        [](ParticleStore& out, const StateRecord& r) { append_state(out, r); });
 }
 
 std::vector<int> Simulation::gather_owners_sorted_by_id() const {
@@ -759,6 +817,33 @@ ComputeGridStress Simulation::compute_grid_stress() const {
 }
 
 std::vector<ContactRecord> Simulation::gather_contacts_by_id(bool walls_only) const {
+  std::vector<ContactRecord> all = gather_to_root(contact_records(walls_only), comm());
+  std::sort(all.begin(), all.end());
+  return all;
+}
+
+std::vector<ContactRecord> Simulation::contacts_by_id_slice() const {
+  const int size = ranks();
+  std::vector<ContactRecord> mine =
+      send_to_ranks(contact_records(false), comm(),
+                    [&](const ContactRecord& r) { return row_owner(r.a, n_global_, size); });
+  std::sort(mine.begin(), mine.end());
+  return mine;
+}
+
+std::vector<ContactRecord> Simulation::contacts_of_rows(IdSlice& slice) const {
+  std::vector<ContactRecord> contacts = contacts_by_id_slice();
+  const long end = slice.first_row + static_cast<long>(slice.rows);
+  std::vector<GlobalId> partners;
+  for (const ContactRecord& c : contacts)
+    if (c.b >= 0 && (c.b < slice.first_row || c.b >= end)) partners.push_back(c.b);
+  std::sort(partners.begin(), partners.end());
+  partners.erase(std::unique(partners.begin(), partners.end()), partners.end());
+  add_other_rows(slice, partners);
+  return contacts;
+}
+
+std::vector<ContactRecord> Simulation::contact_records(bool walls_only) const {
   if (!recorded_) throw Error("contacts: none recorded at the last step (request_contacts())");
   std::vector<ContactRecord> mine;
   for (const ContactSample& c : out_.contacts) {
@@ -779,9 +864,7 @@ std::vector<ContactRecord> Simulation::gather_contacts_by_id(bool walls_only) co
     put(r.force, a_lower ? c.force_on_a : Vec3(-c.force_on_a));
     mine.push_back(r);
   }
-  std::vector<ContactRecord> all = gather_to_root(mine, comm());
-  std::sort(all.begin(), all.end());
-  return all;
+  return mine;
 }
 
 std::vector<ContactSample> contacts_in_store(const std::vector<ContactRecord>& contacts,

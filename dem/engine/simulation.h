@@ -63,8 +63,11 @@ inline constexpr double kRemovedWallDistance = 1e100;
 
 // A rank's rows of an id-sorted whole (Simulation::whole_state_slice()).
 struct IdSlice {
-  ParticleStore grains;  // rows first_row .. first_row + grains.size() - 1, sorted by id
+  // Rows first_row .. first_row + rows - 1, sorted by id; after them the grains of other rows
+  // that Simulation::add_other_rows() brought, sorted by id.
+  ParticleStore grains;
   long first_row = 0;
+  std::size_t rows = 0;
   long total_rows = 0;  // the whole's
   bool shapes = false;  // the scene's grains have shapes (also when this slice is empty)
 };
@@ -132,6 +135,11 @@ class Simulation {
   // rank to rank) and the same reference: a slice that does not hold exactly its rows' ids
   // stops the run on every rank. No rank holds more than its share. Collective.
   [[nodiscard]] IdSlice whole_state_slice();
+  // Appends to slice.grains, after its rows, the grains of `wanted` (ids sorted and unique, none
+  // of them in this rank's rows) from the ranks whose rows hold them: a rank's share of an
+  // output that refers to grains of other rows (the force network's partners). Two all-to-alls.
+  // Collective.
+  void add_other_rows(IdSlice& slice, const std::vector<GlobalId>& wanted) const;
   // The rank that owns each particle, in the order of gather_sorted_by_id() (its compute
   // grid: the block that held its centroid at the last migration), on rank 0.
   [[nodiscard]] std::vector<int> gather_owners_sorted_by_id() const;
@@ -196,6 +204,15 @@ class Simulation {
   // b = -1 - w); empty elsewhere. `walls_only`: the wall contacts alone, chosen before they are
   // sent (a few hundred of a bed's many pair contacts).
   [[nodiscard]] std::vector<ContactRecord> gather_contacts_by_id(bool walls_only = false) const;
+  // The same contacts spread over the ranks by their first grain: this rank's are those whose
+  // a is in its rows of whole_state_slice(), sorted by key, so that the ranks' lists in rank
+  // order are gather_contacts_by_id()'s. One all-to-all; no rank holds more than its rows'
+  // contacts. Collective.
+  [[nodiscard]] std::vector<ContactRecord> contacts_by_id_slice() const;
+  // A rank's share of an output of the contacts (the force network): contacts_by_id_slice(),
+  // and the grains of other rows that its pairs reach appended to `slice` (add_other_rows()).
+  // Collective.
+  [[nodiscard]] std::vector<ContactRecord> contacts_of_rows(IdSlice& slice) const;
   // After a step that recorded contacts (else upgrain::Error): the stress of a fixed grid and
   // of the compute grids (one cell per block), on every rank (docs/stress.md, "Stress in
   // parallel"). Deterministic summation: bitwise the same on any rank count.
@@ -383,6 +400,9 @@ class Simulation {
   // The owned grains of every rank that `collect` brings here, sorted by id.
   template <class Collect>
   [[nodiscard]] ParticleStore collect_by_id(Collect collect) const;
+  // This rank's share of the recorded contacts, each contact once over the ranks, with the
+  // lower id first (gather_contacts_by_id()).
+  [[nodiscard]] std::vector<ContactRecord> contact_records(bool walls_only) const;
   ParticleStore gathered_;        // whole_state()
   double reference_mass_ = -1.0;  // of the first whole_state() (rank 0)
 };

@@ -11,6 +11,7 @@
 #include "dem/files/atomic_file.h"
 #include "dem/io/hdf5_reader.h"
 #include "dem/io/hdf5_util.h"
+#include "dem/parallel/exchange.h"
 
 namespace upgrain::dem::io {
 
@@ -18,24 +19,39 @@ namespace {
 
 using hdf5::Handle;
 using hdf5::write_attribute;
-using hdf5::write_dataset;
 
 void split_force(NetworkContact& c, const Vec3& force) {
   c.normal_force = force.dot(c.normal) * c.normal;
   c.tangential_force = force - c.normal_force;
 }
 
-void write_vectors(hid_t group, const char* name, const std::vector<NetworkContact>& cs,
-                   Vec3 NetworkContact::*field) {
-  std::vector<double> flat(3 * cs.size());
-  for (std::size_t k = 0; k < cs.size(); ++k)
-    for (int d = 0; d < 3; ++d) flat[3 * k + d] = (cs[k].*field)[d];
-  write_dataset(group, name, flat.data(), cs.size(), 3);
+std::vector<double> flatten(const std::vector<Vec3>& v) {
+  std::vector<double> out(3 * v.size());
+  for (std::size_t k = 0; k < v.size(); ++k)
+    for (int d = 0; d < 3; ++d) out[3 * k + d] = v[k][d];
+  return out;
 }
 
-void write_contacts(hid_t file, const char* group_name, const std::vector<NetworkContact>& cs, bool pairs) {
+// A group of contacts: this rank's rows first .. first + cs.size() - 1 of `total`.
+struct ContactRows {
+  MPI_Comm comm;
+  hsize_t total;
+  hsize_t first;
+};
+
+void write_contacts(hid_t file, const char* group_name, const std::vector<NetworkContact>& cs, bool pairs,
+                    const ContactRows& where) {
   Handle g(hdf5::create_group(file, group_name), H5Gclose, std::string("create group ") + group_name);
   const std::size_t m = cs.size();
+  auto rows = [&](const char* name, const auto* data, hsize_t cols) {
+    hdf5::write_rows(where.comm, g, name, data, where.total, cols, where.first, m);
+  };
+  auto vectors = [&](const char* name, Vec3 NetworkContact::*field) {
+    std::vector<double> flat(3 * m);
+    for (std::size_t k = 0; k < m; ++k)
+      for (int d = 0; d < 3; ++d) flat[3 * k + d] = (cs[k].*field)[d];
+    rows(name, flat.data(), 3);
+  };
   std::vector<double> overlap(m), fn(m), ft(m);
   std::vector<std::int64_t> first(m), second(pairs ? 2 * m : m);
   for (std::size_t k = 0; k < m; ++k) {
@@ -51,37 +67,52 @@ void write_contacts(hid_t file, const char* group_name, const std::vector<Networ
     }
   }
   if (pairs) {
-    write_dataset(g, "ids", second.data(), m, 2);
+    rows("ids", second.data(), 2);
   } else {
-    write_dataset(g, "particle", first.data(), m, 1);
-    write_dataset(g, "wall", second.data(), m, 1);
+    rows("particle", first.data(), 1);
+    rows("wall", second.data(), 1);
   }
-  write_vectors(g, "point", cs, &NetworkContact::point);
-  write_vectors(g, "normal", cs, &NetworkContact::normal);
-  if (pairs) write_vectors(g, "branch", cs, &NetworkContact::branch);
-  write_vectors(g, "normal_force", cs, &NetworkContact::normal_force);
-  write_vectors(g, "tangential_force", cs, &NetworkContact::tangential_force);
-  write_dataset(g, "overlap", overlap.data(), m, 1);
-  write_dataset(g, "normal_force_magnitude", fn.data(), m, 1);
-  write_dataset(g, "tangential_force_magnitude", ft.data(), m, 1);
+  vectors("point", &NetworkContact::point);
+  vectors("normal", &NetworkContact::normal);
+  if (pairs) vectors("branch", &NetworkContact::branch);
+  vectors("normal_force", &NetworkContact::normal_force);
+  vectors("tangential_force", &NetworkContact::tangential_force);
+  rows("overlap", overlap.data(), 1);
+  rows("normal_force_magnitude", fn.data(), 1);
+  rows("tangential_force_magnitude", ft.data(), 1);
 }
 
 }  // namespace
 
-std::vector<NetworkContact> force_network(const ParticleStore& p, const std::vector<PlaneWall>& walls,
+std::size_t NetworkGrains::index(GlobalId id) const {
+  const long row = id - first_row;
+  std::size_t k = store.size();
+  if (row >= 0 && row < static_cast<long>(rows)) {
+    k = static_cast<std::size_t>(row);
+  } else {
+    const auto others = store.id.begin() + static_cast<std::ptrdiff_t>(rows);
+    const auto it = std::lower_bound(others, store.id.end(), id);
+    if (it != store.id.end() && *it == id) k = static_cast<std::size_t>(it - store.id.begin());
+  }
+  if (k >= store.size() || store.id[k] != id)
+    throw Error("force network: grain " + std::to_string(id) + " is not in the state it is resolved against");
+  return k;
+}
+
+std::vector<NetworkContact> force_network(const NetworkGrains& grains, const std::vector<PlaneWall>& walls,
                                           const std::vector<ContactRecord>& records,
                                           const PeriodicCell& cell) {
+  const ParticleStore& p = grains.store;
   std::vector<NetworkContact> out;
   out.reserve(records.size());
   ContactSolverStats stats;
   for (const ContactRecord& r : records) {
-    const auto a = static_cast<std::size_t>(r.a);
-    if (a >= p.size() || p.id[a] != r.a) throw Error("force network: the state is not sorted by id");
+    const std::size_t a = grains.index(r.a);
     NetworkContact c;
     c.a = r.a;
     c.point = get(r.point);
     if (r.b >= 0) {
-      const auto b = static_cast<std::size_t>(r.b);
+      const std::size_t b = grains.index(r.b);
       c.b = r.b;
       // The centres a cell apart for a pair across a face: b's image next to a instead, moved
       // by a lattice vector (exact on the cell's grid: the bits of the pair inside the cell).
@@ -105,53 +136,102 @@ std::vector<NetworkContact> force_network(const ParticleStore& p, const std::vec
   return out;
 }
 
-LineNodes line_nodes(const ParticleStore& p, const std::vector<NetworkContact>& pairs) {
+std::vector<NetworkContact> force_network(const ParticleStore& p, const std::vector<PlaneWall>& walls,
+                                          const std::vector<ContactRecord>& records,
+                                          const PeriodicCell& cell) {
+  return force_network(NetworkGrains{p, 0, p.size()}, walls, records, cell);
+}
+
+LineNodes line_nodes(const NetworkGrains& grains, const std::vector<NetworkContact>& pairs,
+                     long first_image) {
   LineNodes l;
-  l.position = p.x;
   l.nodes.reserve(2 * pairs.size());
   for (const NetworkContact& c : pairs) {
     l.nodes.push_back(c.a);
     if (c.shift.isZero(0.0)) {
       l.nodes.push_back(c.b);
     } else {
-      l.nodes.push_back(static_cast<std::int64_t>(l.position.size()));
-      l.position.push_back(p.x[static_cast<std::size_t>(c.b)] + c.shift);
+      l.nodes.push_back(first_image + static_cast<std::int64_t>(l.position.size()));
+      l.position.push_back(grains.store.x[grains.index(c.b)] + c.shift);
     }
   }
   return l;
 }
 
-NetworkInfo write_force_network(const std::filesystem::path& path, const ParticleStore& p,
-                                const std::vector<NetworkContact>& contacts, double time, long step) {
+LineNodes line_nodes(const ParticleStore& p, const std::vector<NetworkContact>& pairs) {
+  LineNodes l = line_nodes(NetworkGrains{p, 0, p.size()}, pairs, static_cast<long>(p.size()));
+  l.position.insert(l.position.begin(), p.x.begin(), p.x.end());
+  return l;
+}
+
+NetworkInfo write_force_network(MPI_Comm comm, const std::filesystem::path& path, const NetworkGrains& grains,
+                                long total_grains, const std::vector<NetworkContact>& contacts, double time,
+                                long step) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
   std::vector<NetworkContact> pairs, walls;
   for (const NetworkContact& c : contacts) (c.wall < 0 ? pairs : walls).push_back(c);
-  AtomicFile target(path);
-  long nodes = 0;
-  {
-    Handle file(hdf5::create_file(target.temporary_path()), H5Fclose, "create " + path.string());
+  // Where this rank's pairs, wall contacts and image nodes go: after those of the ranks before it.
+  // The image nodes are known once the pairs' rows are (line_nodes), so the counts go around
+  // once for all three.
+  const LineNodes local = line_nodes(grains, pairs, 0);
+  const long mine[3] = {static_cast<long>(pairs.size()), static_cast<long>(walls.size()),
+                        static_cast<long>(local.position.size())};
+  std::vector<long> counts(3 * static_cast<std::size_t>(size));
+  MPI_Allgather(mine, 3, MPI_LONG, counts.data(), 3, MPI_LONG, comm);
+  long before[3] = {0, 0, 0}, total[3] = {0, 0, 0};
+  for (int r = 0; r < size; ++r)
+    for (int k = 0; k < 3; ++k) {
+      const long c = counts[3 * static_cast<std::size_t>(r) + static_cast<std::size_t>(k)];
+      if (r < rank) before[k] += c;
+      total[k] += c;
+    }
+  LineNodes l = line_nodes(grains, pairs, total_grains + before[2]);
+  const auto n = static_cast<hsize_t>(total_grains);
+  const auto pair_rows = static_cast<hsize_t>(total[0]);
+  const auto node_rows = static_cast<hsize_t>(total_grains + total[2]);
+  // The disk reserved before HDF5 writes: the grains twice (their positions and the lines' nodes),
+  // the pairs' 17 numbers and 2 nodes, the wall contacts' 16 numbers, the images, the metadata.
+  constexpr std::size_t kMetadataBytes = 64 * 1024;
+  const std::size_t bytes =
+      8 * (6 * static_cast<std::size_t>(total_grains) + 19 * pair_rows +
+           16 * static_cast<std::size_t>(total[1]) + 3 * static_cast<std::size_t>(total[2])) +
+      kMetadataBytes;
+  hdf5::write_shared_file(comm, path, bytes, [&](hid_t file) {
     write_attribute(file, "time", time);
     write_attribute(file, "step", static_cast<double>(step));
     write_attribute(file, "units", "SI: m, N");
     write_attribute(file, "sign_convention",
                     "forces on the first particle of each pair (on the particle at a wall); normal from the "
                     "first to the second (into the wall); overlap > 0 in contact");
+    // This rank's rows of the grains' positions, then its image nodes.
+    std::vector<double> x(3 * (grains.rows + l.position.size()));
+    for (std::size_t i = 0; i < grains.rows; ++i)
+      for (int d = 0; d < 3; ++d) x[3 * i + d] = grains.store.x[i][d];
     Handle parts(hdf5::create_group(file, "particles"), H5Gclose, "create group particles");
-    std::vector<double> x(3 * p.size());
-    for (std::size_t i = 0; i < p.size(); ++i)
-      for (int d = 0; d < 3; ++d) x[3 * i + d] = p.x[i][d];
-    write_dataset(parts, "position", x.data(), p.size(), 3);
-    write_contacts(file, "contacts", pairs, true);
-    write_contacts(file, "wall_contacts", walls, false);
+    const auto first = static_cast<hsize_t>(grains.first_row);
+    hdf5::write_rows(comm, parts, "position", x.data(), n, 3, first, grains.rows);
+    write_contacts(file, "contacts", pairs, true, {comm, pair_rows, static_cast<hsize_t>(before[0])});
+    write_contacts(file, "wall_contacts", walls, false,
+                   {comm, static_cast<hsize_t>(total[1]), static_cast<hsize_t>(before[1])});
     Handle lines(hdf5::create_group(file, "lines"), H5Gclose, "create group lines");
-    const LineNodes l = line_nodes(p, pairs);
-    hdf5::write_vectors(lines, "position", l.position);
-    write_dataset(lines, "nodes", l.nodes.data(), pairs.size(), 2);
-    nodes = static_cast<long>(l.position.size());
-    hdf5::flush(file, target.final_path().string());
-  }
-  target.commit();
-  return {path.filename().string(),        time, step, static_cast<long>(p.size()),
-          static_cast<long>(pairs.size()), nodes};
+    const std::vector<double> images = flatten(l.position);
+    std::copy(images.begin(), images.end(), x.begin() + static_cast<std::ptrdiff_t>(3 * grains.rows));
+    hdf5::write_row_blocks(comm, lines, "position", x.data(),
+                           {H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, node_rows, 3},
+                           {{first, grains.rows},
+                            {n + static_cast<hsize_t>(before[2]), static_cast<hsize_t>(l.position.size())}});
+    hdf5::write_rows(comm, lines, "nodes", l.nodes.data(), pair_rows, 2, static_cast<hsize_t>(before[0]),
+                     pairs.size());
+  });
+  return {path.filename().string(), time, step, total_grains, total[0], static_cast<long>(node_rows)};
+}
+
+NetworkInfo write_force_network(const std::filesystem::path& path, const ParticleStore& p,
+                                const std::vector<NetworkContact>& contacts, double time, long step) {
+  return write_force_network(MPI_COMM_SELF, path, NetworkGrains{p, 0, p.size()}, static_cast<long>(p.size()),
+                             contacts, time, step);
 }
 
 void write_force_network_xdmf(const std::filesystem::path& path, const std::vector<NetworkInfo>& files) {
@@ -191,15 +271,28 @@ void write_force_network_xdmf(const std::filesystem::path& path, const std::vect
   write_text_atomically(path, x.str());
 }
 
-void ForceNetworkRecorder::write(const ParticleStore& p, const std::vector<PlaneWall>& walls,
+void ForceNetworkRecorder::write(const NetworkGrains& grains, long total_grains,
+                                 const std::vector<PlaneWall>& walls,
                                  const std::vector<ContactRecord>& records, const PeriodicCell& cell,
                                  double time, long step) {
-  create_folder(folder_ / "force_network");
+  // Errors end the write on every rank together, in the line of the rank that found them.
+  run_on_root(comm_, [&] { create_folder(folder_ / "force_network"); });
+  std::vector<NetworkContact> contacts;
+  std::string error;
+  try {
+    contacts = force_network(grains, walls, records, cell);
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  throw_if_any(comm_, error);
   char name[64];
   std::snprintf(name, sizeof name, "contacts_%09ld.h5", step);
-  files_.push_back(write_force_network(folder_ / "force_network" / name, p,
-                                       force_network(p, walls, records, cell), time, step));
-  write_force_network_xdmf(folder_ / "force_network.xdmf", files_);
+  const NetworkInfo info = write_force_network(comm_, folder_ / "force_network" / name, grains, total_grains,
+                                               contacts, time, step);
+  run_on_root(comm_, [&] {
+    files_.push_back(info);
+    write_force_network_xdmf(folder_ / "force_network.xdmf", files_);
+  });
 }
 
 void ForceNetworkRecorder::resume() {

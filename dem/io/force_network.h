@@ -4,6 +4,8 @@
 // particle-particle contact as a line between the two centres (ParaView: force chains). In a
 // periodic cell a pair across a face is evaluated, and drawn, with the second grain at its
 // minimum image next to the first (docs/periodic.md). docs/output.md, "Force network".
+#include <mpi.h>
+
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -35,12 +37,30 @@ struct NetworkContact {
   double overlap = 0.0;                  // m, > 0 in contact
 };
 
-// The contacts of `records` (Simulation::gather_contacts_by_id: every contact once, sorted by
-// key) resolved against the whole state sorted by id (ids 0..N-1 index `particles`): the normal
-// and overlap from the contact geometry of the two shapes (docs/ellipsoid-contact.md; spheres
-// in closed form), the force split along it. A pair's geometry takes b at its minimum image in
-// `cell` (a bounded cell: as it is).
-std::vector<NetworkContact> force_network(const ParticleStore& particles, const std::vector<PlaneWall>& walls,
+// The grains a rank's share of the network is resolved against (Simulation::whole_state_slice()
+// and add_other_rows()): its rows of the whole state sorted by id, ids first_row .. first_row +
+// rows - 1 at indices 0 .. rows - 1, then the grains of other rows that its contacts reach,
+// sorted by id. The whole state on one rank: first_row 0, every grain a row.
+struct NetworkGrains {
+  const ParticleStore& store;
+  long first_row = 0;
+  std::size_t rows = 0;
+
+  // The store's index of grain `id`; throws upgrain::Error when it holds no such grain.
+  [[nodiscard]] std::size_t index(GlobalId id) const;
+};
+
+// The contacts of `records` (every contact whose first grain is a row of `grains`, sorted by key:
+// Simulation::contacts_by_id_slice(), or gather_contacts_by_id() with the whole state) resolved
+// against the grains: the normal and overlap from the contact geometry of the two shapes
+// (docs/ellipsoid-contact.md; spheres in closed form), the force split along it. A pair's
+// geometry takes b at its minimum image in `cell` (a bounded cell: as it is).
+std::vector<NetworkContact> force_network(const NetworkGrains& grains, const std::vector<PlaneWall>& walls,
+                                          const std::vector<ContactRecord>& records,
+                                          const PeriodicCell& cell);
+// With the whole state sorted by id (ids 0..N-1 index `sorted_by_id`).
+std::vector<NetworkContact> force_network(const ParticleStore& sorted_by_id,
+                                          const std::vector<PlaneWall>& walls,
                                           const std::vector<ContactRecord>& records,
                                           const PeriodicCell& cell);
 
@@ -51,6 +71,10 @@ struct LineNodes {
   std::vector<Vec3> position;
   std::vector<std::int64_t> nodes;  // 2 per pair
 };
+// A rank's share: `position` holds its image nodes alone, the first of them node `first_image`
+// of the whole (N plus the image nodes of the ranks before it).
+LineNodes line_nodes(const NetworkGrains& grains, const std::vector<NetworkContact>& pairs, long first_image);
+// The whole, from the whole state sorted by id.
 LineNodes line_nodes(const ParticleStore& sorted_by_id, const std::vector<NetworkContact>& pairs);
 
 struct NetworkInfo {
@@ -68,27 +92,39 @@ struct NetworkInfo {
 // wall, point, normal, normal_force, tangential_force, overlap} for the walls; what the XDMF
 // draws, /lines/{position, nodes} (line_nodes()). Root attributes time and step. Atomic
 // (atomic_file.h).
-NetworkInfo write_force_network(const std::filesystem::path& path, const ParticleStore& particles,
+// Every rank of `comm` writes its share into the one file (parallel HDF5, as the snapshots:
+// docs/output.md): its rows of /particles/position, its contacts (those of its rows, in key
+// order) at the rows that the ranks before it fill, its image nodes after those of the ranks
+// before it. `total_grains`: N. The same data sets on any rank count. Collective.
+NetworkInfo write_force_network(MPI_Comm comm, const std::filesystem::path& path, const NetworkGrains& grains,
+                                long total_grains, const std::vector<NetworkContact>& contacts, double time,
+                                long step);
+// The whole on one process, from the whole state sorted by id.
+NetworkInfo write_force_network(const std::filesystem::path& path, const ParticleStore& sorted_by_id,
                                 const std::vector<NetworkContact>& contacts, double time, long step);
 
 // An XDMF 3 temporal collection: each pair a two-node polyline (/lines), with the contact's
 // values as cell data.
 void write_force_network_xdmf(const std::filesystem::path& path, const std::vector<NetworkInfo>& files);
 
-// The force network files of a run: force_network/contacts_<step>.h5 and force_network.xdmf in
-// `folder`, rewritten with each file.
+// The force network files of a run: force_network/contacts_<step>.h5, written by every rank of
+// `comm` (write_force_network()), and force_network.xdmf in `folder`, rewritten by rank 0 with
+// each file.
 class ForceNetworkRecorder {
  public:
-  explicit ForceNetworkRecorder(std::filesystem::path folder) : folder_(std::move(folder)) {}
-  void write(const ParticleStore& sorted_by_id, const std::vector<PlaneWall>& walls,
+  ForceNetworkRecorder(MPI_Comm comm, std::filesystem::path folder)
+      : comm_(comm), folder_(std::move(folder)) {}
+  // Collective: each rank gives its share (force_network()).
+  void write(const NetworkGrains& grains, long total_grains, const std::vector<PlaneWall>& walls,
              const std::vector<ContactRecord>& records, const PeriodicCell& cell, double time, long step);
-  // A restart: the files already in the folder (those after the checkpoint are gone) listed
-  // again, by step.
+  // A restart (rank 0): the files already in the folder (those after the checkpoint are gone)
+  // listed again, by step.
   void resume();
 
  private:
+  MPI_Comm comm_;
   std::filesystem::path folder_;
-  std::vector<NetworkInfo> files_;
+  std::vector<NetworkInfo> files_;  // rank 0
 };
 
 }  // namespace upgrain::dem::io

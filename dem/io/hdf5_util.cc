@@ -136,6 +136,11 @@ void write_shared_file(MPI_Comm comm, const std::filesystem::path& path, std::si
 
 void write_rows(MPI_Comm comm, hid_t group, const char* name, const void* data, const DatasetLayout& layout,
                 hsize_t first, hsize_t count) {
+  write_row_blocks(comm, group, name, data, layout, {RowBlock{first, count}});
+}
+
+void write_row_blocks(MPI_Comm comm, hid_t group, const char* name, const void* data,
+                      const DatasetLayout& layout, const std::vector<RowBlock>& blocks) {
   const int rank = layout.cols == 1 ? 1 : 2;
   const hsize_t dims[2] = {layout.rows, layout.cols};
   Handle space(H5Screate_simple(rank, dims, nullptr), H5Sclose, "create a dataspace");
@@ -151,14 +156,25 @@ void write_rows(MPI_Comm comm, hid_t group, const char* name, const void* data, 
   // rank knows the row count, so all skip the write together (a collective write of nothing
   // fails in MPI-IO).
   if (layout.rows == 0) return;
-  const hsize_t start[2] = {first, 0};
+  hsize_t count = 0;
+  for (const RowBlock& b : blocks) count += b.count;
   const hsize_t mine[2] = {count, layout.cols};
   Handle memory(H5Screate_simple(rank, count > 0 ? mine : dims, nullptr), H5Sclose, "create a dataspace");
   bool ok = true;
-  if (count > 0)
-    ok = H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, mine, nullptr) >= 0;
-  else
+  if (count > 0) {
+    // The union of the blocks; the memory's rows go to it in the file's row order.
+    bool first_block = true;
+    for (const RowBlock& b : blocks) {
+      if (b.count == 0) continue;
+      const hsize_t start[2] = {b.first, 0};
+      const hsize_t size[2] = {b.count, layout.cols};
+      ok = ok && H5Sselect_hyperslab(space, first_block ? H5S_SELECT_SET : H5S_SELECT_OR, start, nullptr,
+                                     size, nullptr) >= 0;
+      first_block = false;
+    }
+  } else {
     ok = H5Sselect_none(space) >= 0 && H5Sselect_none(memory) >= 0;
+  }
   Handle transfer(H5Pcreate(H5P_DATASET_XFER), H5Pclose, "create a transfer property list");
   ok = ok && H5Pset_dxpl_mpio(transfer, H5FD_MPIO_COLLECTIVE) >= 0;
   // Every rank takes part in the collective write, also one whose selection failed (with none).

@@ -98,6 +98,14 @@ void write_rows(MPI_Comm comm, hid_t group, const char* name, const T* data, hsi
   write_rows(comm, group, name, static_cast<const void*>(data),
              DatasetLayout{ElementType<T>::memory(), ElementType<T>::file(), rows, cols}, first, count);
 }
+// The same for rows in several blocks, each (first, count), in increasing order and apart: the
+// data holds the blocks' rows one after the other.
+struct RowBlock {
+  hsize_t first;
+  hsize_t count;
+};
+void write_row_blocks(MPI_Comm comm, hid_t group, const char* name, const void* data,
+                      const DatasetLayout& layout, const std::vector<RowBlock>& blocks);
 // A new file for `path` (an AtomicFile's temporary name), built in memory by HDF5's core driver
 // without a backing store: the library itself never writes to the disk, so a full disk or a
 // write error cannot leave it holding a half-closed file (HDF5 1.10 then crashes when it
