@@ -38,31 +38,60 @@ Parts parts_of(const EngineState& s) {
           !s.rolling_damping_torque.empty(), !s.particle_elastic.empty()};
 }
 
-}  // namespace
-
-// The whole state as bytes and back: rank 0's state on every rank (the restoring constructor
-// keeps each rank's part, as the first constructor does with a scene's particles).
-std::vector<char> to_bytes(const EngineState& s) {
-  ByteWriter w;
-  const Parts parts = parts_of(s);
-  w.put(parts);
-  std::vector<ParticleRecord> records(s.particles.size());
-  for (std::size_t i = 0; i < records.size(); ++i) {
-    ParticleRecord& r = records[i];
-    r.state = pack_state(s.particles, i);
-    if (parts.shapes) r.shape = pack_shape(s.particles, i);
-    r.resume.gid = s.particles.id[i];
-    put(r.resume.x_built, s.positions_at_build[i]);
-    if (parts.damping_force) put(r.resume.damping_force, s.damping_force[i]);
-    if (parts.damping_torque) put(r.resume.damping_torque, s.damping_torque[i]);
-    if (parts.rolling) put(r.resume.rolling_damping_torque, s.rolling_damping_torque[i]);
-    if (parts.energy) {
-      r.resume.elastic = s.particle_elastic[i];
-      r.resume.dissipated = s.dissipation_share[i];
-    }
+// Grain i's record.
+ParticleRecord particle_record(const EngineState& s, const Parts& parts, std::size_t i) {
+  ParticleRecord r{};
+  r.state = pack_state(s.particles, i);
+  if (parts.shapes) r.shape = pack_shape(s.particles, i);
+  r.resume.gid = s.particles.id[i];
+  put(r.resume.x_built, s.positions_at_build[i]);
+  if (parts.damping_force) put(r.resume.damping_force, s.damping_force[i]);
+  if (parts.damping_torque) put(r.resume.damping_torque, s.damping_torque[i]);
+  if (parts.rolling) put(r.resume.rolling_damping_torque, s.rolling_damping_torque[i]);
+  if (parts.energy) {
+    r.resume.elastic = s.particle_elastic[i];
+    r.resume.dissipated = s.dissipation_share[i];
   }
-  w.put(records);
-  w.put(s.history);
+  return r;
+}
+
+// Rank 0's `count` items handed out to the ranks in rounds of at most 64 MB of records, each
+// round's records made as it goes (`make(k, out)` appends item k's, on rank 0), so that rank 0
+// never holds a second copy of them all: what this rank received, in rank 0's order.
+// `count` is known on every rank. Collective.
+template <class T, class Make, class Destination>
+std::vector<T> hand_out(long count, MPI_Comm comm, Make make, Destination destination) {
+  constexpr long kPerRound = static_cast<long>((std::size_t{1} << 26) / sizeof(T));
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  std::vector<T> received, part;
+  for (long first = 0; first < count; first += kPerRound) {
+    part.clear();
+    if (rank == 0)
+      for (long k = first; k < std::min(count, first + kPerRound); ++k)
+        make(static_cast<std::size_t>(k), part);
+    const std::vector<T> got = send_to_ranks(part, comm, destination);
+    received.insert(received.end(), got.begin(), got.end());
+  }
+  return received;
+}
+
+// One grain's record appended to a state, with the parts the state carries.
+void append_record(EngineState& s, const Parts& parts, const ParticleRecord& p) {
+  append_state(s.particles, p.state);
+  if (parts.shapes) append_shape(s.particles, p.shape);
+  s.positions_at_build.push_back(get(p.resume.x_built));
+  if (parts.damping_force) s.damping_force.push_back(get(p.resume.damping_force));
+  if (parts.damping_torque) s.damping_torque.push_back(get(p.resume.damping_torque));
+  if (parts.rolling) s.rolling_damping_torque.push_back(get(p.resume.rolling_damping_torque));
+  if (parts.energy) {
+    s.particle_elastic.push_back(p.resume.elastic);
+    s.dissipation_share.push_back(p.resume.dissipated);
+  }
+}
+
+// The parts of a state that are not per grain or per contact: the same on every rank.
+void put_globals(ByteWriter& w, const EngineState& s) {
   const WallColumns walls = wall_columns(s);
   WallColumns::each(walls, [&](const char*, const auto& column) {
     w.put(static_cast<std::uint64_t>(column.size()));
@@ -92,37 +121,9 @@ std::vector<char> to_bytes(const EngineState& s) {
   w.put(s.domain.next_balance_step);
   w.put(s.cell.values());
   if (s.cell.deforming) w.put(s.cell.shear_values());
-  return std::move(w.bytes());
 }
 
-namespace {
-
-// One grain's record appended to a state, with the parts the state carries.
-void append_record(EngineState& s, const Parts& parts, const ParticleRecord& p) {
-  append_state(s.particles, p.state);
-  if (parts.shapes) append_shape(s.particles, p.shape);
-  s.positions_at_build.push_back(get(p.resume.x_built));
-  if (parts.damping_force) s.damping_force.push_back(get(p.resume.damping_force));
-  if (parts.damping_torque) s.damping_torque.push_back(get(p.resume.damping_torque));
-  if (parts.rolling) s.rolling_damping_torque.push_back(get(p.resume.rolling_damping_torque));
-  if (parts.energy) {
-    s.particle_elastic.push_back(p.resume.elastic);
-    s.dissipation_share.push_back(p.resume.dissipated);
-  }
-}
-
-}  // namespace
-
-EngineState from_bytes(const std::vector<char>& bytes) {
-  ByteReader r(bytes);
-  EngineState s;
-  Parts parts;
-  r.get(parts);
-  std::vector<ParticleRecord> records;
-  r.get(records);
-  s.particles.reserve(records.size());
-  for (const ParticleRecord& p : records) append_record(s, parts, p);
-  r.get(s.history);
+void get_globals(ByteReader& r, EngineState& s) {
   WallColumns walls;
   WallColumns::each(walls, [&](const char*, auto& column) {
     std::uint64_t n = 0;
@@ -164,6 +165,34 @@ EngineState from_bytes(const std::vector<char>& bytes) {
     r.get(shear);
     s.cell.set_shear_values(shear);
   }
+}
+
+}  // namespace
+
+// The whole state as bytes and back (a DEM cell of FEM x DEM moved or kept as one block).
+std::vector<char> to_bytes(const EngineState& s) {
+  ByteWriter w;
+  const Parts parts = parts_of(s);
+  w.put(parts);
+  std::vector<ParticleRecord> records(s.particles.size());
+  for (std::size_t i = 0; i < records.size(); ++i) records[i] = particle_record(s, parts, i);
+  w.put(records);
+  w.put(s.history);
+  put_globals(w, s);
+  return std::move(w.bytes());
+}
+
+EngineState from_bytes(const std::vector<char>& bytes) {
+  ByteReader r(bytes);
+  EngineState s;
+  Parts parts;
+  r.get(parts);
+  std::vector<ParticleRecord> records;
+  r.get(records);
+  s.particles.reserve(records.size());
+  for (const ParticleRecord& p : records) append_record(s, parts, p);
+  r.get(s.history);
+  get_globals(r, s);
   return s;
 }
 
@@ -273,18 +302,37 @@ Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_roo
       rolling_(rolling_parameters(scene.rolling_friction, scene.rolling_damping_ratio,
                                   scene.effects.twisting_resistance, scene.particles.material.youngs_modulus,
                                   scene.particles.material.poisson_ratio)) {
-  // Rank 0's state on every rank for a moment, as the scene's particles in the first
-  // constructor; each rank then keeps its block's part.
+  // Every rank takes the state's global part from rank 0 (broadcast), and later only its
+  // block's grains and their histories, which rank 0 sends it: no other rank holds the whole
+  // state, even for a moment.
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
+  struct Grains {
+    long count = 0;
+    long histories = 0;
+    double max_radius = 0.0;
+    Parts parts;
+  } grains;
   std::vector<char> bytes;
-  if (rank == 0) bytes = to_bytes(state_on_root);
+  if (rank == 0) {
+    grains.count = static_cast<long>(state_on_root.particles.size());
+    grains.histories = static_cast<long>(state_on_root.history.size());
+    for (double r : state_on_root.particles.radius) grains.max_radius = std::max(grains.max_radius, r);
+    grains.parts = parts_of(state_on_root);
+    ByteWriter w;
+    put_globals(w, state_on_root);
+    bytes = std::move(w.bytes());
+  }
+  MPI_Bcast(&grains, sizeof grains, MPI_BYTE, 0, comm);
   broadcast_bytes(bytes, comm);
-  EngineState s = from_bytes(bytes);
+  EngineState s;
+  {
+    ByteReader r(bytes);
+    get_globals(r, s);
+  }
   bytes = {};
   // A pour may start from an empty container (docs/insertion.md).
-  if (s.particles.size() == 0 && !scene.insertion.enabled())
-    throw Error("restore: the state holds no particles");
+  if (grains.count == 0 && !scene.insertion.enabled()) throw Error("restore: the state holds no particles");
   walls_ = s.walls;
   note_wall_motion();
   if (s.wall_points_at_build.size() != walls_.size())
@@ -292,14 +340,12 @@ Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_roo
                 std::to_string(walls_.size()) + " walls");
   wall_points_at_build_ = s.wall_points_at_build;
   g_ = s.gravity;
-  double max_radius = 0.0;
-  for (double r : s.particles.radius) max_radius = std::max(max_radius, r);
   EngineOptions o = options;
   // A deforming cell's grid is sized from its first box, and the decomposition then follows it
   // to the present one.
   o.box = s.cell.deforming ? s.cell.start : s.domain.box;
   o.balance_at_start = false;
-  set_up(static_cast<long>(s.particles.size()), max_radius, s.particles.has_shapes(), *o.box, comm, o);
+  set_up(grains.count, grains.max_radius, grains.parts.shapes, *o.box, comm, o);
   if (domain_->decomposition().cell().periodic != s.domain.periodic) {
     auto axes = [](const std::array<bool, 3>& p) {
       std::string a;
@@ -318,7 +364,8 @@ Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_roo
     throw Error(std::string("restore: the scene's cell ") + (scene.cell.shear.any() ? "is" : "is not") +
                 " sheared (Cell/shear rate), the state's " + (s.cell.shear.any() ? "is" : "is not"));
   // The grains are placed by where the lists were last built (below): the balance too.
-  domain_->restore(s.domain, s.positions_at_build, s.step);
+  const std::vector<Vec3> none;
+  domain_->restore(s.domain, rank == 0 ? state_on_root.positions_at_build : none, s.step);
   // A deforming cell: the lists are built in the cell they were built in, with its images.
   if (deforming_) domain_->deform_cell(s.cell.at_build);
   if (s.cell.shear.any()) {
@@ -326,15 +373,47 @@ Simulation::Simulation(const SceneConfig& scene, const EngineState& state_on_roo
     at_build.offset = s.cell.offset_at_build;
     domain_->shear_cell(at_build);
   }
+  // Each grain to the rank whose block holds it where the lists were last built, in the order
+  // of the ids; each history to the ranks of its grains (one for a wall's).
+  const Decomposition& dec = domain_->decomposition();
+  {
+    const EngineState& all = state_on_root;  // rank 0's
+    const std::vector<ParticleRecord> mine = hand_out<ParticleRecord>(
+        grains.count, comm,
+        [&](std::size_t k, std::vector<ParticleRecord>& out) {
+          out.push_back(particle_record(all, grains.parts, k));
+        },
+        [&](const ParticleRecord& r) { return dec.owner_of(get(r.resume.x_built)); });
+    s.particles.reserve(mine.size());
+    for (const ParticleRecord& r : mine) append_record(s, grains.parts, r);
+    // A history of a grain the state does not hold has no pair to go to (none is restored).
+    auto owner = [&](GlobalId gid) {
+      const auto it = std::lower_bound(all.particles.id.begin(), all.particles.id.end(), gid);
+      if (it == all.particles.id.end() || *it != gid) return -1;
+      return dec.owner_of(all.positions_at_build[static_cast<std::size_t>(it - all.particles.id.begin())]);
+    };
+    struct RoutedHistory {
+      int to;
+      ContactHistoryRecord record;
+    };
+    for (const RoutedHistory& h : hand_out<RoutedHistory>(
+             grains.histories, comm,
+             [&](std::size_t k, std::vector<RoutedHistory>&out) {
+               const ContactHistoryRecord& c = all.history[k];
+               const int to_a = owner(c.a), to_b = c.b >= 0 ? owner(c.b) : -1;
+               if (to_a >= 0) out.push_back({to_a, c});
+               if (to_b >= 0 && to_b != to_a) out.push_back({to_b, c});
+             },
+             [](const RoutedHistory&r) { return r.to; }))
+      s.history.push_back(h.record);
+  }
   // Spheres in a scene that pours ellipsoids (set_up): with their shapes, as in the run.
   if (shapes_) s.particles.ensure_shapes();
 
   // The particles of this rank's block, placed where the lists were last built: ownership, cell
   // order, ghosts and the lists themselves then follow from the positions the interrupted run
   // built them from (verlet_list.h), and the next rebuild comes at the same step.
-  const Decomposition& dec = domain_->decomposition();
   for (std::size_t k = 0; k < s.particles.size(); ++k) {
-    if (dec.owner_of(s.positions_at_build[k]) != dec.rank()) continue;
     append_state(p_, pack_state(s.particles, k));
     p_.x.back() = s.positions_at_build[k];
     if (shapes_) append_shape(p_, pack_shape(s.particles, k));

@@ -76,8 +76,9 @@ void Domain::restore(const DomainState& s, const std::vector<Vec3>& positions, l
   // ones can leave the grains on a few ranks for good, since a bed at rest is never rebuilt and
   // so never rebalanced. With the load balance on, the planes go where a fresh run's first
   // rebuild puts them: to the quantiles of the grains (one each; the pair slots are not known
-  // before the lists), from `positions`, which every rank holds whole, so no reduction is
-  // needed and every rank places the same planes.
+  // before the lists), from `positions`, whose counts per bin and per rank are summed over the
+  // ranks (integers: the same on every rank, whichever rank holds which grains), so that every
+  // rank places the same planes.
   if (balance_state_.interval <= 0 || dec.size() < 2) return;
   balance_ = s.balance;
   const std::array<int, 3>& blocks = dec.blocks();
@@ -87,11 +88,13 @@ void Domain::restore(const DomainState& s, const std::vector<Vec3>& positions, l
   for (const Vec3& x : positions)
     for (int d = 0; d < 3; ++d)
       if (blocks[d] > 1) ++h[d * kBalanceBins + balance_bin(x[d], box.lo[d], box.hi[d], kBalanceBins)];
+  MPI_Allreduce(MPI_IN_PLACE, h.data(), static_cast<int>(h.size()), MPI_LONG, MPI_SUM, comm());
   auto imbalance = [&] {
-    std::vector<long> owned(static_cast<std::size_t>(dec.size()), 0);
+    std::vector<long> owned(static_cast<std::size_t>(dec.size()) + 1, 0);  // per rank, then the total
     for (const Vec3& x : positions) ++owned[static_cast<std::size_t>(dec.owner_of(x))];
-    return imbalance_ratio(*std::max_element(owned.begin(), owned.end()), static_cast<long>(positions.size()),
-                           dec.size());
+    owned.back() = static_cast<long>(positions.size());
+    MPI_Allreduce(MPI_IN_PLACE, owned.data(), static_cast<int>(owned.size()), MPI_LONG, MPI_SUM, comm());
+    return imbalance_ratio(*std::max_element(owned.begin(), owned.end() - 1), owned.back(), dec.size());
   };
   balance_.before = imbalance();
   place_planes(h.data());

@@ -117,8 +117,9 @@ class Domain {
   [[nodiscard]] const BalanceRecord& balance() const { return balance_; }
   // The planes and the load balance's progress; and back (between steps): the planes when the
   // blocks are the same; on other blocks (another rank count), with the load balance on, planes
-  // balanced over `positions` (every grain's, the same on every rank; a rebalance at `step`),
-  // and otherwise the default planes. The balance's next step is taken in every case.
+  // balanced over `positions` (every grain's once over the ranks, in any share: their counts are
+  // summed; a rebalance at `step`), and otherwise the default planes. The balance's next step is
+  // taken in every case. Collective.
   [[nodiscard]] DomainState state() const;
   void restore(const DomainState& s, const std::vector<Vec3>& positions, long step);
   [[nodiscard]] long migrated_out() const { return migrated_out_; }
