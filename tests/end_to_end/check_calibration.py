@@ -32,6 +32,8 @@ import shutil
 import subprocess
 import sys
 
+from study_run import run_study
+
 upgrain, scene, work = sys.argv[1:4]
 mpiexec = sys.argv[4] if len(sys.argv) > 4 else 'mpiexec'
 shutil.rmtree(work, ignore_errors=True)
@@ -39,12 +41,7 @@ os.makedirs(work)
 folders = {}
 for ranks in (1, 2):
     out = os.path.join(work, f'ranks_{ranks}')
-    cmd = [upgrain, '--study', 'calibration', '--output', out, scene]
-    if ranks > 1:
-        cmd = [mpiexec, '-n', str(ranks)] + cmd
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    if r.returncode != 0:
-        sys.exit(f'{ranks} rank(s): exit {r.returncode}\n{r.stdout}\n{r.stderr}')
+    run_study(upgrain, 'calibration', scene, out, ranks, mpiexec)
     folders[ranks] = os.path.join(out, 'calibration')
 for name in ('oedometer.csv', 'triaxial.csv', 'material.prm'):
     a = open(os.path.join(folders[1], name), 'rb').read()
